@@ -1,0 +1,160 @@
+//! The force stages: everything that turns a state (x, v) into accelerations.
+
+use super::{external, gas, Model, Params};
+use crate::error::SimError;
+
+/// A failure inside a step, before the step number is known.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Fault {
+    NonFinite,
+    Collapsed(f64),
+}
+
+impl Fault {
+    pub fn at(self, step: u64) -> SimError {
+        match self {
+            Fault::NonFinite => SimError::NonFinite { step },
+            Fault::Collapsed(volume) => SimError::Collapsed { step, volume },
+        }
+    }
+}
+
+/// Result of the force stages: what the vertex stage needs besides the accumulators.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Gathered {
+    /// (P − P_ref) / 6 (Pa): multiplies g (Σ face normals, m²) to give the gas force (N).
+    pub gas_per_normal: f64,
+}
+
+/// Stages springs, faces, gas and external: fill `f` (N) and `g` (m²), which must be zero.
+pub(crate) fn gather(p: &Params, m: &Model, x: &[f64], v: &[f64], f: &mut [f64], g: &mut [f64]) -> Result<Gathered, Fault> {
+    // Stage springs.
+    m.springs.accumulate(p.stiffness, p.spring_damping, x, v, f);
+
+    // Stage faces: the exact volume, plus the face normals only if a pressure will use them.
+    let nrt = p.nrt();
+    let gas_active = nrt != 0.0 || m.gas.ambient_pressure != 0.0;
+    let six_v = if gas_active { m.faces.volume6_and_normals(x, g) } else { m.faces.volume6(x) };
+    if !six_v.is_finite() {
+        return Err(Fault::NonFinite);
+    }
+
+    // Stage gas: P = nRT / V from the selected volume.
+    let mut gas_per_normal = 0.0;
+    if gas_active {
+        let volume = gas::measure(p.volume_mode, six_v, x);
+        if !(volume > 0.0) {
+            return Err(if volume.is_finite() { Fault::Collapsed(volume) } else { Fault::NonFinite });
+        }
+        gas_per_normal = (gas::pressure(nrt, volume) - m.gas.ambient_pressure) / 6.0;
+    }
+
+    // Stage external: wind and user face pressures.
+    if p.wind_drag > 0.0 && p.wind != [0.0; 3] {
+        external::wind(m.faces.triangles(), x, v, p.wind, p.wind_drag, f);
+    }
+    if m.face_pressure_active {
+        external::face_pressures(m.faces.triangles(), x, &m.face_pressure, f);
+    }
+    Ok(Gathered { gas_per_normal })
+}
+
+/// Acceleration of vertex i (m/s²) from the accumulators, user force, gravity and damping:
+///   a = (f + (P − P_ref)/6 · g + f_user) / m − c v + (0, −g, 0), and 0 for a pinned vertex.
+#[inline(always)]
+fn accel<const USER: bool, const UNIFORM: bool>(
+    k: usize,
+    im: f64,
+    f: &[f64],
+    g: &[f64],
+    user: &[f64],
+    pg: f64,
+    v: f64,
+    c: f64,
+    gravity_k: f64,
+) -> f64 {
+    let mut force = f[k] + pg * g[k];
+    if USER {
+        force += user[k];
+    }
+    let mut a = im * force;
+    if UNIFORM {
+        // Pinned vertices (im = 0) feel no gravity or damping either.
+        let free = if im != 0.0 { 1.0 } else { 0.0 };
+        a += free * (gravity_k - c * v);
+    }
+    a
+}
+
+/// Which per-vertex terms are present: chosen once per stage, not per vertex.
+macro_rules! dispatch {
+    ($m:expr, $p:expr, $fun:ident ( $($arg:expr),* )) => {{
+        let user = $m.user_force_active;
+        let uniform = $p.gravity != 0.0 || $p.damping != 0.0;
+        match (user, uniform) {
+            (false, false) => $fun::<false, false>($($arg),*),
+            (false, true) => $fun::<false, true>($($arg),*),
+            (true, false) => $fun::<true, false>($($arg),*),
+            (true, true) => $fun::<true, true>($($arg),*),
+        }
+    }};
+}
+
+/// Stage vertices (generic): write accelerations into `a` and clear the accumulators.
+pub(crate) fn accelerations(p: &Params, m: &Model, gathered: Gathered, v: &[f64], f: &mut [f64], g: &mut [f64], a: &mut [f64]) {
+    dispatch!(m, p, accelerations_impl(p, m, gathered.gas_per_normal, v, f, g, a))
+}
+
+fn accelerations_impl<const USER: bool, const UNIFORM: bool>(
+    p: &Params,
+    m: &Model,
+    pg: f64,
+    v: &[f64],
+    f: &mut [f64],
+    g: &mut [f64],
+    a: &mut [f64],
+) {
+    let n = m.inv_mass.len();
+    let (v, f, g, a, user) = (&v[..3 * n], &mut f[..3 * n], &mut g[..3 * n], &mut a[..3 * n], &m.user_force[..3 * n]);
+    let grav = [0.0, -p.gravity, 0.0];
+    for i in 0..n {
+        let im = m.inv_mass[i];
+        for d in 0..3 {
+            let k = 3 * i + d;
+            a[k] = accel::<USER, UNIFORM>(k, im, f, g, user, pg, v[k], p.damping, grav[d]);
+            f[k] = 0.0;
+            g[k] = 0.0;
+        }
+    }
+}
+
+/// Stage vertices fused with symplectic Euler: v += dt a; x += dt v; clear the accumulators.
+pub(crate) fn symplectic_update(p: &Params, m: &Model, gathered: Gathered, dt: f64, x: &mut [f64], v: &mut [f64], f: &mut [f64], g: &mut [f64]) {
+    dispatch!(m, p, symplectic_impl(p, m, gathered.gas_per_normal, dt, x, v, f, g))
+}
+
+fn symplectic_impl<const USER: bool, const UNIFORM: bool>(
+    p: &Params,
+    m: &Model,
+    pg: f64,
+    dt: f64,
+    x: &mut [f64],
+    v: &mut [f64],
+    f: &mut [f64],
+    g: &mut [f64],
+) {
+    let n = m.inv_mass.len();
+    let (x, v, f, g, user) = (&mut x[..3 * n], &mut v[..3 * n], &mut f[..3 * n], &mut g[..3 * n], &m.user_force[..3 * n]);
+    let grav = [0.0, -p.gravity, 0.0];
+    for i in 0..n {
+        let im = m.inv_mass[i];
+        for d in 0..3 {
+            let k = 3 * i + d;
+            let acc = accel::<USER, UNIFORM>(k, im, f, g, user, pg, v[k], p.damping, grav[d]);
+            v[k] += dt * acc;
+            x[k] += dt * v[k];
+            f[k] = 0.0;
+            g[k] = 0.0;
+        }
+    }
+}

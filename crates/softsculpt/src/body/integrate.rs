@@ -1,0 +1,102 @@
+//! The integrators, on the state (x, v) with a(x, v) from the force stages.
+
+use super::forces::{accelerations, gather, symplectic_update, Fault};
+use super::{ground, Integrator, Model, Params, State, Work};
+
+/// a(x, v) into `a` (m/s²).
+fn eval(p: &Params, m: &Model, x: &[f64], v: &[f64], f: &mut [f64], g: &mut [f64], a: &mut [f64]) -> Result<(), Fault> {
+    let gathered = gather(p, m, x, v, f, g).inspect_err(|_| {
+        f.fill(0.0);
+        g.fill(0.0);
+    })?;
+    accelerations(p, m, gathered, v, f, g, a);
+    Ok(())
+}
+
+fn ensure(buf: &mut Vec<f64>, n: usize) {
+    if buf.len() != n {
+        *buf = vec![0.0; n];
+    }
+}
+
+/// One step of `dt` (s). The state is left untouched if a force evaluation fails.
+pub(crate) fn step(p: &Params, m: &Model, s: &mut State, w: &mut Work, dt: f64) -> Result<(), Fault> {
+    let n = s.x.len();
+    let Work { f, g, xs, vs, a } = w;
+    match p.integrator {
+        Integrator::Symplectic => {
+            // v' = v + dt a(x, v); x' = x + dt v'
+            let gathered = gather(p, m, &s.x, &s.v, f, g).inspect_err(|_| {
+                f.fill(0.0);
+                g.fill(0.0);
+            })?;
+            symplectic_update(p, m, gathered, dt, &mut s.x, &mut s.v, f, g);
+        }
+        Integrator::Euler => {
+            // x' = x + dt v; v' = v + dt a(x, v)
+            ensure(&mut a[0], n);
+            eval(p, m, &s.x, &s.v, f, g, &mut a[0])?;
+            for k in 0..n {
+                s.x[k] += dt * s.v[k];
+                s.v[k] += dt * a[0][k];
+            }
+        }
+        Integrator::Midpoint => {
+            // a1 = a(x, v); (xm, vm) = (x + dt/2 v, v + dt/2 a1); a2 = a(xm, vm)
+            // x' = x + dt vm; v' = v + dt a2
+            ensure(&mut a[0], n);
+            ensure(&mut a[1], n);
+            ensure(xs, n);
+            ensure(vs, n);
+            eval(p, m, &s.x, &s.v, f, g, &mut a[0])?;
+            let h = 0.5 * dt;
+            for k in 0..n {
+                xs[k] = s.x[k] + h * s.v[k];
+                vs[k] = s.v[k] + h * a[0][k];
+            }
+            eval(p, m, xs, vs, f, g, &mut a[1])?;
+            for k in 0..n {
+                s.x[k] += dt * vs[k];
+                s.v[k] += dt * a[1][k];
+            }
+        }
+        Integrator::Rk4 => {
+            // Classic RK4 on y = (x, v), y' = (v, a(x, v)). With a1..a4 the stage accelerations,
+            // the stage velocities are v, v + h/2 a1, v + h/2 a2, v + h a3, and
+            //   x' = x + h v + h²/6 (a1 + a2 + a3)
+            //   v' = v + h/6 (a1 + 2 a2 + 2 a3 + a4)
+            for b in a.iter_mut() {
+                ensure(b, n);
+            }
+            ensure(xs, n);
+            ensure(vs, n);
+            let h = dt;
+            eval(p, m, &s.x, &s.v, f, g, &mut a[0])?;
+            for k in 0..n {
+                xs[k] = s.x[k] + 0.5 * h * s.v[k];
+                vs[k] = s.v[k] + 0.5 * h * a[0][k];
+            }
+            eval(p, m, xs, vs, f, g, &mut a[1])?;
+            for k in 0..n {
+                // x3 = x + h/2 (v + h/2 a1)
+                xs[k] = s.x[k] + 0.5 * h * (s.v[k] + 0.5 * h * a[0][k]);
+                vs[k] = s.v[k] + 0.5 * h * a[1][k];
+            }
+            eval(p, m, xs, vs, f, g, &mut a[2])?;
+            for k in 0..n {
+                // x4 = x + h (v + h/2 a2)
+                xs[k] = s.x[k] + h * (s.v[k] + 0.5 * h * a[1][k]);
+                vs[k] = s.v[k] + h * a[2][k];
+            }
+            eval(p, m, xs, vs, f, g, &mut a[3])?;
+            for k in 0..n {
+                s.x[k] += h * s.v[k] + h * h / 6.0 * (a[0][k] + a[1][k] + a[2][k]);
+                s.v[k] += h / 6.0 * (a[0][k] + 2.0 * a[1][k] + 2.0 * a[2][k] + a[3][k]);
+            }
+        }
+    }
+    if let Some(ground) = p.ground {
+        ground::project(&ground, &m.inv_mass, &mut s.x, &mut s.v);
+    }
+    Ok(())
+}

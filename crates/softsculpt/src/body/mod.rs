@@ -1,0 +1,268 @@
+//! A soft body: state in flat arrays, stepped as a list of named stages.
+//!
+//! One step (see [`SoftBody::step`]):
+//! 1. **springs**  – Hooke + spring damping on every edge, into the force accumulator `f`.
+//! 2. **faces**    – exact volume and Σ face normals per vertex `g` in one pass over faces.
+//! 3. **gas**      – the pressure P = nRT / V from the selected volume, minus the surroundings'.
+//! 4. **external** – wind and user face pressures into `f` (only when set).
+//! 5. **vertices** – a = (f + (P − P_ref)/6 g + f_user) / m + g_vec − c v, then the integrator
+//!    (fused into this pass for symplectic Euler); the accumulators are cleared on the way.
+//! 6. **ground**   – project vertices that ended below the ground plane back onto it.
+//!
+//! All arrays are `xyz` interleaved per vertex (`[x0, y0, z0, x1, …]`), so a renderer can read
+//! positions without copying and a spring touches one cache line per end.
+
+mod external;
+mod faces;
+mod forces;
+mod gas;
+mod ground;
+mod integrate;
+mod modeling;
+mod params;
+mod springs;
+mod stats;
+
+pub use faces::Faces;
+pub use gas::GasReference;
+pub use params::{check_dt, Ground, Integrator, Params, VolumeMode, DEFAULT_TEMPERATURE, GAS_CONSTANT};
+pub use springs::Springs;
+pub use stats::Stats;
+
+use crate::error::{MeshError, SimError};
+use crate::mesh::{topology, TriMesh};
+
+/// Per-vertex and per-face data that the force stages read.
+#[derive(Debug, Clone)]
+pub(crate) struct Model {
+    pub faces: Faces,
+    pub springs: Springs,
+    /// Every edge shared by exactly two faces.
+    pub closed: bool,
+    /// Vertex masses mi (kg).
+    pub mass: Vec<f64>,
+    /// 1 / mi (1/kg), 0 for pinned vertices.
+    pub inv_mass: Vec<f64>,
+    /// User force on each vertex (N, flat xyz), e.g. the mouse grab.
+    pub user_force: Vec<f64>,
+    pub user_force_active: bool,
+    /// User pressure on each face (Pa), pushing along the inward normal.
+    pub face_pressure: Vec<f64>,
+    pub face_pressure_active: bool,
+    pub gas: GasReference,
+}
+
+/// Positions (m) and velocities (m/s), flat xyz.
+#[derive(Debug, Clone)]
+pub(crate) struct State {
+    pub x: Vec<f64>,
+    pub v: Vec<f64>,
+}
+
+/// Scratch arrays, allocated once (the Runge–Kutta ones on first use), never inside a step.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Work {
+    /// Force accumulator (N) and Σ face normals (m²), zero between steps.
+    pub f: Vec<f64>,
+    pub g: Vec<f64>,
+    /// Intermediate state and stage accelerations of the explicit Runge–Kutta methods.
+    pub xs: Vec<f64>,
+    pub vs: Vec<f64>,
+    pub a: [Vec<f64>; 4],
+}
+
+/// The last frozen shape, for [`SoftBody::reset`].
+#[derive(Debug, Clone)]
+pub(crate) struct Frozen {
+    pub x: Vec<f64>,
+    pub rest: Vec<f64>,
+    pub gas: GasReference,
+}
+
+/// A soft body. See the module documentation for the step.
+#[derive(Debug, Clone)]
+pub struct SoftBody {
+    /// Parameters; change them freely between steps (they are validated by each step).
+    pub params: Params,
+    pub(crate) model: Model,
+    pub(crate) state: State,
+    pub(crate) work: Work,
+    pub(crate) frozen: Frozen,
+    steps: u64,
+    time: f64,
+}
+
+impl SoftBody {
+    /// A body on `mesh` at rest (rest lengths = edge lengths), of total mass `mass` (kg) split
+    /// equally over the vertices. Fails if the parameters are invalid or if there is gas and the
+    /// mesh is not closed.
+    pub fn new(mesh: &TriMesh, total_mass: f64, params: Params) -> Result<Self, BodyError> {
+        params.validate()?;
+        params::check_positive("mass", total_mass)?;
+        let n = mesh.vertex_count();
+        if n == 0 || mesh.triangles.is_empty() {
+            return Err(MeshError::Empty("the mesh has no faces".into()).into());
+        }
+        if mesh.positions.iter().any(|p| !p.is_finite()) {
+            return Err(MeshError::Invalid("the mesh has non-finite coordinates".into()).into());
+        }
+        if mesh.triangles.iter().flatten().any(|&i| i as usize >= n) {
+            return Err(MeshError::Invalid("a face refers to a vertex that does not exist".into()).into());
+        }
+        let counts = topology::count_edges(&mesh.triangles);
+        let closed = counts.boundary == 0 && counts.non_manifold == 0;
+        if params.nrt() > 0.0 && !closed {
+            return Err(MeshError::NotClosed { boundary_edges: counts.boundary, non_manifold_edges: counts.non_manifold }.into());
+        }
+        let x = mesh.positions.clone();
+        let springs = Springs::new(&topology::edges(&mesh.triangles), &x);
+        let faces = Faces::new(mesh.triangles.clone(), n);
+        let m = total_mass / n as f64;
+        let mut body = SoftBody {
+            model: Model {
+                faces,
+                springs,
+                closed,
+                mass: vec![m; n],
+                inv_mass: vec![1.0 / m; n],
+                user_force: vec![0.0; 3 * n],
+                user_force_active: false,
+                face_pressure: vec![0.0; mesh.triangles.len()],
+                face_pressure_active: false,
+                gas: GasReference { ambient_pressure: 0.0, reference_volume: 1.0 },
+            },
+            state: State { v: vec![0.0; 3 * n], x },
+            work: Work { f: vec![0.0; 3 * n], g: vec![0.0; 3 * n], ..Default::default() },
+            frozen: Frozen { x: Vec::new(), rest: Vec::new(), gas: GasReference { ambient_pressure: 0.0, reference_volume: 1.0 } },
+            params,
+            steps: 0,
+            time: 0.0,
+        };
+        let v0 = body.volume();
+        body.model.gas.reference_volume = if v0 > 0.0 { v0 } else { 1.0 };
+        body.frozen = Frozen { x: body.state.x.clone(), rest: body.model.springs.rest.clone(), gas: body.model.gas };
+        Ok(body)
+    }
+
+    /// Advance by one step of `dt` seconds with the selected integrator.
+    ///
+    /// On error the step count names the failing step; the state is then the one that failed to
+    /// evaluate (callers that must recover keep their own copy, see [`SoftBody::snapshot`]).
+    pub fn step(&mut self, dt: f64) -> Result<(), SimError> {
+        check_dt(dt)?;
+        self.params.validate()?;
+        if self.params.nrt() > 0.0 && !self.model.closed {
+            return Err(SimError::BadParameter {
+                name: "gas",
+                message: "gas pressure needs a closed surface; this mesh is open or non-manifold".into(),
+            });
+        }
+        let step = self.steps + 1;
+        integrate::step(&self.params, &self.model, &mut self.state, &mut self.work, dt).map_err(|e| e.at(step))?;
+        self.steps = step;
+        self.time += dt;
+        Ok(())
+    }
+
+    // ----- read access -------------------------------------------------------------------
+
+    pub fn vertex_count(&self) -> usize {
+        self.state.x.len() / 3
+    }
+    pub fn spring_count(&self) -> usize {
+        self.model.springs.len()
+    }
+    pub fn face_count(&self) -> usize {
+        self.model.faces.len()
+    }
+    pub fn triangles(&self) -> &[[u32; 3]] {
+        self.model.faces.triangles()
+    }
+    /// Spring end vertices (i < j).
+    pub fn spring_ends(&self) -> (&[u32], &[u32]) {
+        (&self.model.springs.i, &self.model.springs.j)
+    }
+    /// Positions (m), flat xyz.
+    pub fn positions(&self) -> &[f64] {
+        &self.state.x
+    }
+    /// Velocities (m/s), flat xyz.
+    pub fn velocities(&self) -> &[f64] {
+        &self.state.v
+    }
+    /// Vertex masses (kg).
+    pub fn masses(&self) -> &[f64] {
+        &self.model.mass
+    }
+    pub fn is_pinned(&self, i: usize) -> bool {
+        self.model.inv_mass[i] == 0.0
+    }
+    /// Rest lengths (m), one per spring.
+    pub fn rest_lengths(&self) -> &[f64] {
+        &self.model.springs.rest
+    }
+    pub fn is_closed(&self) -> bool {
+        self.model.closed
+    }
+    /// Pressure of the surroundings P_ref (Pa), set by [`SoftBody::freeze`].
+    pub fn gas_reference(&self) -> GasReference {
+        self.model.gas
+    }
+    /// Steps taken and simulated time (s).
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+    /// Every position and velocity is finite.
+    pub fn is_finite(&self) -> bool {
+        self.state.x.iter().chain(&self.state.v).all(|a| a.is_finite())
+    }
+    /// The volume the gas uses (m³), in the selected mode.
+    pub fn volume(&self) -> f64 {
+        gas::measure(self.params.volume_mode, self.model.faces.volume6(&self.state.x), &self.state.x)
+    }
+    /// The exact enclosed volume (m³).
+    pub fn exact_volume(&self) -> f64 {
+        self.model.faces.volume6(&self.state.x) / 6.0
+    }
+    /// Gas pressure P = nRT / V (Pa).
+    pub fn pressure(&self) -> f64 {
+        gas::pressure(self.params.nrt(), self.volume())
+    }
+    /// Σ k (l − L) l over springs (J): 3 nRT at inflated equilibrium without other forces.
+    pub fn spring_virial(&self) -> f64 {
+        self.model.springs.virial(self.params.stiffness, &self.state.x)
+    }
+    /// Largest vertex speed (m/s).
+    pub fn max_speed(&self) -> f64 {
+        self.state.v.chunks_exact(3).map(|v| v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).fold(0.0, f64::max).sqrt()
+    }
+}
+
+/// Creating a body can fail on the mesh or on a parameter.
+#[derive(Debug, Clone, PartialEq)]
+pub enum BodyError {
+    Mesh(MeshError),
+    Sim(SimError),
+}
+impl From<MeshError> for BodyError {
+    fn from(e: MeshError) -> Self {
+        BodyError::Mesh(e)
+    }
+}
+impl From<SimError> for BodyError {
+    fn from(e: SimError) -> Self {
+        BodyError::Sim(e)
+    }
+}
+impl std::fmt::Display for BodyError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            BodyError::Mesh(e) => e.fmt(f),
+            BodyError::Sim(e) => e.fmt(f),
+        }
+    }
+}
+impl std::error::Error for BodyError {}

@@ -1,0 +1,176 @@
+//! Modeling operations: freeze, reset, inflate/deflate, masses, pins, user forces.
+
+use super::params::{check_non_negative, check_positive};
+use super::{gas, Frozen, SoftBody};
+use crate::error::SimError;
+
+fn length_check(what: &'static str, expected: usize, got: usize) -> Result<(), SimError> {
+    if expected != got {
+        return Err(SimError::Length { what, expected, got });
+    }
+    Ok(())
+}
+
+fn finite(name: &'static str, values: &[f64]) -> Result<(), SimError> {
+    if let Some(bad) = values.iter().find(|v| !v.is_finite()) {
+        return Err(SimError::BadParameter { name, message: format!("must be finite, got {bad}") });
+    }
+    Ok(())
+}
+
+impl SoftBody {
+    /// Freeze: the current shape becomes the rest shape.
+    ///
+    /// Every rest length becomes the current length (so the springs exert no force), velocities
+    /// become zero, and the gas is re-referenced: the surroundings' pressure P_ref becomes the
+    /// current gas pressure P = nRT / V, so the net gas force (P − P_ref) ∂V/∂x is zero. With
+    /// nothing else acting, the body then stays exactly where it is. The gas energy reference
+    /// V0 becomes the current volume. [`SoftBody::reset`] returns to this state.
+    pub fn freeze(&mut self) {
+        self.model.springs.rest_to_current(&self.state.x);
+        self.state.v.fill(0.0);
+        let volume = self.volume();
+        self.model.gas.ambient_pressure = gas::pressure(self.params.nrt(), volume);
+        self.model.gas.reference_volume = volume;
+        self.frozen = Frozen { x: self.state.x.clone(), rest: self.model.springs.rest.clone(), gas: self.model.gas };
+    }
+
+    /// Reset to the last frozen shape (or the loaded one): positions, rest lengths and the gas
+    /// reference; velocities zero. Masses, pins and parameters are kept.
+    pub fn reset(&mut self) {
+        self.state.x.copy_from_slice(&self.frozen.x);
+        self.model.springs.rest.copy_from_slice(&self.frozen.rest);
+        self.model.gas = self.frozen.gas;
+        self.state.v.fill(0.0);
+    }
+
+    /// Inflate (factor > 1) or deflate (< 1) by scaling every rest length (dimensionless).
+    pub fn scale_rest_lengths(&mut self, factor: f64) -> Result<(), SimError> {
+        check_positive("factor", factor)?;
+        for l in &mut self.model.springs.rest {
+            *l *= factor;
+        }
+        Ok(())
+    }
+
+    /// Inflate or deflate locally: `factors` holds one scale per vertex (dimensionless, > 0);
+    /// each spring's rest length is multiplied by the mean of its two ends' factors.
+    pub fn scale_rest_lengths_by_vertex(&mut self, factors: &[f64]) -> Result<(), SimError> {
+        length_check("factors", self.vertex_count(), factors.len())?;
+        if let Some(bad) = factors.iter().find(|f| !(f.is_finite() && **f > 0.0)) {
+            return Err(SimError::BadParameter { name: "factors", message: format!("must be finite and > 0, got {bad}") });
+        }
+        let s = &mut self.model.springs;
+        for e in 0..s.rest.len() {
+            s.rest[e] *= 0.5 * (factors[s.i[e] as usize] + factors[s.j[e] as usize]);
+        }
+        Ok(())
+    }
+
+    /// Set every rest length (m).
+    pub fn set_rest_lengths(&mut self, rest: &[f64]) -> Result<(), SimError> {
+        length_check("rest lengths", self.spring_count(), rest.len())?;
+        if let Some(bad) = rest.iter().find(|l| !(l.is_finite() && **l >= 0.0)) {
+            return Err(SimError::BadParameter { name: "rest lengths", message: format!("must be finite and ≥ 0, got {bad}") });
+        }
+        self.model.springs.rest.copy_from_slice(rest);
+        Ok(())
+    }
+
+    /// Split a total mass (kg) equally over the vertices (pins are kept).
+    pub fn set_total_mass(&mut self, total: f64) -> Result<(), SimError> {
+        check_positive("mass", total)?;
+        let m = total / self.vertex_count() as f64;
+        let pinned: Vec<bool> = (0..self.vertex_count()).map(|i| self.is_pinned(i)).collect();
+        for (i, p) in pinned.into_iter().enumerate() {
+            self.model.mass[i] = m;
+            self.model.inv_mass[i] = if p { 0.0 } else { 1.0 / m };
+        }
+        Ok(())
+    }
+
+    /// Set the mass of vertex i (kg, > 0). Heavier vertices move less: this localises deformation.
+    pub fn set_vertex_mass(&mut self, i: usize, mass: f64) -> Result<(), SimError> {
+        check_positive("vertex mass", mass)?;
+        self.vertex_index(i)?;
+        let pinned = self.is_pinned(i);
+        self.model.mass[i] = mass;
+        self.model.inv_mass[i] = if pinned { 0.0 } else { 1.0 / mass };
+        Ok(())
+    }
+
+    /// Pin (infinite mass: never moves) or unpin vertex i.
+    pub fn set_pinned(&mut self, i: usize, pinned: bool) -> Result<(), SimError> {
+        self.vertex_index(i)?;
+        self.model.inv_mass[i] = if pinned { 0.0 } else { 1.0 / self.model.mass[i] };
+        if pinned {
+            self.state.v[3 * i..3 * i + 3].fill(0.0);
+        }
+        Ok(())
+    }
+
+    /// External force on every vertex (N, flat xyz), applied until changed. Zeros switch it off.
+    pub fn set_user_forces(&mut self, forces: &[f64]) -> Result<(), SimError> {
+        length_check("user forces", 3 * self.vertex_count(), forces.len())?;
+        finite("user forces", forces)?;
+        self.model.user_force.copy_from_slice(forces);
+        self.model.user_force_active = forces.iter().any(|&f| f != 0.0);
+        Ok(())
+    }
+
+    /// External pressure on every face (Pa, along the inward normal), applied until changed.
+    pub fn set_face_pressures(&mut self, pressures: &[f64]) -> Result<(), SimError> {
+        length_check("face pressures", self.face_count(), pressures.len())?;
+        finite("face pressures", pressures)?;
+        self.model.face_pressure.copy_from_slice(pressures);
+        self.model.face_pressure_active = pressures.iter().any(|&p| p != 0.0);
+        Ok(())
+    }
+
+    /// Give every vertex the velocity `v` (m/s).
+    pub fn set_uniform_velocity(&mut self, v: [f64; 3]) -> Result<(), SimError> {
+        finite("velocity", &v)?;
+        for (i, u) in self.state.v.chunks_exact_mut(3).enumerate() {
+            if self.model.inv_mass[i] != 0.0 {
+                u.copy_from_slice(&v);
+            }
+        }
+        Ok(())
+    }
+
+    /// Replace positions and velocities (flat xyz), e.g. to roll back to a snapshot.
+    pub fn set_state(&mut self, x: &[f64], v: &[f64]) -> Result<(), SimError> {
+        length_check("positions", self.state.x.len(), x.len())?;
+        length_check("velocities", self.state.v.len(), v.len())?;
+        finite("positions", x)?;
+        finite("velocities", v)?;
+        self.state.x.copy_from_slice(x);
+        self.state.v.copy_from_slice(v);
+        Ok(())
+    }
+
+    /// Set the gas by n (mol) and T (K).
+    pub fn set_gas(&mut self, amount: f64, temperature: f64) -> Result<(), SimError> {
+        check_non_negative("gas", amount)?;
+        check_positive("temperature", temperature)?;
+        if amount > 0.0 && !self.model.closed {
+            return Err(SimError::BadParameter {
+                name: "gas",
+                message: "gas pressure needs a closed surface; this mesh is open or non-manifold".into(),
+            });
+        }
+        self.params.gas_amount = amount;
+        self.params.temperature = temperature;
+        Ok(())
+    }
+
+    fn vertex_index(&self, i: usize) -> Result<(), SimError> {
+        if i >= self.vertex_count() {
+            return Err(SimError::BadParameter {
+                name: "vertex",
+                message: format!("index {i} out of range (the body has {} vertices)", self.vertex_count()),
+            });
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,73 @@
+//! Diagnostics of a body's state: energies, momentum, centre of mass.
+
+use super::{gas, SoftBody};
+
+/// One line of statistics. Energies in J, momentum in kg·m/s, lengths in m, speeds in m/s.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Stats {
+    pub step: u64,
+    /// Simulated time (s).
+    pub time: f64,
+    /// The volume the pressure uses (m³).
+    pub volume: f64,
+    /// Gas pressure P = nRT / V (Pa).
+    pub pressure: f64,
+    /// Σ ½ mi |vi|² (pinned vertices do not move and contribute 0).
+    pub kinetic_energy: f64,
+    /// Σ ½ k (l − L)².
+    pub elastic_energy: f64,
+    /// −nRT ln(V/V0) + P_ref (V − V0), see `gas.rs`.
+    pub gas_energy: f64,
+    /// Σ mi g yi.
+    pub gravity_energy: f64,
+    /// Sum of the four energies above.
+    pub total_energy: f64,
+    /// Σ mi vi.
+    pub momentum: [f64; 3],
+    /// Σ mi xi / Σ mi.
+    pub center_of_mass: [f64; 3],
+    /// Largest |vi|.
+    pub max_speed: f64,
+}
+
+impl SoftBody {
+    pub fn stats(&self) -> Stats {
+        let (x, v, m) = (&self.state.x, &self.state.v, &self.model.mass);
+        let volume = self.volume();
+        let nrt = self.params.nrt();
+        let mut ke = 0.0;
+        let mut pe_g = 0.0;
+        let mut p = [0.0; 3];
+        let mut com = [0.0; 3];
+        let mut total_mass = 0.0;
+        let mut vmax2: f64 = 0.0;
+        for i in 0..m.len() {
+            let (xi, vi) = (&x[3 * i..3 * i + 3], &v[3 * i..3 * i + 3]);
+            let v2 = vi[0] * vi[0] + vi[1] * vi[1] + vi[2] * vi[2];
+            ke += 0.5 * m[i] * v2;
+            vmax2 = vmax2.max(v2);
+            pe_g += m[i] * self.params.gravity * xi[1];
+            for d in 0..3 {
+                p[d] += m[i] * vi[d];
+                com[d] += m[i] * xi[d];
+            }
+            total_mass += m[i];
+        }
+        let elastic = self.model.springs.energy(self.params.stiffness, x);
+        let gas_energy = gas::energy(nrt, volume, &self.model.gas);
+        Stats {
+            step: self.steps(),
+            time: self.time(),
+            volume,
+            pressure: gas::pressure(nrt, volume),
+            kinetic_energy: ke,
+            elastic_energy: elastic,
+            gas_energy,
+            gravity_energy: pe_g,
+            total_energy: ke + elastic + gas_energy + pe_g,
+            momentum: p,
+            center_of_mass: com.map(|c| c / total_mass),
+            max_speed: vmax2.sqrt(),
+        }
+    }
+}

@@ -1,0 +1,97 @@
+//! Errors of the core, each with a message fit to show a user as it is.
+
+use std::fmt;
+
+/// Why a mesh could not be read or used.
+#[derive(Debug, Clone, PartialEq)]
+pub enum MeshError {
+    /// The OBJ text is malformed at a given 1-based line.
+    Parse { line: usize, message: String },
+    /// The bytes are not text (binary junk, invalid UTF-8).
+    NotText { offset: usize },
+    /// No faces at all (an empty file, or only comments).
+    Empty(String),
+    /// Gas needs a closed, manifold surface.
+    NotClosed { boundary_edges: usize, non_manifold_edges: usize },
+    /// The surface cannot be oriented consistently (a Möbius-like mesh).
+    NonOrientable { edges: usize },
+    /// A builtin name that does not exist.
+    UnknownBuiltin(String),
+    /// Anything else about the mesh that makes it unusable.
+    Invalid(String),
+}
+
+impl fmt::Display for MeshError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            MeshError::Parse { line, message } => write!(f, "line {line}: {message}"),
+            MeshError::NotText { offset } => {
+                write!(f, "not a text OBJ file (binary or invalid UTF-8 data at byte {offset})")
+            }
+            MeshError::Empty(what) => write!(f, "{what}"),
+            MeshError::NotClosed { boundary_edges, non_manifold_edges } => {
+                let mut parts = Vec::new();
+                if *boundary_edges > 0 {
+                    parts.push(format!("{boundary_edges} boundary (open) edges"));
+                }
+                if *non_manifold_edges > 0 {
+                    parts.push(format!("{non_manifold_edges} non-manifold edges (shared by more than two faces)"));
+                }
+                write!(
+                    f,
+                    "gas pressure needs a closed manifold surface, but the mesh has {}; \
+                     close the holes, or simulate it without gas (gas 0)",
+                    parts.join(" and ")
+                )
+            }
+            MeshError::NonOrientable { edges } => write!(
+                f,
+                "the surface cannot be oriented consistently ({edges} edges join faces of opposite orientation whichever way they are flipped): it is not a closed orientable body"
+            ),
+            MeshError::UnknownBuiltin(name) => write!(
+                f,
+                "unknown built-in model '{name}' (available: {})",
+                crate::mesh::builtin::NAMES.join(", ")
+            ),
+            MeshError::Invalid(m) => write!(f, "{m}"),
+        }
+    }
+}
+
+impl std::error::Error for MeshError {}
+
+/// Why the simulation could not go on or a parameter was refused.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SimError {
+    /// A parameter is outside its valid range (name, message).
+    BadParameter { name: &'static str, message: String },
+    /// The state became non-finite (an explosion). `step` counts from the body's creation.
+    NonFinite { step: u64 },
+    /// The volume the gas uses fell to zero or below (the body turned inside out).
+    Collapsed { step: u64, volume: f64 },
+    /// An array passed in has the wrong length.
+    Length { what: &'static str, expected: usize, got: usize },
+}
+
+impl fmt::Display for SimError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SimError::BadParameter { name, message } => write!(f, "{name}: {message}"),
+            SimError::NonFinite { step } => write!(
+                f,
+                "the simulation blew up at step {step} (positions or velocities became non-finite); \
+                 try a smaller dt, more damping, or another integrator (symplectic or rk4)"
+            ),
+            SimError::Collapsed { step, volume } => write!(
+                f,
+                "the body collapsed at step {step} (gas volume {volume:e} m^3 is not positive); \
+                 try a smaller dt, more gas or stiffer springs"
+            ),
+            SimError::Length { what, expected, got } => {
+                write!(f, "{what}: expected {expected} values, got {got}")
+            }
+        }
+    }
+}
+
+impl std::error::Error for SimError {}
