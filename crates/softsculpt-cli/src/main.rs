@@ -1,1 +1,76 @@
-fn main(){}
+//! `softsculpt`: the headless front end of the SoftSculpt engine.
+//!
+//! Subcommands: `simulate` (run a body and write the result), `info` (what a mesh is made of),
+//! `bench` (the standard workload). Every failure prints one line starting `error:` on stderr
+//! and exits with status 1 (2 for a malformed command line); nothing panics on bad input.
+
+mod args;
+mod bench;
+mod info;
+mod input;
+mod output;
+mod simulate;
+
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(name = "softsculpt", version, about = "Soft-body modeling engine: mass-spring-damper with ideal-gas pressure")]
+#[command(allow_negative_numbers = true)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Simulate a body and write its final shape as OBJ.
+    Simulate(simulate::SimulateArgs),
+    /// Print what a mesh is made of: counts, welds, defects, volume, bounds.
+    Info(info::InfoArgs),
+    /// Run the standard benchmark workload (icospheres of increasing size).
+    Bench(bench::BenchArgs),
+}
+
+fn main() -> ExitCode {
+    let matches = match Cli::command().try_get_matches() {
+        Ok(m) => m,
+        Err(e) => return clap_error(e),
+    };
+    let cli = match Cli::from_arg_matches(&matches) {
+        Ok(c) => c,
+        Err(e) => return clap_error(e),
+    };
+    let result = match cli.command {
+        Command::Simulate(a) => simulate::run(a),
+        Command::Info(a) => info::run(a),
+        Command::Bench(a) => bench::run(a),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("error: {message}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+/// Help and version go to stdout as usual; a usage error is reduced to its one `error:` line.
+fn clap_error(e: clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    match e.kind() {
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            let _ = e.print();
+            if e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
+                return ExitCode::from(2);
+            }
+            ExitCode::SUCCESS
+        }
+        _ => {
+            let text = e.render().to_string();
+            let first = text.lines().find(|l| !l.trim().is_empty()).unwrap_or("error: invalid command line");
+            eprintln!("{} (see --help)", first.trim_end());
+            ExitCode::from(2)
+        }
+    }
+}

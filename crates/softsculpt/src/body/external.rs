@@ -38,7 +38,8 @@ pub fn wind(tris: &[[u32; 3]], x: &[f64], v: &[f64], w: [f64; 3], cw: f64, f: &m
     }
 }
 
-pub fn face_pressures(tris: &[[u32; 3]], x: &[f64], pressure: &[f64], f: &mut [f64]) {
+/// Forces are added multiplied by `scale` (see `forces.rs`).
+pub fn face_pressures(tris: &[[u32; 3]], x: &[f64], pressure: &[f64], scale: f64, f: &mut [f64]) {
     for (t, &p) in tris.iter().zip(pressure) {
         if p == 0.0 {
             continue;
@@ -46,7 +47,7 @@ pub fn face_pressures(tris: &[[u32; 3]], x: &[f64], pressure: &[f64], f: &mut [f
         let (a, b, c) = (t[0] as usize, t[1] as usize, t[2] as usize);
         let xa = get(x, a);
         let nf = cross(sub(get(x, b), xa), sub(get(x, c), xa));
-        let s = -p / 6.0;
+        let s = -p / 6.0 * scale;
         for &q in &[a, b, c] {
             for d in 0..3 {
                 f[3 * q + d] += s * nf[d];

@@ -19,61 +19,78 @@ impl Fault {
     }
 }
 
-/// Result of the force stages: what the vertex stage needs besides the accumulators.
+/// Result of the force stages: the accumulator `f` holds forces divided by `scale`.
+///
+/// Why a scale: the gas force on vertex i is s g_i with s = (P − P_ref)/6 and g_i = Σ n_f over
+/// the faces around i, and P is known only once the faces stage has summed the whole volume.
+/// Rather than keep g in a second array until then (one more array read and written per vertex
+/// and step), the faces stage accumulates g into `f`, and the springs and external stages that
+/// follow add their forces divided by s. The vertex stage multiplies back by s. Division and
+/// multiplication by the same s round to within 2 ulp of the direct sum.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Gathered {
-    /// (P − P_ref) / 6 (Pa): multiplies g (Σ face normals, m²) to give the gas force (N).
-    pub gas_per_normal: f64,
+    /// Multiplies the accumulator to give forces in N.
+    pub scale: f64,
 }
 
-/// Stages springs, faces, gas and external: fill `f` (N) and `g` (m²), which must be zero.
-pub(crate) fn gather(p: &Params, m: &Model, x: &[f64], v: &[f64], f: &mut [f64], g: &mut [f64]) -> Result<Gathered, Fault> {
-    // Stage springs.
-    m.springs.accumulate(p.stiffness, p.spring_damping, x, v, f);
+/// |s| outside this range is not used as a scale (the gas force is then dropped if tiny).
+const SCALE_MIN: f64 = 1e-200;
 
-    // Stage faces: the exact volume, plus the face normals only if a pressure will use them.
+/// Stages faces, gas, springs and external: fill `f` (zero on entry) with force / scale.
+pub(crate) fn gather(p: &Params, m: &Model, x: &[f64], v: &[f64], f: &mut [f64]) -> Result<Gathered, Fault> {
     let nrt = p.nrt();
     let gas_active = nrt != 0.0 || m.gas.ambient_pressure != 0.0;
-    let six_v = if gas_active { m.faces.volume6_and_normals(x, g) } else { m.faces.volume6(x) };
+
+    // Stage faces: the exact volume, plus Σ n_f per vertex into f when a gas will use it.
+    let six_v = if gas_active { m.faces.volume6_and_normals(x, f) } else { m.faces.volume6(x) };
     if !six_v.is_finite() {
         return Err(Fault::NonFinite);
     }
 
-    // Stage gas: P = nRT / V from the selected volume.
-    let mut gas_per_normal = 0.0;
+    // Stage gas: s = (P − P_ref) / 6 with P = nRT / V from the selected volume.
+    let mut scale = 1.0;
     if gas_active {
         let volume = gas::measure(p.volume_mode, six_v, x);
         if !(volume > 0.0) {
             return Err(if volume.is_finite() { Fault::Collapsed(volume) } else { Fault::NonFinite });
         }
-        gas_per_normal = (gas::pressure(nrt, volume) - m.gas.ambient_pressure) / 6.0;
+        let s = (gas::pressure(nrt, volume) - m.gas.ambient_pressure) / 6.0;
+        if s.abs() >= SCALE_MIN && s.is_finite() {
+            scale = s;
+        } else {
+            // No net gas force (typically right after a freeze, where P = P_ref exactly).
+            f.fill(0.0);
+        }
     }
+    let inv = 1.0 / scale;
+
+    // Stage springs.
+    m.springs.accumulate(p.stiffness * inv, p.spring_damping * inv, x, v, f);
 
     // Stage external: wind and user face pressures.
     if p.wind_drag > 0.0 && p.wind != [0.0; 3] {
-        external::wind(m.faces.triangles(), x, v, p.wind, p.wind_drag, f);
+        external::wind(m.faces.triangles(), x, v, p.wind, p.wind_drag * inv, f);
     }
     if m.face_pressure_active {
-        external::face_pressures(m.faces.triangles(), x, &m.face_pressure, f);
+        external::face_pressures(m.faces.triangles(), x, &m.face_pressure, inv, f);
     }
-    Ok(Gathered { gas_per_normal })
+    Ok(Gathered { scale })
 }
 
 /// Acceleration of vertex i (m/s²) from the accumulators, user force, gravity and damping:
-///   a = (f + (P − P_ref)/6 · g + f_user) / m − c v + (0, −g, 0), and 0 for a pinned vertex.
+///   a = (scale · f + f_user) / m − c v + (0, −g, 0), and 0 for a pinned vertex.
 #[inline(always)]
 fn accel<const USER: bool, const UNIFORM: bool>(
     k: usize,
     im: f64,
     f: &[f64],
-    g: &[f64],
     user: &[f64],
-    pg: f64,
+    scale: f64,
     v: f64,
     c: f64,
     gravity_k: f64,
 ) -> f64 {
-    let mut force = f[k] + pg * g[k];
+    let mut force = scale * f[k];
     if USER {
         force += user[k];
     }
@@ -101,60 +118,56 @@ macro_rules! dispatch {
 }
 
 /// Stage vertices (generic): write accelerations into `a` and clear the accumulators.
-pub(crate) fn accelerations(p: &Params, m: &Model, gathered: Gathered, v: &[f64], f: &mut [f64], g: &mut [f64], a: &mut [f64]) {
-    dispatch!(m, p, accelerations_impl(p, m, gathered.gas_per_normal, v, f, g, a))
+pub(crate) fn accelerations(p: &Params, m: &Model, gathered: Gathered, v: &[f64], f: &mut [f64], a: &mut [f64]) {
+    dispatch!(m, p, accelerations_impl(p, m, gathered.scale, v, f, a))
 }
 
 fn accelerations_impl<const USER: bool, const UNIFORM: bool>(
     p: &Params,
     m: &Model,
-    pg: f64,
+    scale: f64,
     v: &[f64],
     f: &mut [f64],
-    g: &mut [f64],
     a: &mut [f64],
 ) {
     let n = m.inv_mass.len();
-    let (v, f, g, a, user) = (&v[..3 * n], &mut f[..3 * n], &mut g[..3 * n], &mut a[..3 * n], &m.user_force[..3 * n]);
+    let (v, f, a, user) = (&v[..3 * n], &mut f[..3 * n], &mut a[..3 * n], &m.user_force[..3 * n]);
     let grav = [0.0, -p.gravity, 0.0];
     for i in 0..n {
         let im = m.inv_mass[i];
         for d in 0..3 {
             let k = 3 * i + d;
-            a[k] = accel::<USER, UNIFORM>(k, im, f, g, user, pg, v[k], p.damping, grav[d]);
+            a[k] = accel::<USER, UNIFORM>(k, im, f, user, scale, v[k], p.damping, grav[d]);
             f[k] = 0.0;
-            g[k] = 0.0;
         }
     }
 }
 
 /// Stage vertices fused with symplectic Euler: v += dt a; x += dt v; clear the accumulators.
-pub(crate) fn symplectic_update(p: &Params, m: &Model, gathered: Gathered, dt: f64, x: &mut [f64], v: &mut [f64], f: &mut [f64], g: &mut [f64]) {
-    dispatch!(m, p, symplectic_impl(p, m, gathered.gas_per_normal, dt, x, v, f, g))
+pub(crate) fn symplectic_update(p: &Params, m: &Model, gathered: Gathered, dt: f64, x: &mut [f64], v: &mut [f64], f: &mut [f64]) {
+    dispatch!(m, p, symplectic_impl(p, m, gathered.scale, dt, x, v, f))
 }
 
 fn symplectic_impl<const USER: bool, const UNIFORM: bool>(
     p: &Params,
     m: &Model,
-    pg: f64,
+    scale: f64,
     dt: f64,
     x: &mut [f64],
     v: &mut [f64],
     f: &mut [f64],
-    g: &mut [f64],
 ) {
     let n = m.inv_mass.len();
-    let (x, v, f, g, user) = (&mut x[..3 * n], &mut v[..3 * n], &mut f[..3 * n], &mut g[..3 * n], &m.user_force[..3 * n]);
+    let (x, v, f, user) = (&mut x[..3 * n], &mut v[..3 * n], &mut f[..3 * n], &m.user_force[..3 * n]);
     let grav = [0.0, -p.gravity, 0.0];
     for i in 0..n {
         let im = m.inv_mass[i];
         for d in 0..3 {
             let k = 3 * i + d;
-            let acc = accel::<USER, UNIFORM>(k, im, f, g, user, pg, v[k], p.damping, grav[d]);
+            let acc = accel::<USER, UNIFORM>(k, im, f, user, scale, v[k], p.damping, grav[d]);
             v[k] += dt * acc;
             x[k] += dt * v[k];
             f[k] = 0.0;
-            g[k] = 0.0;
         }
     }
 }

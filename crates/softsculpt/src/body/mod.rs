@@ -1,12 +1,14 @@
 //! A soft body: state in flat arrays, stepped as a list of named stages.
 //!
 //! One step (see [`SoftBody::step`]):
-//! 1. **springs**  – Hooke + spring damping on every edge, into the force accumulator `f`.
-//! 2. **faces**    – exact volume and Σ face normals per vertex `g` in one pass over faces.
-//! 3. **gas**      – the pressure P = nRT / V from the selected volume, minus the surroundings'.
-//! 4. **external** – wind and user face pressures into `f` (only when set).
-//! 5. **vertices** – a = (f + (P − P_ref)/6 g + f_user) / m + g_vec − c v, then the integrator
-//!    (fused into this pass for symplectic Euler); the accumulators are cleared on the way.
+//! 1. **faces**    – exact volume and Σ face normals per vertex, in one pass over faces.
+//! 2. **gas**      – the pressure P = nRT / V from the selected volume, minus the surroundings'.
+//! 3. **springs**  – Hooke + spring damping on every edge.
+//! 4. **external** – wind and user face pressures (only when set).
+//! 5. **vertices** – a = f / m + g_vec − c v, then the integrator (fused into this pass for
+//!    symplectic Euler); the force accumulator is cleared on the way.
+//!
+//! Stages 1–4 add into one force accumulator; `forces.rs` explains how the gas force shares it.
 //! 6. **ground**   – project vertices that ended below the ground plane back onto it.
 //!
 //! All arrays are `xyz` interleaved per vertex (`[x0, y0, z0, x1, …]`), so a renderer can read
@@ -62,9 +64,8 @@ pub(crate) struct State {
 /// Scratch arrays, allocated once (the Runge–Kutta ones on first use), never inside a step.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Work {
-    /// Force accumulator (N) and Σ face normals (m²), zero between steps.
+    /// Force accumulator (N, divided by the gas scale, see `forces.rs`), zero between steps.
     pub f: Vec<f64>,
-    pub g: Vec<f64>,
     /// Intermediate state and stage accelerations of the explicit Runge–Kutta methods.
     pub xs: Vec<f64>,
     pub vs: Vec<f64>,
@@ -132,7 +133,7 @@ impl SoftBody {
                 gas: GasReference { ambient_pressure: 0.0, reference_volume: 1.0 },
             },
             state: State { v: vec![0.0; 3 * n], x },
-            work: Work { f: vec![0.0; 3 * n], g: vec![0.0; 3 * n], ..Default::default() },
+            work: Work { f: vec![0.0; 3 * n], ..Default::default() },
             frozen: Frozen { x: Vec::new(), rest: Vec::new(), gas: GasReference { ambient_pressure: 0.0, reference_volume: 1.0 } },
             params,
             steps: 0,

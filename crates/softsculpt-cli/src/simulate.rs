@@ -1,0 +1,212 @@
+//! `softsculpt simulate INPUT --out OUT.obj [options]` (a stable contract: keep the flags).
+
+use crate::{args, input, output};
+use clap::Args;
+use serde_json::json;
+use softsculpt::body::{Ground, Integrator, Params, SoftBody, VolumeMode};
+use std::io::IsTerminal;
+use std::path::PathBuf;
+
+#[derive(Args, Debug)]
+pub struct SimulateArgs {
+    /// Mesh to simulate: an .obj file or builtin:NAME (sphere, mushroom, octopus).
+    pub input: String,
+    /// Where to write the final shape (.obj), atomically.
+    #[arg(long, value_name = "OUT.obj")]
+    pub out: PathBuf,
+    /// Number of steps.
+    #[arg(long, default_value = "1000", value_parser = args::count, value_name = "N")]
+    pub steps: u64,
+    /// Time step (s).
+    #[arg(long, default_value = "1e-3", value_parser = args::positive, value_name = "S")]
+    pub dt: f64,
+    /// Integrator: euler, midpoint, rk4 or symplectic.
+    #[arg(long, default_value = "symplectic", value_parser = parse_integrator)]
+    pub integrator: Integrator,
+    /// Spring stiffness k (N/m).
+    #[arg(long, default_value = "100", value_parser = args::non_negative, value_name = "K")]
+    pub stiffness: f64,
+    /// Damping along each spring cs (N·s/m).
+    #[arg(long = "spring-damping", default_value = "0.1", value_parser = args::non_negative, value_name = "CS")]
+    pub spring_damping: f64,
+    /// Viscous damping rate c (1/s): velocities decay as e^(-c t).
+    #[arg(long, default_value = "0", value_parser = args::non_negative, value_name = "C")]
+    pub damping: f64,
+    /// Total mass M (kg), split equally over the vertices.
+    #[arg(long, default_value = "1", value_parser = args::positive, value_name = "M")]
+    pub mass: f64,
+    /// Gas as the product nRT (J); 0 = no gas. Needs a closed mesh.
+    #[arg(long, default_value = "0", value_parser = args::non_negative, value_name = "NRT")]
+    pub gas: f64,
+    /// Volume the gas law uses: exact, box or sphere.
+    #[arg(long, default_value = "exact", value_parser = parse_volume)]
+    pub volume: VolumeMode,
+    /// Gravitational acceleration g (m/s²) along −y.
+    #[arg(long, default_value = "9.81", value_parser = args::finite, value_name = "G")]
+    pub gravity: f64,
+    /// Height of a rigid ground plane y = H (m); no ground unless given.
+    #[arg(long, value_parser = args::finite, value_name = "H")]
+    pub ground: Option<f64>,
+    /// Coulomb friction coefficient of the ground.
+    #[arg(long, default_value = "0.5", value_parser = args::non_negative, value_name = "MU")]
+    pub friction: f64,
+    /// Wind velocity (m/s).
+    #[arg(long, value_parser = args::vec3, value_name = "X,Y,Z")]
+    pub wind: Option<[f64; 3]>,
+    /// Wind drag coefficient cw (N·s/m³).
+    #[arg(long = "wind-drag", default_value = "1", value_parser = args::non_negative, value_name = "CW")]
+    pub wind_drag: f64,
+    /// Initial velocity of every vertex (m/s).
+    #[arg(long, value_parser = args::vec3, value_name = "X,Y,Z")]
+    pub velocity: Option<[f64; 3]>,
+    /// Stop early once the largest vertex speed (m/s) stays below TOL for 100 consecutive steps.
+    #[arg(long = "until-rest", value_parser = args::positive, value_name = "TOL")]
+    pub until_rest: Option<f64>,
+    /// Write statistics as JSON lines to this file.
+    #[arg(long, value_name = "FILE.jsonl")]
+    pub stats: Option<PathBuf>,
+    /// Statistics every N steps (default max(1, steps/100)); step 0 and the last step always.
+    #[arg(long = "stats-every", value_parser = args::count_positive, value_name = "N")]
+    pub stats_every: Option<u64>,
+}
+
+fn parse_integrator(s: &str) -> Result<Integrator, String> {
+    Integrator::from_name(s).ok_or_else(|| format!("unknown integrator '{s}' (use one of {})", Integrator::NAMES.join(", ")))
+}
+
+fn parse_volume(s: &str) -> Result<VolumeMode, String> {
+    VolumeMode::from_name(s).ok_or_else(|| format!("unknown volume mode '{s}' (use one of {})", VolumeMode::NAMES.join(", ")))
+}
+
+/// Consecutive calm steps that count as "at rest" for --until-rest.
+pub const REST_WINDOW: u64 = 100;
+
+pub fn stats_line(s: &softsculpt::Stats) -> String {
+    json!({
+        "step": s.step,
+        "time": s.time,
+        "volume": s.volume,
+        "pressure": s.pressure,
+        "kinetic_energy": s.kinetic_energy,
+        "elastic_energy": s.elastic_energy,
+        "gas_energy": s.gas_energy,
+        "gravity_energy": s.gravity_energy,
+        "total_energy": s.total_energy,
+        "momentum": s.momentum,
+        "center_of_mass": s.center_of_mass,
+        "max_speed": s.max_speed,
+    })
+    .to_string()
+}
+
+pub fn run(a: SimulateArgs) -> Result<(), String> {
+    match a.out.extension().map(|e| e.to_string_lossy().to_lowercase()) {
+        Some(e) if e == "obj" => {}
+        _ => return Err(format!("--out {}: the output must be an .obj file", a.out.display())),
+    }
+    let loaded = input::load(&a.input)?;
+    input::warn(&a.input, &loaded);
+
+    let mut params = Params {
+        stiffness: a.stiffness,
+        spring_damping: a.spring_damping,
+        damping: a.damping,
+        gravity: a.gravity,
+        volume_mode: a.volume,
+        wind: a.wind.unwrap_or([0.0; 3]),
+        wind_drag: a.wind_drag,
+        ground: a.ground.map(|h| Ground { friction: a.friction, ..Ground::at(h) }),
+        integrator: a.integrator,
+        ..Params::default()
+    };
+    params.set_nrt(a.gas);
+    let mut body = SoftBody::new(&loaded.mesh, a.mass, params).map_err(|e| format!("{}: {e}", a.input))?;
+    if let Some(v) = a.velocity {
+        body.set_uniform_velocity(v).map_err(|e| format!("--velocity: {e}"))?;
+    }
+    if let Some(h) = a.ground {
+        let (lo, _) = loaded.mesh.bounds();
+        if lo[1] < h {
+            eprintln!("warning: the mesh starts below the ground (lowest y {} < {h}); those vertices are lifted onto it in the first step", lo[1]);
+        }
+    }
+
+    let every = a.stats_every.unwrap_or((a.steps / 100).max(1));
+    let mut stats = match &a.stats {
+        Some(p) => Some(output::Staged::create(p).map_err(|e| format!("--stats {e}"))?),
+        None => None,
+    };
+    let mut emit = |body: &SoftBody| -> Result<(), String> {
+        if let Some(s) = stats.as_mut() {
+            let mut line = stats_line(&body.stats());
+            line.push('\n');
+            s.write(line.as_bytes())?;
+        }
+        Ok(())
+    };
+    emit(&body)?;
+
+    let bar = (std::io::stderr().is_terminal() && a.steps >= 1000).then(|| {
+        let b = indicatif::ProgressBar::new(a.steps);
+        b.set_style(
+            indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} steps  {elapsed_precise} (eta {eta})")
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        b
+    });
+    let mut calm = 0u64;
+    let mut last_emitted = 0u64;
+    let mut stopped_at_rest = false;
+    for step in 1..=a.steps {
+        body.step(a.dt).map_err(|e| format!("{}: {e}", a.input))?;
+        if let Some(tol) = a.until_rest {
+            calm = if body.max_speed() < tol { calm + 1 } else { 0 };
+            if calm >= REST_WINDOW {
+                stopped_at_rest = true;
+            }
+        }
+        if step % every == 0 || step == a.steps || stopped_at_rest {
+            emit(&body)?;
+            last_emitted = step;
+        }
+        if let Some(b) = &bar {
+            if step % 64 == 0 {
+                b.set_position(step);
+            }
+        }
+        if stopped_at_rest {
+            break;
+        }
+    }
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    let _ = last_emitted;
+    if !body.is_finite() {
+        return Err(format!(
+            "{}: the simulation blew up (non-finite state at step {}); try a smaller --dt, more damping, or another --integrator",
+            a.input,
+            body.steps()
+        ));
+    }
+    if let Some(s) = stats {
+        s.commit().map_err(|e| format!("--stats {e}"))?;
+    }
+    let header = format!(
+        "SoftSculpt simulate {} — {} steps of {} s ({})",
+        a.input,
+        body.steps(),
+        a.dt,
+        a.integrator.name()
+    );
+    output::write_atomic(&a.out, &loaded.write_obj(body.positions(), &header)).map_err(|e| format!("--out {e}"))?;
+    let rest = if stopped_at_rest { " (at rest)" } else { "" };
+    eprintln!(
+        "wrote {} after {} steps, t = {:.4} s{rest}, volume {:.6} m^3",
+        a.out.display(),
+        body.steps(),
+        body.time(),
+        body.volume()
+    );
+    Ok(())
+}

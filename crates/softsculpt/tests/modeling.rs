@@ -1,0 +1,182 @@
+//! Modeling operations: freeze, reset, inflate, masses, pins, user forces, wind.
+
+mod common;
+use common::*;
+use softsculpt::body::{Params, VolumeMode};
+
+fn inflated_mushroom() -> softsculpt::SoftBody {
+    let mut p = Params { spring_damping: 0.5, damping: 1.0, ..bare() };
+    p.set_nrt(20.0);
+    model_body("mushroom", 1.0, p)
+}
+
+/// After a freeze the springs are at rest (l − L = 0 computed from the same bits) and the gas is
+/// at the surroundings' pressure (P − P_ref = 0 from the same volume), velocities are zero:
+/// every force is exactly zero, so the body must not move at all (tolerance 0), in every
+/// volume mode and any number of times.
+#[test]
+fn freeze_keeps_the_body_exactly_still() {
+    for mode in [VolumeMode::Exact, VolumeMode::Box, VolumeMode::Sphere] {
+        let mut body = inflated_mushroom();
+        body.params.volume_mode = mode;
+        for round in 0..3 {
+            run(&mut body, 2e-4, 300); // deforming: the gas is still inflating it
+            assert!(body.max_speed() > 1e-3, "{mode:?} round {round}: the body should be moving");
+            body.freeze();
+            let frozen = body.positions().to_vec();
+            run(&mut body, 2e-4, 500);
+            assert_eq!(body.positions(), &frozen[..], "{mode:?} round {round}: creep after freeze");
+            // Deform again by adding gas: P rises above P_ref and the body inflates.
+            let n = body.params.gas_amount;
+            body.params.gas_amount = n * 1.5;
+        }
+    }
+}
+
+/// Freezing repeatedly without deforming must not accumulate anything (godot#123661).
+#[test]
+fn repeated_freeze_does_not_grow_the_body() {
+    let mut body = inflated_mushroom();
+    run(&mut body, 2e-4, 2000);
+    body.freeze();
+    let v0 = body.exact_volume();
+    for _ in 0..20 {
+        run(&mut body, 2e-4, 10);
+        body.freeze();
+    }
+    assert_eq!(body.exact_volume(), v0);
+}
+
+#[test]
+fn reset_returns_to_the_last_frozen_shape() {
+    let mut body = inflated_mushroom();
+    run(&mut body, 2e-4, 500);
+    body.freeze();
+    let frozen = body.positions().to_vec();
+    let rest = body.rest_lengths().to_vec();
+    body.scale_rest_lengths(1.2).unwrap();
+    run(&mut body, 2e-4, 500);
+    assert!(max_abs_diff(body.positions(), &frozen) > 1e-3);
+    body.reset();
+    assert_eq!(body.positions(), &frozen[..]);
+    assert_eq!(body.rest_lengths(), &rest[..]);
+    assert_eq!(body.max_speed(), 0.0);
+}
+
+/// Scaling rest lengths by s with no gas makes the equilibrium shape scale by s: the volume
+/// grows by s³ (no other force sets a length scale).
+#[test]
+fn inflating_rest_lengths_scales_the_rest_shape() {
+    let p = Params { spring_damping: 1.0, damping: 5.0, ..bare() };
+    let mut body = sphere_body(2, 1.0, p);
+    let v0 = body.exact_volume();
+    body.scale_rest_lengths(1.1).unwrap();
+    let mut guard = 0;
+    while body.max_speed() > 1e-9 || guard < 10 {
+        run(&mut body, 1e-4, 200);
+        guard += 1;
+        assert!(guard < 2000);
+    }
+    // Tolerance: the mesh springs alone pin the shape up to rigid motion; with equal factors
+    // every spring is back at rest exactly when the shape is the scaled one, so the ratio is
+    // 1.1³ up to the residual strain at speed 1e-9 (≪ 1e-6).
+    assert!((body.exact_volume() / v0 - 1.331).abs() < 1e-6, "{}", body.exact_volume() / v0);
+}
+
+/// A per-vertex factor inflates only where it is above 1: the top grows, the bottom stays.
+#[test]
+fn local_inflation_follows_the_weight_field() {
+    let mut p = Params { spring_damping: 1.0, damping: 5.0, ..bare() };
+    p.set_nrt(1.0);
+    let mut body = sphere_body(3, 1.0, p);
+    run(&mut body, 1e-4, 20000);
+    body.freeze();
+    let before = body.positions().to_vec();
+    let factors: Vec<f64> = before.chunks_exact(3).map(|x| if x[1] > 0.5 { 1.3 } else { 1.0 }).collect();
+    body.scale_rest_lengths_by_vertex(&factors).unwrap();
+    run(&mut body, 1e-4, 20000);
+    let after = body.positions();
+    let (mut top, mut bottom) = (0.0f64, 0.0f64);
+    for (i, x) in before.chunks_exact(3).enumerate() {
+        let r0 = (x[0] * x[0] + x[2] * x[2]).sqrt();
+        let r1 = (after[3 * i].powi(2) + after[3 * i + 2].powi(2)).sqrt();
+        if x[1] > 0.7 {
+            top = top.max(r1 - r0);
+        }
+        if x[1] < -0.7 {
+            bottom = bottom.max((r1 - r0).abs());
+        }
+    }
+    assert!(top > 0.05, "top widened by {top}");
+    assert!(bottom < 0.2 * top, "bottom moved {bottom} vs top {top}");
+}
+
+/// A pinned vertex never moves, whatever pulls on it; the others do.
+#[test]
+fn pinned_vertices_never_move() {
+    let mut p = Params { gravity: 9.81, spring_damping: 0.5, ..bare() };
+    p.set_nrt(2.0);
+    let mut body = sphere_body(2, 1.0, p);
+    let pinned: Vec<usize> = (0..body.vertex_count()).filter(|i| body.positions()[3 * i + 1] > 0.8).collect();
+    assert!(!pinned.is_empty());
+    for &i in &pinned {
+        body.set_pinned(i, true).unwrap();
+    }
+    let x0 = body.positions().to_vec();
+    let mut forces = vec![0.0; 3 * body.vertex_count()];
+    for i in 0..body.vertex_count() {
+        forces[3 * i] = 0.05; // a sideways pull on everything
+    }
+    body.set_user_forces(&forces).unwrap();
+    run(&mut body, 1e-4, 3000);
+    for &i in &pinned {
+        assert_eq!(&body.positions()[3 * i..3 * i + 3], &x0[3 * i..3 * i + 3]);
+    }
+    assert!(max_abs_diff(body.positions(), &x0) > 0.01, "the free part hangs and swings");
+}
+
+/// Heavier vertices accelerate less under the same force: a = F / m.
+#[test]
+fn a_heavy_vertex_moves_less_under_the_same_force() {
+    let p = Params { stiffness: 0.0, ..bare() };
+    let mut body = sphere_body(1, 1.0, p);
+    let m = body.masses()[0];
+    body.set_vertex_mass(1, 10.0 * m).unwrap();
+    let mut forces = vec![0.0; 3 * body.vertex_count()];
+    forces[0] = 1.0;
+    forces[3] = 1.0;
+    body.set_user_forces(&forces).unwrap();
+    let x0 = body.positions().to_vec();
+    run(&mut body, 1e-3, 10);
+    let d0 = body.positions()[0] - x0[0];
+    let d1 = body.positions()[3] - x0[3];
+    // No springs (k = 0), no damping: exactly a = F/m for each vertex, so the ratio is 10.
+    assert!((d0 / d1 - 10.0).abs() < 1e-9, "{d0} / {d1}");
+}
+
+/// Wind pushes the body downwind, and a face pressure pushes the face inward.
+#[test]
+fn wind_and_face_pressure_push_the_right_way() {
+    let mut p = Params { spring_damping: 0.5, wind: [5.0, 0.0, 0.0], wind_drag: 1.0, ..bare() };
+    p.set_nrt(2.0);
+    let mut body = sphere_body(2, 1.0, p.clone());
+    run(&mut body, 1e-4, 2000);
+    let s = body.stats();
+    assert!(s.momentum[0] > 0.0 && s.center_of_mass[0] > 0.0, "{:?}", s.momentum);
+    assert!(s.momentum[1].abs() < 1e-3 * s.momentum[0] && s.momentum[2].abs() < 1e-3 * s.momentum[0]);
+
+    p.wind = [0.0; 3];
+    let mut body = sphere_body(2, 1.0, p);
+    let top = body.triangles().iter().position(|t| t.iter().all(|&i| body.positions()[3 * i as usize + 1] > 0.9)).unwrap();
+    let mut pressures = vec![0.0; body.face_count()];
+    pressures[top] = 200.0;
+    body.set_face_pressures(&pressures).unwrap();
+    let centroid_y = |b: &softsculpt::SoftBody| b.triangles()[top].iter().map(|&i| b.positions()[3 * i as usize + 1]).sum::<f64>() / 3.0;
+    let y0 = centroid_y(&body);
+    run(&mut body, 1e-4, 500);
+    let y = centroid_y(&body);
+    let s = body.stats();
+    assert!(s.momentum[1] < 0.0, "pressed from above, the body moves down");
+    // The face moves down more than the body as a whole: it is pushed in.
+    assert!(y0 - y > 2.0 * (0.0 - s.center_of_mass[1]).abs(), "face centroid {y0} -> {y}, body {}", s.center_of_mass[1]);
+}
