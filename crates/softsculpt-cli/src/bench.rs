@@ -1,14 +1,12 @@
 //! `softsculpt bench`: the standard workload (a stable contract: keep the keys).
 //!
-//! Icosphere of radius 1 at the given subdivision levels, every vertex 1/2562 kg, k = 1000 N/m,
-//! cs = 1 N·s/m, c = 0, nRT = 2 J, no gravity, no ground, symplectic Euler, dt = 1e-4 s. Only the
-//! stepping loop is timed; the final exact volume shows the physics matches other engines'.
+//! The workload is `softsculpt::workload` (icospheres, see there). Only the stepping loop is
+//! timed; the final exact volume shows that the physics matches other engines'.
 
 use crate::args;
 use clap::Args;
 use serde_json::json;
-use softsculpt::body::{Integrator, Params, SoftBody};
-use softsculpt::mesh::builtin::icosphere;
+use softsculpt::workload::{self, DT};
 use std::time::Instant;
 
 #[derive(Args, Debug)]
@@ -35,25 +33,6 @@ fn parse_level(s: &str) -> Result<u32, String> {
     Ok(l)
 }
 
-/// The standard workload's body at one level.
-pub fn workload(level: u32) -> SoftBody {
-    let mesh = icosphere(level, 1.0);
-    let n = mesh.vertex_count() as f64;
-    let mut params = Params {
-        stiffness: 1000.0,
-        spring_damping: 1.0,
-        damping: 0.0,
-        gravity: 0.0,
-        ground: None,
-        integrator: Integrator::Symplectic,
-        ..Params::default()
-    };
-    params.set_nrt(2.0);
-    SoftBody::new(&mesh, n / 2562.0, params).expect("the standard workload is valid")
-}
-
-pub const DT: f64 = 1e-4;
-
 pub fn run(a: BenchArgs) -> Result<(), String> {
     if !a.json {
         println!("{:>9} {:>9} {:>12} {:>18} {:>16}", "vertices", "springs", "ms/step", "ns/spring-step", "final volume");
@@ -63,7 +42,7 @@ pub fn run(a: BenchArgs) -> Result<(), String> {
         let mut volume = 0.0;
         let (mut nv, mut ns) = (0, 0);
         for _ in 0..a.reps {
-            let mut body = workload(level);
+            let mut body = workload::body(level);
             nv = body.vertex_count();
             ns = body.spring_count();
             let t0 = Instant::now();

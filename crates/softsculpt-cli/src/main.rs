@@ -25,6 +25,7 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Simulate a body and write its final shape as OBJ.
+    #[command(allow_negative_numbers = true)]
     Simulate(simulate::SimulateArgs),
     /// Print what a mesh is made of: counts, welds, defects, volume, bounds.
     Info(info::InfoArgs),

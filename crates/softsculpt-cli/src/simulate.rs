@@ -15,58 +15,58 @@ pub struct SimulateArgs {
     #[arg(long, value_name = "OUT.obj")]
     pub out: PathBuf,
     /// Number of steps.
-    #[arg(long, default_value = "1000", value_parser = args::count, value_name = "N")]
+    #[arg(long, allow_hyphen_values = true, default_value = "1000", value_parser = args::count, value_name = "N")]
     pub steps: u64,
     /// Time step (s).
-    #[arg(long, default_value = "1e-3", value_parser = args::positive, value_name = "S")]
+    #[arg(long, allow_hyphen_values = true, default_value = "1e-3", value_parser = args::positive, value_name = "S")]
     pub dt: f64,
     /// Integrator: euler, midpoint, rk4 or symplectic.
     #[arg(long, default_value = "symplectic", value_parser = parse_integrator)]
     pub integrator: Integrator,
     /// Spring stiffness k (N/m).
-    #[arg(long, default_value = "100", value_parser = args::non_negative, value_name = "K")]
+    #[arg(long, allow_hyphen_values = true, default_value = "100", value_parser = args::non_negative, value_name = "K")]
     pub stiffness: f64,
     /// Damping along each spring cs (N·s/m).
-    #[arg(long = "spring-damping", default_value = "0.1", value_parser = args::non_negative, value_name = "CS")]
+    #[arg(long = "spring-damping", allow_hyphen_values = true, default_value = "0.1", value_parser = args::non_negative, value_name = "CS")]
     pub spring_damping: f64,
     /// Viscous damping rate c (1/s): velocities decay as e^(-c t).
-    #[arg(long, default_value = "0", value_parser = args::non_negative, value_name = "C")]
+    #[arg(long, allow_hyphen_values = true, default_value = "0", value_parser = args::non_negative, value_name = "C")]
     pub damping: f64,
     /// Total mass M (kg), split equally over the vertices.
-    #[arg(long, default_value = "1", value_parser = args::positive, value_name = "M")]
+    #[arg(long, allow_hyphen_values = true, default_value = "1", value_parser = args::positive, value_name = "M")]
     pub mass: f64,
     /// Gas as the product nRT (J); 0 = no gas. Needs a closed mesh.
-    #[arg(long, default_value = "0", value_parser = args::non_negative, value_name = "NRT")]
+    #[arg(long, allow_hyphen_values = true, default_value = "0", value_parser = args::non_negative, value_name = "NRT")]
     pub gas: f64,
     /// Volume the gas law uses: exact, box or sphere.
     #[arg(long, default_value = "exact", value_parser = parse_volume)]
     pub volume: VolumeMode,
     /// Gravitational acceleration g (m/s²) along −y.
-    #[arg(long, default_value = "9.81", value_parser = args::finite, value_name = "G")]
+    #[arg(long, allow_hyphen_values = true, default_value = "9.81", value_parser = args::finite, value_name = "G")]
     pub gravity: f64,
     /// Height of a rigid ground plane y = H (m); no ground unless given.
-    #[arg(long, value_parser = args::finite, value_name = "H")]
+    #[arg(long, allow_hyphen_values = true, value_parser = args::finite, value_name = "H")]
     pub ground: Option<f64>,
     /// Coulomb friction coefficient of the ground.
-    #[arg(long, default_value = "0.5", value_parser = args::non_negative, value_name = "MU")]
+    #[arg(long, allow_hyphen_values = true, default_value = "0.5", value_parser = args::non_negative, value_name = "MU")]
     pub friction: f64,
     /// Wind velocity (m/s).
-    #[arg(long, value_parser = args::vec3, value_name = "X,Y,Z")]
+    #[arg(long, allow_hyphen_values = true, value_parser = args::vec3, value_name = "X,Y,Z")]
     pub wind: Option<[f64; 3]>,
     /// Wind drag coefficient cw (N·s/m³).
-    #[arg(long = "wind-drag", default_value = "1", value_parser = args::non_negative, value_name = "CW")]
+    #[arg(long = "wind-drag", allow_hyphen_values = true, default_value = "1", value_parser = args::non_negative, value_name = "CW")]
     pub wind_drag: f64,
     /// Initial velocity of every vertex (m/s).
-    #[arg(long, value_parser = args::vec3, value_name = "X,Y,Z")]
+    #[arg(long, allow_hyphen_values = true, value_parser = args::vec3, value_name = "X,Y,Z")]
     pub velocity: Option<[f64; 3]>,
     /// Stop early once the largest vertex speed (m/s) stays below TOL for 100 consecutive steps.
-    #[arg(long = "until-rest", value_parser = args::positive, value_name = "TOL")]
+    #[arg(long = "until-rest", allow_hyphen_values = true, value_parser = args::positive, value_name = "TOL")]
     pub until_rest: Option<f64>,
     /// Write statistics as JSON lines to this file.
     #[arg(long, value_name = "FILE.jsonl")]
     pub stats: Option<PathBuf>,
     /// Statistics every N steps (default max(1, steps/100)); step 0 and the last step always.
-    #[arg(long = "stats-every", value_parser = args::count_positive, value_name = "N")]
+    #[arg(long = "stats-every", allow_hyphen_values = true, value_parser = args::count_positive, value_name = "N")]
     pub stats_every: Option<u64>,
 }
 

@@ -1,1 +1,31 @@
-fn main(){}
+//! Criterion bench of one step of the standard workload (`softsculpt::workload`), per integrator
+//! at a small level and for symplectic Euler across levels.
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use softsculpt::body::Integrator;
+use softsculpt::workload::{self, DT};
+
+fn step(c: &mut Criterion) {
+    let mut g = c.benchmark_group("step_symplectic");
+    for level in [4u32, 5, 6] {
+        let mut body = workload::body(level);
+        g.throughput(Throughput::Elements(body.spring_count() as u64));
+        g.bench_with_input(BenchmarkId::from_parameter(body.vertex_count()), &level, |b, _| b.iter(|| body.step(DT).unwrap()));
+    }
+    g.finish();
+
+    let mut g = c.benchmark_group("step_level4");
+    for integrator in [Integrator::Euler, Integrator::Midpoint, Integrator::Rk4, Integrator::Symplectic] {
+        let mut body = workload::body(4);
+        body.params.integrator = integrator;
+        g.bench_function(integrator.name(), |b| b.iter(|| body.step(DT).unwrap()));
+    }
+    g.finish();
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default().sample_size(20).measurement_time(std::time::Duration::from_secs(3));
+    targets = step
+}
+criterion_main!(benches);

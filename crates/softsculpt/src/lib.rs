@@ -13,6 +13,7 @@ pub mod body;
 pub mod error;
 pub mod mesh;
 pub mod vec3;
+pub mod workload;
 
 pub use body::{Integrator, Params, SoftBody, Stats, VolumeMode, GAS_CONSTANT};
 pub use error::{MeshError, SimError};

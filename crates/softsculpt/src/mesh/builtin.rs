@@ -108,9 +108,10 @@ fn orient(m: &mut TriMesh) {
 }
 
 /// The paper's Fig. 2 mushroom: a stem (radius ~0.25 m, 0.8 m tall) under a domed cap (radius
-/// 1 m), as one closed surface of revolution with 24 segments. About 340 vertices.
+/// 1 m), as one closed surface of revolution with 24 segments, standing on a flat foot at
+/// y = 0. 362 vertices.
 pub fn mushroom() -> TriMesh {
-    let mut profile = vec![(0.30, 0.0), (0.30, 0.05), (0.27, 0.25), (0.25, 0.45), (0.26, 0.65), (0.30, 0.80)];
+    let mut profile = vec![(0.30, 0.0), (0.31, 0.06), (0.27, 0.25), (0.25, 0.45), (0.26, 0.65), (0.30, 0.80)];
     // Underside of the cap, flaring out to the rim.
     profile.extend_from_slice(&[(0.50, 0.88), (0.75, 0.92), (0.95, 0.95), (1.05, 1.02)]);
     // The dome, from the rim to near the top.
@@ -118,7 +119,7 @@ pub fn mushroom() -> TriMesh {
         let a = (k as f64) / 6.0 * (PI / 2.0);
         profile.push((1.05 * a.cos(), 1.02 + 0.65 * a.sin()));
     }
-    revolve(-0.02, &profile, 1.70, 24)
+    revolve(0.0, &profile, 1.70, 24)
 }
 
 /// The paper's Fig. 6 octopus: a round head with eight tapering tentacles, about 300 vertices.

@@ -2,6 +2,7 @@
 
 pub mod builtin;
 pub mod obj;
+pub mod reorder;
 pub mod topology;
 pub mod weld;
 
@@ -104,21 +105,21 @@ impl LoadedMesh {
         obj::write(&out, &self.source, header)
     }
 
-    /// A built-in model (its own source).
+    /// A generated mesh (its own source: written back in its own vertex order).
     pub fn from_trimesh(mesh: TriMesh) -> Self {
-        let n = mesh.vertex_count();
+        let (ordered, old_to_new) = reorder::by_locality(&mesh);
         let source = ObjData {
             positions: mesh.positions.clone(),
             indices: mesh.triangles.iter().flatten().copied().collect(),
             arities: vec![3; mesh.triangles.len()],
         };
         let report = MeshReport {
-            source_vertices: n,
+            source_vertices: mesh.vertex_count(),
             source_polygons: mesh.triangles.len(),
             edges: mesh.edge_counts(),
             ..Default::default()
         };
-        LoadedMesh { mesh, report, source, source_to_mesh: (0..n as u32).collect() }
+        LoadedMesh { mesh: ordered, report, source, source_to_mesh: old_to_new }
     }
 }
 
@@ -126,7 +127,8 @@ impl LoadedMesh {
 pub const WELD_RELATIVE_TOLERANCE: f64 = 1e-9;
 
 /// Turn parsed OBJ data into a simulation mesh: triangulate (fans), weld coincident vertices,
-/// drop degenerate faces, drop unused vertices, orient consistently and outward.
+/// drop degenerate faces, drop unused vertices, orient consistently and outward, and order the
+/// vertices for memory locality ([`reorder`]).
 pub fn prepare(source: ObjData) -> Result<LoadedMesh, MeshError> {
     let ns = source.vertex_count();
     let mut report = MeshReport { source_vertices: ns, source_polygons: source.arities.len(), ..Default::default() };
@@ -205,7 +207,9 @@ pub fn prepare(source: ObjData) -> Result<LoadedMesh, MeshError> {
     if report.edges.non_manifold > 0 {
         report.warnings.push(format!("{} non-manifold edges (shared by more than two faces)", report.edges.non_manifold));
     }
-    Ok(LoadedMesh { mesh: TriMesh { positions, triangles: tris }, report, source, source_to_mesh })
+    let (mesh, old_to_new) = reorder::by_locality(&TriMesh { positions, triangles: tris });
+    let source_to_mesh = source_to_mesh.into_iter().map(|m| if m == u32::MAX { m } else { old_to_new[m as usize] }).collect();
+    Ok(LoadedMesh { mesh, report, source, source_to_mesh })
 }
 
 /// Parse OBJ bytes and prepare the mesh.

@@ -1,0 +1,232 @@
+//! The `softsculpt` command as other tools call it: flags, outputs, and every bad input.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn softsculpt(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_softsculpt")).args(args).output().expect("runs")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Failed with exactly one line on stderr that starts with `error:` and contains `needle`.
+fn assert_clean_error(o: &Output, needle: &str) {
+    let e = stderr(o);
+    assert!(!o.status.success(), "should fail: {e}");
+    assert!(!e.contains("panicked"), "panic: {e}");
+    let lines: Vec<&str> = e.lines().filter(|l| !l.starts_with("warning:")).collect();
+    assert_eq!(lines.len(), 1, "one error line expected, got: {e}");
+    assert!(lines[0].starts_with("error:"), "{e}");
+    assert!(lines[0].contains(needle), "'{}' lacks '{needle}'", lines[0]);
+}
+
+struct Dir(tempfile::TempDir);
+impl Dir {
+    fn new() -> Self {
+        Dir(tempfile::tempdir().unwrap())
+    }
+    fn file(&self, name: &str, bytes: &[u8]) -> String {
+        let p = self.0.path().join(name);
+        std::fs::write(&p, bytes).unwrap();
+        p.to_string_lossy().into_owned()
+    }
+    fn path(&self, name: &str) -> PathBuf {
+        self.0.path().join(name)
+    }
+}
+
+const TETRA: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
+
+#[test]
+fn every_malformed_input_file_is_one_clear_error() {
+    let d = Dir::new();
+    let cases: Vec<(String, &str)> = vec![
+        (d.file("empty.obj", b""), "no faces"),
+        (d.file("garbage.obj", b"this is not a mesh\n"), "line 1"),
+        (d.file("badindex.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n"), "refers to vertex 7"),
+        (d.file("zeroindex.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"), "index 0"),
+        (d.file("nan.obj", b"v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n"), "not finite"),
+        (d.file("inf.obj", b"v 0 0 0\nv 1 0 inf\nv 0 1 0\nf 1 2 3\n"), "not finite"),
+        (d.file("missing.obj", b"v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n"), "3 coordinates"),
+        (d.file("binary.obj", &[0x7f, 0x45, 0x4c, 0x46, 0, 1, 2, 3, 0xff]), "not a text"),
+        (d.file("mesh.stl", TETRA.as_bytes()), "unsupported file type"),
+        (d.file("noext", TETRA.as_bytes()), "no file extension"),
+        (d.path("does-not-exist.obj").to_string_lossy().into_owned(), "no such file"),
+        (d.0.path().to_string_lossy().into_owned(), "is a directory"),
+        ("builtin:teapot".to_string(), "unknown built-in"),
+    ];
+    let out = d.path("out.obj");
+    for (input, needle) in &cases {
+        let o = softsculpt(&["simulate", input, "--out", out.to_str().unwrap(), "--steps", "1"]);
+        assert_clean_error(&o, needle);
+        assert!(stderr(&o).contains(input.as_str()), "the error names the input: {}", stderr(&o));
+        assert_eq!(o.status.code(), Some(1));
+        let o = softsculpt(&["info", input]);
+        assert_clean_error(&o, needle);
+    }
+    assert!(!out.exists());
+}
+
+#[test]
+fn every_bad_flag_is_one_clear_error_naming_the_flag() {
+    let d = Dir::new();
+    let out = d.path("o.obj");
+    let out = out.to_str().unwrap();
+    let cases: &[(&[&str], &str)] = &[
+        (&["--dt", "0"], "--dt"),
+        (&["--dt", "-1e-3"], "--dt"),
+        (&["--dt", "nan"], "--dt"),
+        (&["--steps", "-5"], "--steps"),
+        (&["--steps", "many"], "--steps"),
+        (&["--integrator", "verlet"], "--integrator"),
+        (&["--volume", "cube"], "--volume"),
+        (&["--stiffness", "inf"], "--stiffness"),
+        (&["--stiffness", "-1"], "--stiffness"),
+        (&["--mass", "0"], "--mass"),
+        (&["--mass", "-2"], "--mass"),
+        (&["--gas", "-1"], "--gas"),
+        (&["--wind", "1,2"], "--wind"),
+        (&["--velocity", "a,b,c"], "--velocity"),
+        (&["--gravity", "nan"], "--gravity"),
+        (&["--stats-every", "0"], "--stats-every"),
+        (&["--until-rest", "0"], "--until-rest"),
+        (&["--frobnicate"], "--frobnicate"),
+    ];
+    for (flags, needle) in cases {
+        let mut args = vec!["simulate", "builtin:sphere", "--out", out];
+        args.extend_from_slice(flags);
+        let o = softsculpt(&args);
+        assert_clean_error(&o, needle);
+        assert_eq!(o.status.code(), Some(2), "{flags:?}");
+    }
+    assert!(!Path::new(out).exists());
+}
+
+#[test]
+fn a_failed_run_leaves_an_existing_output_untouched() {
+    let d = Dir::new();
+    let out = d.file("keep.obj", b"precious work\n");
+    // An explosion (dt far too large for the stiffness) fails mid-run.
+    let o = softsculpt(&["simulate", "builtin:sphere", "--out", &out, "--stiffness", "1e7", "--dt", "0.01", "--steps", "500"]);
+    assert_clean_error(&o, "smaller");
+    assert!(stderr(&o).contains("step"));
+    assert_eq!(std::fs::read(&out).unwrap(), b"precious work\n");
+    // Gas in an open mesh is refused before anything is written.
+    let open = d.file("open.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\n");
+    let o = softsculpt(&["simulate", &open, "--out", &out, "--gas", "1"]);
+    assert_clean_error(&o, "boundary");
+    assert_eq!(std::fs::read(&out).unwrap(), b"precious work\n");
+    // No temporary files are left behind.
+    let names: Vec<_> = std::fs::read_dir(d.0.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
+    assert_eq!(names.len(), 2, "{names:?}");
+}
+
+#[test]
+fn zero_steps_writes_the_input_back_exactly() {
+    let d = Dir::new();
+    // Quads, an unused vertex, awkward decimals: all must come back unchanged.
+    let text = "v 0.1 0.2 0.30000000000000004\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 1\nv 9 9 9\n\
+                f 1 4 3 2\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n";
+    let input = d.file("pyramid.obj", text.as_bytes());
+    let out = d.path("out.obj");
+    let o = softsculpt(&["simulate", &input, "--out", out.to_str().unwrap(), "--steps", "0"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let written = std::fs::read_to_string(&out).unwrap();
+    let strip = |s: &str| s.lines().filter(|l| !l.starts_with('#')).map(|l| l.split_whitespace().collect::<Vec<_>>().join(" ")).collect::<Vec<_>>();
+    let (a, b) = (strip(text), strip(&written));
+    assert_eq!(a.len(), b.len());
+    for (x, y) in a.iter().zip(&b) {
+        let xs: Vec<&str> = x.split(' ').collect();
+        let ys: Vec<&str> = y.split(' ').collect();
+        assert_eq!(xs[0], ys[0]);
+        for (p, q) in xs[1..].iter().zip(&ys[1..]) {
+            if xs[0] == "v" {
+                assert_eq!(p.parse::<f64>().unwrap().to_bits(), q.parse::<f64>().unwrap().to_bits(), "{x} vs {y}");
+            } else {
+                assert_eq!(p, q);
+            }
+        }
+    }
+}
+
+#[test]
+fn stats_lines_carry_the_contract_keys() {
+    let d = Dir::new();
+    let out = d.path("s.obj");
+    let stats = d.path("s.jsonl");
+    let o = softsculpt(&[
+        "simulate", "builtin:sphere", "--out", out.to_str().unwrap(), "--steps", "250", "--stats", stats.to_str().unwrap(),
+        "--stats-every", "100", "--gas", "2", "--ground", "-1.2", "--wind", "1,0,0", "--velocity", "0,-1,0",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&stats).unwrap();
+    let lines: Vec<serde_json::Value> = text.lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    let steps: Vec<u64> = lines.iter().map(|l| l["step"].as_u64().unwrap()).collect();
+    assert_eq!(steps, vec![0, 100, 200, 250]);
+    let keys = [
+        "step", "time", "volume", "pressure", "kinetic_energy", "elastic_energy", "gas_energy", "gravity_energy",
+        "total_energy", "momentum", "center_of_mass", "max_speed",
+    ];
+    for l in &lines {
+        let obj = l.as_object().unwrap();
+        assert_eq!(obj.keys().map(|k| k.as_str()).collect::<Vec<_>>(), keys);
+        assert_eq!(l["momentum"].as_array().unwrap().len(), 3);
+    }
+    // Step 0: initial velocity (0,-1,0) for a 1 kg body.
+    assert!((lines[0]["momentum"][1].as_f64().unwrap() + 1.0).abs() < 1e-12);
+    // P V = nRT at every line.
+    for l in &lines {
+        let pv = l["pressure"].as_f64().unwrap() * l["volume"].as_f64().unwrap();
+        assert!((pv - 2.0).abs() < 1e-9);
+    }
+    let mesh = softsculpt::mesh::obj::parse(&std::fs::read(&out).unwrap()).unwrap();
+    assert_eq!(mesh.vertex_count(), 642);
+}
+
+#[test]
+fn until_rest_stops_a_settled_body_early() {
+    let d = Dir::new();
+    let out = d.path("r.obj");
+    let o = softsculpt(&[
+        "simulate", "builtin:sphere", "--out", out.to_str().unwrap(), "--steps", "100000", "--gas", "5", "--gravity", "0",
+        "--damping", "20", "--until-rest", "1e-4",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(e.contains("(at rest)"), "{e}");
+    let steps: u64 = e.split("after ").nth(1).unwrap().split(' ').next().unwrap().parse().unwrap();
+    assert!(steps < 100000, "{steps}");
+}
+
+#[test]
+fn info_reports_welds_and_defects() {
+    let d = Dir::new();
+    // The tetrahedron with vertex 1 duplicated (as a seam would) in the last face.
+    let text = format!("{TETRA}v 0 0 0\nf 3 5 4\n").replace("f 3 1 4\nv 0 0 0\nf 3 5 4\n", "v 0 0 0\nf 3 5 4\n");
+    let input = d.file("seam.obj", text.as_bytes());
+    let o = softsculpt(&["info", &input, "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["welded_vertices"], 1);
+    assert_eq!(v["closed"], true);
+    assert_eq!(v["vertices"], 4);
+    assert!((v["volume"].as_f64().unwrap() - 1.0 / 6.0).abs() < 1e-15);
+    let o = softsculpt(&["info", "builtin:octopus"]);
+    let t = String::from_utf8_lossy(&o.stdout);
+    assert!(t.contains("closed:              yes") && t.contains("boundary edges:      0"), "{t}");
+}
+
+#[test]
+fn bench_json_has_the_contract_keys() {
+    let o = softsculpt(&["bench", "--levels", "1,2", "--steps", "20", "--reps", "1", "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let lines: Vec<serde_json::Value> = String::from_utf8_lossy(&o.stdout).lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    assert_eq!(lines.len(), 2);
+    assert_eq!(lines[1]["vertices"], 162);
+    assert_eq!(lines[1]["springs"], 480);
+    for k in ["ms_per_step", "ns_per_spring_step", "volume"] {
+        assert!(lines[1][k].as_f64().unwrap() > 0.0, "{k}");
+    }
+}

@@ -1,0 +1,65 @@
+#!/usr/bin/env python3
+"""Run `softsculpt bench` and the reference C++ loop (shared/bench/peer_cpp.cpp) side by side.
+
+Both run the standard workload (see crates/softsculpt/src/workload.rs) on the same icospheres,
+alternating per level and per round so that machine noise hits both alike. Reports the best
+time of each and the ratio, and checks that both end at the same volume (same physics).
+
+usage: scripts/bench_compare.py [--levels 4,5,6,7] [--steps 1000] [--rounds 3] [--shared DIR]
+"""
+import argparse
+import json
+import os
+import re
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--levels", default="4,5,6,7")
+    ap.add_argument("--steps", type=int, default=1000)
+    ap.add_argument("--rounds", type=int, default=3)
+    ap.add_argument("--shared", default=os.path.join(ROOT, "..", "shared"))
+    a = ap.parse_args()
+    levels = [int(x) for x in a.levels.split(",")]
+    bench = os.path.join(a.shared, "bench")
+    if not os.path.isfile(os.path.join(bench, "peer_cpp.cpp")):
+        sys.exit("error: %s/peer_cpp.cpp not found (pass --shared DIR)" % bench)
+    work = os.path.join(ROOT, "target", "bench-peer")
+    os.makedirs(work, exist_ok=True)
+    subprocess.run([sys.executable, os.path.join(bench, "gen_icosphere.py"), os.path.join(work, "ico")] + [str(l) for l in levels],
+                   check=True, stdout=subprocess.DEVNULL)
+    peer = os.path.join(work, "peer_cpp")
+    subprocess.run(["g++", "-O3", "-march=native", "-std=c++17", "-I" + bench, os.path.join(bench, "peer_cpp.cpp"), "-o", peer], check=True)
+    subprocess.run(["cargo", "build", "--release", "-q", "-p", "softsculpt-cli"], check=True, cwd=ROOT)
+    ours_bin = os.path.join(ROOT, "target", "release", "softsculpt")
+
+    print("%9s %14s %14s %9s %16s %16s" % ("vertices", "ours ms/step", "C++ ms/step", "C++/ours", "our volume", "C++ volume"))
+    rows = []
+    for level in levels:
+        best_ours, best_peer = float("inf"), float("inf")
+        vol_ours = vol_peer = None
+        nv = None
+        for _ in range(a.rounds):
+            out = subprocess.run([ours_bin, "bench", "--levels", str(level), "--steps", str(a.steps), "--reps", "1", "--json"],
+                                 check=True, capture_output=True, text=True).stdout
+            r = json.loads(out.strip().splitlines()[-1])
+            best_ours = min(best_ours, r["ms_per_step"])
+            vol_ours, nv = r["volume"], r["vertices"]
+            out = subprocess.run([peer, os.path.join(work, "ico", "icosphere_L%d.obj" % level), "--steps", str(a.steps), "--reps", "1"],
+                                 check=True, capture_output=True, text=True).stdout
+            m = re.search(r"ms_per_step=([0-9.eE+-]+) .*volume=([0-9.eE+-]+)", out)
+            best_peer = min(best_peer, float(m.group(1)))
+            vol_peer = float(m.group(2))
+        rel = abs(vol_ours - vol_peer) / abs(vol_peer)
+        rows.append({"vertices": nv, "ours_ms": best_ours, "cpp_ms": best_peer, "ratio": best_peer / best_ours, "volume_rel_diff": rel})
+        print("%9d %14.4f %14.4f %9.2f %16.9f %16.9f%s" % (nv, best_ours, best_peer, best_peer / best_ours, vol_ours, vol_peer,
+                                                           "" if rel < 1e-8 else "  VOLUMES DIFFER"))
+    json.dump(rows, open(os.path.join(work, "last.json"), "w"), indent=1)
+
+
+if __name__ == "__main__":
+    main()
