@@ -180,3 +180,29 @@ fn wind_and_face_pressure_push_the_right_way() {
     // The face moves down more than the body as a whole: it is pushed in.
     assert!(y0 - y > 2.0 * (0.0 - s.center_of_mass[1]).abs(), "face centroid {y0} -> {y}, body {}", s.center_of_mass[1]);
 }
+
+/// Subdivision keeps the total mass, carries pins, and the result is frozen: still under no
+/// forces, and four times the faces.
+#[test]
+fn subdivision_carries_masses_and_pins_and_freezes() {
+    let mut p = Params { spring_damping: 0.5, damping: 1.0, ..bare() };
+    p.set_nrt(5.0);
+    let mut body = model_body("octopus", 2.0, p);
+    run(&mut body, 2e-4, 500);
+    let top: Vec<usize> = (0..body.vertex_count()).filter(|&i| body.positions()[3 * i + 1] > 1.5).collect();
+    for &i in &top {
+        body.set_pinned(i, true).unwrap();
+    }
+    body.set_vertex_mass(0, 0.1).unwrap();
+    let sub = body.subdivided().unwrap();
+    assert_eq!(sub.face_count(), 4 * body.face_count());
+    let before: f64 = body.masses().iter().sum();
+    let total: f64 = sub.masses().iter().sum();
+    // Tolerance: rescaling by total / Σ rounds each mass once: relative error ≲ N ε ≈ 1e-13.
+    assert!((total - before).abs() < 1e-12, "{total} vs {before}");
+    let pinned = (0..sub.vertex_count()).filter(|&i| sub.is_pinned(i)).count();
+    assert!(pinned >= top.len());
+    let mut sub2 = sub.clone();
+    run(&mut sub2, 2e-4, 200);
+    assert_eq!(sub2.positions(), sub.positions(), "a subdivided body is frozen: no creep");
+}

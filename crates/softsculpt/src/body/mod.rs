@@ -22,6 +22,7 @@ mod ground;
 mod integrate;
 mod modeling;
 mod params;
+mod persist;
 mod springs;
 mod stats;
 

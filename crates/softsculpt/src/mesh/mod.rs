@@ -3,6 +3,7 @@
 pub mod builtin;
 pub mod obj;
 pub mod reorder;
+pub mod subdivide;
 pub mod topology;
 pub mod weld;
 

@@ -1,0 +1,94 @@
+//! Everything needed to save a body and resume it exactly, and Loop subdivision of a body.
+
+use super::{Frozen, GasReference, SoftBody};
+use crate::error::SimError;
+use crate::mesh::{subdivide, TriMesh};
+
+impl SoftBody {
+    /// The last frozen positions (m) and rest lengths (m), as [`SoftBody::reset`] restores them.
+    pub fn frozen_positions(&self) -> &[f64] {
+        &self.frozen.x
+    }
+    pub fn frozen_rest_lengths(&self) -> &[f64] {
+        &self.frozen.rest
+    }
+    pub fn frozen_gas_reference(&self) -> GasReference {
+        self.frozen.gas
+    }
+
+    /// Set the gas reference (surroundings' pressure in Pa, reference volume in m³).
+    pub fn set_gas_reference(&mut self, gas: GasReference) -> Result<(), SimError> {
+        check_gas(&gas)?;
+        self.model.gas = gas;
+        Ok(())
+    }
+
+    /// Set the state [`SoftBody::reset`] returns to.
+    pub fn set_frozen(&mut self, positions: &[f64], rest: &[f64], gas: GasReference) -> Result<(), SimError> {
+        if positions.len() != self.state.x.len() || rest.len() != self.spring_count() {
+            return Err(SimError::Length { what: "frozen state", expected: self.state.x.len() + self.spring_count(), got: positions.len() + rest.len() });
+        }
+        if positions.iter().chain(rest).any(|v| !v.is_finite()) {
+            return Err(SimError::BadParameter { name: "frozen state", message: "must be finite".into() });
+        }
+        check_gas(&gas)?;
+        self.frozen = Frozen { x: positions.to_vec(), rest: rest.to_vec(), gas };
+        Ok(())
+    }
+
+    /// Set every vertex mass (kg, > 0); pins are kept.
+    pub fn set_masses(&mut self, masses: &[f64]) -> Result<(), SimError> {
+        if masses.len() != self.vertex_count() {
+            return Err(SimError::Length { what: "masses", expected: self.vertex_count(), got: masses.len() });
+        }
+        if let Some(bad) = masses.iter().find(|m| !(m.is_finite() && **m > 0.0)) {
+            return Err(SimError::BadParameter { name: "masses", message: format!("must be finite and > 0, got {bad}") });
+        }
+        for (i, &m) in masses.iter().enumerate() {
+            let pinned = self.is_pinned(i);
+            self.model.mass[i] = m;
+            self.model.inv_mass[i] = if pinned { 0.0 } else { 1.0 / m };
+        }
+        Ok(())
+    }
+
+    /// The current shape as a mesh.
+    pub fn to_mesh(&self) -> TriMesh {
+        TriMesh { positions: self.state.x.clone(), triangles: self.triangles().to_vec() }
+    }
+
+    /// Loop subdivision of the current shape, returned as a new frozen body: every vertex keeps
+    /// its mass density (new vertices take the mean of their edge's ends, then all are scaled so
+    /// the total mass is unchanged), pins carry over (a new vertex is pinned if both ends are),
+    /// parameters are the same.
+    pub fn subdivided(&self) -> Result<SoftBody, SimError> {
+        let (mesh, parents) = subdivide::loop_subdivide(&self.to_mesh());
+        let (mesh, old_to_new) = crate::mesh::reorder::by_locality(&mesh);
+        let total: f64 = self.model.mass.iter().sum();
+        let mut body = SoftBody::new(&mesh, total, self.params.clone()).map_err(|e| SimError::BadParameter { name: "subdivide", message: e.to_string() })?;
+        let mut masses = vec![0.0; mesh.vertex_count()];
+        let mut pinned = vec![false; mesh.vertex_count()];
+        for (k, pa) in parents.iter().enumerate() {
+            let i = old_to_new[k] as usize;
+            masses[i] = 0.5 * (self.model.mass[pa[0] as usize] + self.model.mass[pa[1] as usize]);
+            pinned[i] = self.is_pinned(pa[0] as usize) && self.is_pinned(pa[1] as usize);
+        }
+        let scale = total / masses.iter().sum::<f64>();
+        masses.iter_mut().for_each(|m| *m *= scale);
+        body.set_masses(&masses)?;
+        for (i, &p) in pinned.iter().enumerate() {
+            if p {
+                body.set_pinned(i, true)?;
+            }
+        }
+        body.freeze();
+        Ok(body)
+    }
+}
+
+fn check_gas(gas: &GasReference) -> Result<(), SimError> {
+    if !(gas.ambient_pressure.is_finite() && gas.reference_volume.is_finite() && gas.reference_volume > 0.0) {
+        return Err(SimError::BadParameter { name: "gas reference", message: format!("must be finite with a positive volume, got {gas:?}") });
+    }
+    Ok(())
+}
