@@ -206,3 +206,43 @@ fn subdivision_carries_masses_and_pins_and_freezes() {
     run(&mut sub2, 2e-4, 200);
     assert_eq!(sub2.positions(), sub.positions(), "a subdivided body is frozen: no creep");
 }
+
+/// Freezing under load keeps a body at rest on the ground exactly where it is, while a plain
+/// freeze lets it sag into its new stress-free rest shape under its own weight.
+#[test]
+fn freeze_under_load_keeps_a_resting_body_from_sagging() {
+    use softsculpt::body::Ground;
+    let settle = || {
+        let mut p = Params { gravity: 9.81, spring_damping: 0.2, damping: 2.0, ground: Some(Ground::at(-1.0)), ..bare() };
+        p.set_nrt(20.0);
+        let mut body = sphere_body(2, 1.0, p);
+        run(&mut body, 5e-4, 20000);
+        assert!(body.max_speed() < 1e-4, "settled: {}", body.max_speed());
+        body
+    };
+    let mut plain = settle();
+    let mut loaded = plain.clone();
+    plain.freeze();
+    loaded.freeze_under_load();
+    let x0 = loaded.positions().to_vec();
+    run(&mut plain, 5e-4, 4000);
+    run(&mut loaded, 5e-4, 4000);
+    let sag = max_abs_diff(plain.positions(), &x0);
+    let creep = max_abs_diff(loaded.positions(), &x0);
+    // Tolerance: the body was settled to speeds below 1e-4 m/s, so the residual imbalance moves
+    // it by ~1e-4 m/s × (1/c = 0.5 s) ≈ 5e-5 m at most; the plain freeze sags by centimetres.
+    assert!(creep < 1e-4, "creep after freeze under load: {creep}");
+    assert!(sag > 100.0 * creep.max(1e-6), "plain freeze sags: {sag}");
+    // The kept load sums to zero: it never pushes the body as a whole.
+    let p = loaded.prestress();
+    for d in 0..3 {
+        let s: f64 = (0..p.len() / 3).map(|i| p[3 * i + d]).sum();
+        assert!(s.abs() < 1e-9, "net prestress {s}");
+    }
+    // Reset restores the kept load too.
+    loaded.scale_rest_lengths(1.1).unwrap();
+    run(&mut loaded, 5e-4, 100);
+    loaded.reset();
+    run(&mut loaded, 5e-4, 2000);
+    assert!(max_abs_diff(loaded.positions(), &x0) < 1e-4);
+}

@@ -78,7 +78,7 @@ pub(crate) fn gather(p: &Params, m: &Model, x: &[f64], v: &[f64], f: &mut [f64])
 }
 
 /// Acceleration of vertex i (m/s²) from the accumulators, user force, gravity and damping:
-///   a = (scale · f + f_user) / m − c v + (0, −g, 0), and 0 for a pinned vertex.
+///   a = (scale · f + f_user + f_prestress) / m − c v + (0, −g, 0), and 0 for a pinned vertex.
 #[inline(always)]
 fn accel<const USER: bool, const UNIFORM: bool>(
     k: usize,
@@ -106,7 +106,7 @@ fn accel<const USER: bool, const UNIFORM: bool>(
 /// Which per-vertex terms are present: chosen once per stage, not per vertex.
 macro_rules! dispatch {
     ($m:expr, $p:expr, $fun:ident ( $($arg:expr),* )) => {{
-        let user = $m.user_force_active;
+        let user = $m.external_active;
         let uniform = $p.gravity != 0.0 || $p.damping != 0.0;
         match (user, uniform) {
             (false, false) => $fun::<false, false>($($arg),*),
@@ -131,7 +131,7 @@ fn accelerations_impl<const USER: bool, const UNIFORM: bool>(
     a: &mut [f64],
 ) {
     let n = m.inv_mass.len();
-    let (v, f, a, user) = (&v[..3 * n], &mut f[..3 * n], &mut a[..3 * n], &m.user_force[..3 * n]);
+    let (v, f, a, user) = (&v[..3 * n], &mut f[..3 * n], &mut a[..3 * n], &m.external[..3 * n]);
     let grav = [0.0, -p.gravity, 0.0];
     for i in 0..n {
         let im = m.inv_mass[i];
@@ -158,7 +158,7 @@ fn symplectic_impl<const USER: bool, const UNIFORM: bool>(
     f: &mut [f64],
 ) {
     let n = m.inv_mass.len();
-    let (x, v, f, user) = (&mut x[..3 * n], &mut v[..3 * n], &mut f[..3 * n], &m.user_force[..3 * n]);
+    let (x, v, f, user) = (&mut x[..3 * n], &mut v[..3 * n], &mut f[..3 * n], &m.external[..3 * n]);
     let grav = [0.0, -p.gravity, 0.0];
     for i in 0..n {
         let im = m.inv_mass[i];

@@ -48,7 +48,11 @@ pub(crate) struct Model {
     pub inv_mass: Vec<f64>,
     /// User force on each vertex (N, flat xyz), e.g. the mouse grab.
     pub user_force: Vec<f64>,
-    pub user_force_active: bool,
+    /// Load kept by a freeze under load (N, flat xyz), see `SoftBody::freeze_under_load`.
+    pub prestress: Vec<f64>,
+    /// user_force + prestress: what the vertex stage adds (N, flat xyz).
+    pub external: Vec<f64>,
+    pub external_active: bool,
     /// User pressure on each face (Pa), pushing along the inward normal.
     pub face_pressure: Vec<f64>,
     pub face_pressure_active: bool,
@@ -79,6 +83,7 @@ pub(crate) struct Frozen {
     pub x: Vec<f64>,
     pub rest: Vec<f64>,
     pub gas: GasReference,
+    pub prestress: Vec<f64>,
 }
 
 /// A soft body. See the module documentation for the step.
@@ -128,21 +133,23 @@ impl SoftBody {
                 mass: vec![m; n],
                 inv_mass: vec![1.0 / m; n],
                 user_force: vec![0.0; 3 * n],
-                user_force_active: false,
+                prestress: vec![0.0; 3 * n],
+                external: vec![0.0; 3 * n],
+                external_active: false,
                 face_pressure: vec![0.0; mesh.triangles.len()],
                 face_pressure_active: false,
                 gas: GasReference { ambient_pressure: 0.0, reference_volume: 1.0 },
             },
             state: State { v: vec![0.0; 3 * n], x },
             work: Work { f: vec![0.0; 3 * n], ..Default::default() },
-            frozen: Frozen { x: Vec::new(), rest: Vec::new(), gas: GasReference { ambient_pressure: 0.0, reference_volume: 1.0 } },
+            frozen: Frozen { x: Vec::new(), rest: Vec::new(), gas: GasReference { ambient_pressure: 0.0, reference_volume: 1.0 }, prestress: vec![0.0; 3 * n] },
             params,
             steps: 0,
             time: 0.0,
         };
         let v0 = body.volume();
         body.model.gas.reference_volume = if v0 > 0.0 { v0 } else { 1.0 };
-        body.frozen = Frozen { x: body.state.x.clone(), rest: body.model.springs.rest.clone(), gas: body.model.gas };
+        body.frozen = Frozen { x: body.state.x.clone(), rest: body.model.springs.rest.clone(), gas: body.model.gas, prestress: body.model.prestress.clone() };
         Ok(body)
     }
 

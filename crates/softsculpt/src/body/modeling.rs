@@ -32,7 +32,66 @@ impl SoftBody {
         let volume = self.volume();
         self.model.gas.ambient_pressure = gas::pressure(self.params.nrt(), volume);
         self.model.gas.reference_volume = volume;
-        self.frozen = Frozen { x: self.state.x.clone(), rest: self.model.springs.rest.clone(), gas: self.model.gas };
+        self.model.prestress.fill(0.0);
+        self.update_external();
+        self.frozen = Frozen { x: self.state.x.clone(), rest: self.model.springs.rest.clone(), gas: self.model.gas, prestress: self.model.prestress.clone() };
+    }
+
+    /// Freeze under load: like [`SoftBody::freeze`], but the body keeps carrying the loads it
+    /// carries now (its weight on the ground, say), so a body at rest under gravity stays exactly
+    /// where it is instead of sagging into its new, stress-free rest shape.
+    ///
+    /// How: before freezing, the internal force on every vertex — springs (Hooke part) plus gas
+    /// (P − P_ref) ∂V/∂x — is recorded as a constant "prestress" force f_p,i. After the freeze
+    /// springs and gas exert nothing, so every vertex feels f_p,i plus the same gravity and
+    /// contact as before: at rest, the same balance. The prestress sums to zero over the body
+    /// (internal forces do), so it never pushes the body as a whole. It is part of the frozen
+    /// state (reset restores it) and the next freeze replaces it.
+    pub fn freeze_under_load(&mut self) {
+        let n = self.state.x.len();
+        let mut f = vec![0.0; n];
+        self.model.springs.accumulate(self.params.stiffness, 0.0, &self.state.x, &self.state.v, &mut f);
+        let mut g = vec![0.0; n];
+        let six_v = self.model.faces.volume6_and_normals(&self.state.x, &mut g);
+        let volume = gas::measure(self.params.volume_mode, six_v, &self.state.x);
+        let s = (gas::pressure(self.params.nrt(), volume) - self.model.gas.ambient_pressure) / 6.0;
+        let mut prestress: Vec<f64> = (0..n).map(|k| f[k] + s * g[k] + self.model.prestress[k]).collect();
+        if prestress.iter().any(|p| !p.is_finite()) {
+            prestress.fill(0.0);
+        }
+        self.freeze();
+        self.model.prestress = prestress;
+        self.update_external();
+        self.frozen.prestress = self.model.prestress.clone();
+    }
+
+    /// The constant load kept by [`SoftBody::freeze_under_load`] (N, flat xyz).
+    pub fn prestress(&self) -> &[f64] {
+        &self.model.prestress
+    }
+
+    /// Set the kept load (N, flat xyz), e.g. when restoring a saved project.
+    pub fn set_prestress(&mut self, prestress: &[f64], frozen: &[f64]) -> Result<(), SimError> {
+        length_check("prestress", 3 * self.vertex_count(), prestress.len())?;
+        length_check("frozen prestress", 3 * self.vertex_count(), frozen.len())?;
+        finite("prestress", prestress)?;
+        finite("frozen prestress", frozen)?;
+        self.model.prestress.copy_from_slice(prestress);
+        self.frozen.prestress.copy_from_slice(frozen);
+        self.update_external();
+        Ok(())
+    }
+
+    pub fn frozen_prestress(&self) -> &[f64] {
+        &self.frozen.prestress
+    }
+
+    fn update_external(&mut self) {
+        let m = &mut self.model;
+        for k in 0..m.external.len() {
+            m.external[k] = m.user_force[k] + m.prestress[k];
+        }
+        m.external_active = m.external.iter().any(|&f| f != 0.0);
     }
 
     /// Reset to the last frozen shape (or the loaded one): positions, rest lengths and the gas
@@ -41,6 +100,8 @@ impl SoftBody {
         self.state.x.copy_from_slice(&self.frozen.x);
         self.model.springs.rest.copy_from_slice(&self.frozen.rest);
         self.model.gas = self.frozen.gas;
+        self.model.prestress.copy_from_slice(&self.frozen.prestress);
+        self.update_external();
         self.state.v.fill(0.0);
     }
 
@@ -114,7 +175,7 @@ impl SoftBody {
         length_check("user forces", 3 * self.vertex_count(), forces.len())?;
         finite("user forces", forces)?;
         self.model.user_force.copy_from_slice(forces);
-        self.model.user_force_active = forces.iter().any(|&f| f != 0.0);
+        self.update_external();
         Ok(())
     }
 

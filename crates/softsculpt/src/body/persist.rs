@@ -32,7 +32,7 @@ impl SoftBody {
             return Err(SimError::BadParameter { name: "frozen state", message: "must be finite".into() });
         }
         check_gas(&gas)?;
-        self.frozen = Frozen { x: positions.to_vec(), rest: rest.to_vec(), gas };
+        self.frozen = Frozen { x: positions.to_vec(), rest: rest.to_vec(), gas, prestress: self.frozen.prestress.clone() };
         Ok(())
     }
 

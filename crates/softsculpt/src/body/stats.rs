@@ -14,7 +14,7 @@ pub struct Stats {
     pub pressure: f64,
     /// Σ ½ mi |vi|² (pinned vertices do not move and contribute 0).
     pub kinetic_energy: f64,
-    /// Σ ½ k (l − L)².
+    /// Σ ½ k (l − L)² (minus f_p · (x − x_frozen) after a freeze under load).
     pub elastic_energy: f64,
     /// −nRT ln(V/V0) + P_ref (V − V0), see `gas.rs`.
     pub gas_energy: f64,
@@ -53,7 +53,13 @@ impl SoftBody {
             }
             total_mass += m[i];
         }
-        let elastic = self.model.springs.energy(self.params.stiffness, x);
+        // The kept load of a freeze under load is a constant force f_p: potential −f_p · (x − x_frozen).
+        let mut elastic = self.model.springs.energy(self.params.stiffness, x);
+        if self.model.prestress.iter().any(|&p| p != 0.0) {
+            for k in 0..x.len() {
+                elastic -= self.model.prestress[k] * (x[k] - self.frozen.x[k]);
+            }
+        }
         let gas_energy = gas::energy(nrt, volume, &self.model.gas);
         Stats {
             step: self.steps(),

@@ -1,0 +1,34 @@
+// `window.softsculpt`: a small read-only inspection handle for tests and the curious.
+// Reading it never changes the model.
+
+import type { App } from './app';
+
+export function inspector(app: App) {
+  return {
+    ready: true,
+    vertexCount: () => app.body().vertexCount,
+    faceCount: () => app.body().faceCount,
+    springCount: () => app.body().springCount,
+    positions: () => Array.from(app.body().positions()),
+    pinned: () => Array.from(app.body().pinned()),
+    stats: () => app.body().stats(),
+    param: (name: string) => app.body().get(name as never),
+    tool: () => app.tools.tool.name,
+    playing: () => app.settings.playing,
+    settings: () => ({ ...app.settings }),
+    history: () => app.history.sizes,
+    lastMessage: () => app.lastMessageText,
+    fps: () => app.hud.fps,
+    slowMotion: () => app.slowMotion,
+    simMs: () => app.simMs,
+    helpVisible: () => app.hud.helpVisible,
+    /** Project coordinates of vertex i to page pixels (for driving the mouse in tests). */
+    screenOf: (i: number) => {
+      const x = app.body().positions();
+      const v = app.viewport;
+      const p = new (v.camera.position.constructor as any)(x[3 * i], x[3 * i + 1], x[3 * i + 2]).project(v.camera);
+      const r = v.canvas.getBoundingClientRect();
+      return { x: r.left + ((p.x + 1) / 2) * r.width, y: r.top + ((1 - p.y) / 2) * r.height };
+    },
+  };
+}

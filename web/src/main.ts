@@ -1,0 +1,120 @@
+// Entry point: load the engine, build the modeler, wire keys, file pickers and drag-and-drop.
+
+import './style.css';
+import { initEngine } from './engine/wasm';
+import { App } from './app';
+import { buildPanel } from './panel';
+import { IMPORT_EXTENSIONS } from './io/import';
+import { inspector } from './inspect';
+
+const HELP = `<h2>SoftSculpt</h2>
+<p>Shape a soft body with the mouse. Drag on empty space to turn the view (right button: pan, wheel: zoom).</p>
+<table>
+<tr><td>G</td><td>Grab: drag the surface, it follows the mouse on a spring</td></tr>
+<tr><td>P</td><td>Press: push the faces under the brush inward</td></tr>
+<tr><td>I</td><td>Inflate brush (Shift: deflate)</td></tr>
+<tr><td>M</td><td>Mass brush: heavier (Shift: lighter) — heavy parts move less</td></tr>
+<tr><td>N</td><td>Pin brush (Shift: unpin)</td></tr>
+<tr><td>[ ]</td><td>Brush radius smaller / larger</td></tr>
+<tr><td>F / R</td><td>Freeze the shape as the rest shape / reset to the last frozen shape</td></tr>
+<tr><td>U</td><td>Subdivide (Loop)</td></tr>
+<tr><td>W</td><td>Wind from the view direction</td></tr>
+<tr><td>Space / .</td><td>Play-pause / single step</td></tr>
+<tr><td>X / V</td><td>Springs wireframe / reset view</td></tr>
+<tr><td>Ctrl+Z / Ctrl+Shift+Z</td><td>Undo / redo</td></tr>
+<tr><td>Ctrl+S / Ctrl+O / Ctrl+I / E</td><td>Save project / open project / import / export OBJ</td></tr>
+<tr><td>?</td><td>This help</td></tr>
+</table><p>Your work is saved in this browser after every operation and restored on reload.</p>`;
+
+function picker(accept: string, onFile: (f: File) => void): () => void {
+  const input = document.createElement('input');
+  input.type = 'file';
+  input.accept = accept;
+  input.style.display = 'none';
+  document.body.appendChild(input);
+  input.addEventListener('change', () => {
+    const f = input.files?.[0];
+    if (f) onFile(f);
+    input.value = '';
+  });
+  return () => input.click();
+}
+
+async function main(): Promise<void> {
+  const status = document.getElementById('status')!;
+  try {
+    await initEngine(new URL('/softsculpt.wasm', window.location.href).href);
+  } catch (e) {
+    status.textContent = `SoftSculpt could not start its engine: ${e}`;
+    status.className = 'fatal';
+    return;
+  }
+  const app = new App(
+    document.getElementById('view') as HTMLCanvasElement,
+    document.getElementById('plots') as HTMLCanvasElement,
+    document.getElementById('hud')!,
+    HELP,
+  );
+  await app.start();
+  status.remove();
+
+  const importFile = picker(IMPORT_EXTENSIONS.join(','), async (f) => app.importFile(f.name, await f.arrayBuffer()));
+  const openProject = picker('.json,.softsculpt.json', async (f) => app.openProjectFile(f.name, await f.text()));
+  const gui = buildPanel(app, { importFile, openProject });
+  gui.domElement.id = 'panel';
+
+  window.addEventListener('keydown', (ev) => {
+    if ((ev.target as HTMLElement).closest?.('input, select, textarea')) return;
+    const key = ev.key.toLowerCase();
+    const ctrl = ev.ctrlKey || ev.metaKey;
+    if (ctrl && key === 'z') { ev.preventDefault(); if (ev.shiftKey) app.redo(); else app.undo(); return; }
+    if (ctrl && key === 'y') { ev.preventDefault(); app.redo(); return; }
+    if (ctrl && key === 's') { ev.preventDefault(); app.saveProject(); return; }
+    if (ctrl && key === 'o') { ev.preventDefault(); openProject(); return; }
+    if (ctrl && key === 'i') { ev.preventDefault(); importFile(); return; }
+    if (ctrl || ev.altKey) return;
+    const tool = app.tools.tools.find((t) => t.key === key);
+    if (tool) { app.tools.select(tool.name); return; }
+    switch (ev.key) {
+      case 'f': case 'F': app.freeze(); break;
+      case 'r': case 'R': app.reset(); break;
+      case 'u': case 'U': app.subdivide(); break;
+      case ' ': ev.preventDefault(); app.settings.playing = !app.settings.playing; app.message(app.settings.playing ? 'playing' : 'paused'); break;
+      case '.': app.step(); break;
+      case 'x': case 'X': app.wireframe = !app.wireframe; app.syncScene(); break;
+      case 'v': case 'V': app.viewport.resetView(); break;
+      case 'e': case 'E': void app.export('obj'); break;
+      case 'w': case 'W': {
+        const d = app.viewport.camera.getWorldDirection(app.viewport.camera.up.clone());
+        const s = Math.max(5, Math.hypot(app.body().get('windX'), app.body().get('windY'), app.body().get('windZ')));
+        app.edit('wind', true, () => { app.body().set('windX', d.x * s); app.body().set('windY', d.y * s); app.body().set('windZ', d.z * s); });
+        app.syncScene();
+        break;
+      }
+      case '[': app.brush.radius = Math.max(0.02, app.brush.radius / 1.2); break;
+      case ']': app.brush.radius = Math.min(3, app.brush.radius * 1.2); break;
+      case '?': case 'h': case 'H': app.hud.toggleHelp(); break;
+      case 'Escape': app.hud.toggleHelp(false); break;
+      default: return;
+    }
+    gui.controllersRecursive().forEach((c) => c.updateDisplay());
+  });
+
+  // Drag and drop: model files import, project files open.
+  window.addEventListener('dragover', (ev) => { ev.preventDefault(); document.body.classList.add('dropping'); });
+  window.addEventListener('dragleave', () => document.body.classList.remove('dropping'));
+  window.addEventListener('drop', async (ev) => {
+    ev.preventDefault();
+    document.body.classList.remove('dropping');
+    const f = ev.dataTransfer?.files?.[0];
+    if (!f) return;
+    if (f.name.endsWith('.json')) await app.openProjectFile(f.name, await f.text());
+    else await app.importFile(f.name, await f.arrayBuffer());
+  });
+
+  (window as any).softsculpt = inspector(app);
+  const loop = () => { app.frame(); requestAnimationFrame(loop); };
+  requestAnimationFrame(loop);
+}
+
+void main();

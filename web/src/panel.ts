@@ -1,0 +1,127 @@
+// The side panel (lil-gui): every tool, parameter and operation, each with a tooltip that names
+// its unit and shortcut. Parameter edits go through App.setParam (validated, undoable).
+
+import GUI, { type Controller } from 'lil-gui';
+import { Vector3 } from 'three';
+import type { App } from './app';
+import { INTEGRATORS, VOLUME_MODES, GAS_CONSTANT, type ParamName } from './engine/params';
+import { MODELS, type ModelName } from './models';
+import { fmt } from './view/plots';
+
+export interface PanelActions {
+  importFile(): void;
+  openProject(): void;
+}
+
+export function buildPanel(app: App, actions: PanelActions): GUI {
+  const gui = new GUI({ title: 'SoftSculpt', width: 290 });
+  const tip = (c: Controller, text: string) => { c.domElement.title = text; c.domElement.setAttribute('data-tip', text); return c; };
+  const p = app.params();
+  const view: Record<string, any> = {
+    tool: app.tools.tool.name,
+    model: app.settings.model,
+    gasNRT: 0, pressure: '', volume: '',
+    windStrength: 0,
+  };
+
+  // Parameters shown in the panel mirror the body; edits are validated by the engine.
+  const param = (folder: GUI, name: ParamName, label: string, tipText: string, min?: number, max?: number, step?: number) => {
+    const c = folder.add(p, name, min, max, step).name(label);
+    c.onFinishChange((v: number) => { if (!app.setParam(name, Number(v))) refresh(); });
+    return tip(c, tipText);
+  };
+
+  const tools = gui.addFolder('Tool');
+  const toolNames = Object.fromEntries(app.tools.tools.map((t) => [`${t.label} (${t.key.toUpperCase()})`, t.name]));
+  tip(tools.add(view, 'tool', toolNames).name('tool').onChange((v: string) => app.tools.select(v)),
+    app.tools.tools.map((t) => t.tooltip).join('\n'));
+  tip(tools.add(app.brush, 'radius', 0.02, 2, 0.01).name('brush radius (m)'), 'Brush radius in metres ([ and ] keys)');
+  tip(tools.add(app.brush, 'strength', 0.1, 500, 0.1).name('strength'),
+    'Grab: ω (1/s) · Press: pressure (Pa) · Inflate/Mass: rate (1/s)');
+
+  const model = gui.addFolder('Model');
+  tip(model.add(view, 'model', [...MODELS]).name('built-in').onChange((v: ModelName) => app.loadBuiltin(v)), 'Load a built-in model (undoable)');
+  tip(model.add({ f: () => app.freeze() }, 'f').name('Freeze (F)'), 'The current shape becomes the rest shape (F)');
+  tip(model.add({ f: () => app.reset() }, 'f').name('Reset (R)'), 'Back to the last frozen shape (R)');
+  tip(model.add({ f: () => app.subdivide() }, 'f').name('Subdivide (U)'), 'Loop subdivision of the current shape; masses and pins carried over; the result is frozen (U)');
+  tip(model.add({ f: () => app.undo() }, 'f').name('Undo (Ctrl+Z)'), 'Undo the last modeling operation (Ctrl+Z)');
+  tip(model.add({ f: () => app.redo() }, 'f').name('Redo (Ctrl+Shift+Z)'), 'Redo (Ctrl+Shift+Z)');
+
+  const files = gui.addFolder('Files');
+  tip(files.add({ f: () => actions.importFile() }, 'f').name('Import… (Ctrl+I)'), 'Import OBJ, PLY, STL, glTF/GLB (or drop a file on the page)');
+  tip(files.add({ f: () => app.export('obj') }, 'f').name('Export OBJ (E)'), 'Download the current shape as OBJ (E)');
+  tip(files.add({ f: () => app.export('stl') }, 'f').name('Export STL'), 'Download the current shape as binary STL');
+  tip(files.add({ f: () => app.export('glb') }, 'f').name('Export GLB'), 'Download the current shape as glTF binary');
+  tip(files.add({ f: () => app.saveProject() }, 'f').name('Save project (Ctrl+S)'), 'Download a project file: mesh, rest lengths, masses, pins, every parameter');
+  tip(files.add({ f: () => actions.openProject() }, 'f').name('Open project (Ctrl+O)'), 'Open a saved project file');
+
+  const sim = gui.addFolder('Simulation');
+  tip(sim.add(app.settings, 'playing').name('play (Space)').onChange(() => app.autosave()), 'Play / pause the simulation (Space)');
+  tip(sim.add({ f: () => app.step() }, 'f').name('single step (.)'), 'Advance one frame of steps while paused (.)');
+  const integ = sim.add(p, 'integrator', Object.fromEntries(INTEGRATORS.map((n, i) => [n, i]))).name('integrator');
+  integ.onChange((v: number) => app.setParam('integrator', Number(v)));
+  tip(integ, 'euler (order 1), midpoint (2), rk4 (4), symplectic Euler (1, energy-stable; default)');
+  tip(sim.add(app.settings, 'dt', 1e-6, 5e-3).name('dt (s)').onFinishChange(() => app.autosave()), 'Time step in seconds: smaller is more stable, slower');
+  tip(sim.add(app.settings, 'substeps', 1, 200, 1).name('steps per frame').onFinishChange(() => app.autosave()), 'Steps per frame; real time when steps · dt = frame time (1/60 s)');
+  param(sim, 'stiffness', 'stiffness k (N/m)', 'Spring stiffness, N/m: higher keeps the shape', 0, 5000);
+  param(sim, 'springDamping', 'spring damping (N·s/m)', 'Damping along each spring, N·s/m: calms vibrations', 0, 5);
+  param(sim, 'damping', 'damping c (1/s)', 'Viscous damping rate, 1/s: velocities decay as e^(−ct)', 0, 20);
+  const mass = { total: app.body().masses().reduce((a, b) => a + b, 0) };
+  tip(sim.add(mass, 'total', 0.01, 100).name('total mass (kg)').onFinishChange((v: number) => app.edit('set mass', true, () => app.body().set('totalMass', v))),
+    'Total mass in kg, split equally over the vertices (resets painted masses)');
+
+  const world = gui.addFolder('Gravity & ground');
+  param(world, 'gravity', 'gravity g (m/s²)', 'Gravitational acceleration along −y, m/s² (0 = off)', 0, 30);
+  const ground = { on: p.groundOn !== 0 };
+  tip(world.add(ground, 'on').name('ground').onChange((v: boolean) => app.setParam('groundOn', v ? 1 : 0)), 'A rigid ground plane');
+  param(world, 'groundHeight', 'ground height (m)', 'Height of the ground plane, m', -5, 5);
+  param(world, 'friction', 'friction μ', 'Coulomb friction coefficient of the ground', 0, 2);
+
+  const gas = gui.addFolder('Gas');
+  param(gas, 'gasAmount', 'amount n (mol)', 'Amount of gas n in mol (P = nRT/V)', 0, 0.1, 0.0001);
+  param(gas, 'temperature', 'temperature T (K)', 'Gas temperature in kelvin', 1, 1000);
+  const vm = gas.add(p, 'volumeMode', Object.fromEntries(VOLUME_MODES.map((n, i) => [n, i]))).name('volume');
+  vm.onChange((v: number) => app.setParam('volumeMode', Number(v)));
+  tip(vm, 'Volume the gas law uses: exact (default), bounding box or bounding sphere (the paper’s approximations)');
+  tip(gas.add(view, 'pressure').name('P = nRT/V (Pa)').disable(), 'Live gas pressure');
+  tip(gas.add(view, 'volume').name('V (m³)').disable(), 'Live volume used by the gas law');
+
+  const wind = gui.addFolder('Wind');
+  tip(wind.add(view, 'windStrength', 0, 30, 0.1).name('strength (m/s)').onFinishChange((s: number) => setWindFromView(s)),
+    'Wind speed; the wind blows along the current view direction (the arrow shows it)');
+  tip(wind.add({ f: () => setWindFromView(view.windStrength || 5) }, 'f').name('blow from view (W)'), 'Set the wind direction to the view direction (W)');
+  param(wind, 'windDrag', 'drag cw (N·s/m³)', 'Wind drag coefficient: force = cw · area · (relative wind · normal)', 0, 10);
+  tip(wind.add({ f: () => { view.windStrength = 0; setWindFromView(0); } }, 'f').name('calm'), 'No wind');
+
+  const display = gui.addFolder('View');
+  tip(display.add(app, 'wireframe').name('springs (wireframe, X)').onChange(() => app.syncScene()), 'Show the springs (X)');
+  tip(display.add({ f: () => app.viewport.resetView() }, 'f').name('reset view (V)'), 'Camera back home (V)');
+  tip(display.add({ f: () => app.hud.toggleHelp() }, 'f').name('help (?)'), 'Tools and shortcuts (?)');
+
+  function setWindFromView(strength: number): void {
+    const d = app.viewport.camera.getWorldDirection(new Vector3());
+    const w = [d.x * strength, d.y * strength, d.z * strength];
+    app.edit('wind', true, () => { app.body().set('windX', w[0]); app.body().set('windY', w[1]); app.body().set('windZ', w[2]); });
+    app.syncScene();
+  }
+
+  function refresh(): void {
+    Object.assign(p, app.params());
+    ground.on = p.groundOn !== 0;
+    view.tool = app.tools.tool.name;
+    view.model = app.settings.model;
+    mass.total = app.body().masses().reduce((a, b) => a + b, 0);
+    view.windStrength = Math.hypot(p.windX, p.windY, p.windZ);
+    gui.controllersRecursive().forEach((c) => c.updateDisplay());
+  }
+  app.onChange(refresh);
+  // Live readouts, a few times a second.
+  setInterval(() => {
+    const s = app.body().stats();
+    view.pressure = fmt(s.pressure);
+    view.volume = fmt(s.volume);
+    view.gasNRT = p.gasAmount * GAS_CONSTANT * p.temperature;
+    gui.controllersRecursive().forEach((c) => { if (c.property === 'pressure' || c.property === 'volume') c.updateDisplay(); });
+  }, 250);
+  return gui;
+}

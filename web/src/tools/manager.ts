@@ -1,0 +1,67 @@
+// Routes pointer events to the active tool. A press on the body starts the tool's drag and
+// switches the camera off until the button is released; elsewhere the trackball has the mouse.
+
+import type { Tool, ToolContext } from './tool';
+
+export class ToolManager {
+  private active: Tool;
+  private dragging: Tool | null = null;
+  private readonly down = (ev: PointerEvent) => this.onDown(ev);
+  private readonly moveHandler = (ev: PointerEvent) => { if (this.dragging) this.dragging.move(ev); };
+  private readonly up = () => this.onUp();
+
+  constructor(private readonly ctx: ToolContext, readonly tools: Tool[], private readonly onChange: (t: Tool) => void) {
+    this.active = tools[0];
+    this.active.connect(ctx);
+    const canvas = ctx.viewport.canvas;
+    // Capture phase: we decide before the trackball sees the press.
+    canvas.addEventListener('pointerdown', this.down, { capture: true });
+    window.addEventListener('pointermove', this.moveHandler);
+    window.addEventListener('pointerup', this.up);
+    window.addEventListener('pointercancel', this.up);
+  }
+
+  get tool(): Tool { return this.active; }
+  get isDragging(): boolean { return this.dragging !== null; }
+
+  select(name: string): void {
+    const t = this.tools.find((x) => x.name === name);
+    if (!t || t === this.active) return;
+    this.onUp();
+    this.active.disconnect();
+    this.active = t;
+    t.connect(this.ctx);
+    this.onChange(t);
+  }
+
+  update(dt: number): void {
+    this.active.update(dt);
+  }
+
+  private onDown(ev: PointerEvent): void {
+    if (ev.button !== 0) return;
+    const hit = this.ctx.viewport.pick(ev);
+    if (!hit || !this.active.start(hit, ev)) return;
+    this.dragging = this.active;
+    this.ctx.viewport.controls.enabled = false;
+    ev.stopImmediatePropagation();
+    ev.preventDefault();
+  }
+
+  private onUp(): void {
+    if (!this.dragging) return;
+    const t = this.dragging;
+    this.dragging = null;
+    t.end();
+    this.ctx.viewport.controls.enabled = true;
+  }
+
+  dispose(): void {
+    const canvas = this.ctx.viewport.canvas;
+    canvas.removeEventListener('pointerdown', this.down, { capture: true });
+    window.removeEventListener('pointermove', this.moveHandler);
+    window.removeEventListener('pointerup', this.up);
+    window.removeEventListener('pointercancel', this.up);
+    for (const t of this.tools) t.dispose();
+  }
+}

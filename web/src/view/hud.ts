@@ -1,0 +1,54 @@
+// Text overlays: the readout (fps, simulation time per frame, sizes), messages, and help.
+
+export class Hud {
+  private readonly readout: HTMLElement;
+  private readonly messages: HTMLElement;
+  private readonly help: HTMLElement;
+  private frames = 0;
+  private lastFps = performance.now();
+  fps = 0;
+
+  constructor(root: HTMLElement, helpText: string) {
+    this.readout = el(root, 'div', 'readout');
+    this.messages = el(root, 'div', 'messages');
+    this.help = el(root, 'div', 'help');
+    this.help.innerHTML = helpText;
+    this.help.hidden = true;
+    this.help.addEventListener('click', () => (this.help.hidden = true));
+  }
+
+  tick(): void {
+    this.frames++;
+    const now = performance.now();
+    if (now - this.lastFps >= 500) {
+      this.fps = (this.frames * 1000) / (now - this.lastFps);
+      this.frames = 0;
+      this.lastFps = now;
+    }
+  }
+
+  show(lines: string[]): void {
+    this.readout.textContent = lines.join('\n');
+  }
+
+  /** A message; kind 'error' stays until dismissed, others fade after a few seconds. */
+  message(text: string, kind: 'info' | 'warn' | 'error' = 'info'): void {
+    const m = el(this.messages, 'div', `message ${kind}`);
+    m.textContent = text;
+    m.title = 'click to dismiss';
+    m.addEventListener('click', () => m.remove());
+    if (kind !== 'error') setTimeout(() => m.remove(), kind === 'warn' ? 8000 : 4000);
+  }
+
+  toggleHelp(show?: boolean): void {
+    this.help.hidden = show === undefined ? !this.help.hidden : !show;
+  }
+  get helpVisible(): boolean { return !this.help.hidden; }
+}
+
+function el(parent: HTMLElement, tag: string, cls: string): HTMLElement {
+  const e = document.createElement(tag);
+  e.className = cls;
+  parent.appendChild(e);
+  return e;
+}

@@ -1,0 +1,146 @@
+// The 3D view: renderer, camera, trackball, ground grid, the body's surface and springs.
+// The surface reads the engine's f32 positions (a view over wasm memory) without copying.
+
+import * as THREE from 'three';
+import { TrackballControls } from 'three/examples/jsm/controls/TrackballControls.js';
+import type { SoftBody } from '../engine/softbody';
+
+const HOME = new THREE.Vector3(3.2, 2.4, 4.2);
+const TARGET = new THREE.Vector3(0, 0.8, 0);
+
+export class Viewport {
+  readonly renderer: THREE.WebGLRenderer;
+  readonly scene = new THREE.Scene();
+  readonly camera = new THREE.PerspectiveCamera(45, 1, 0.01, 200);
+  readonly controls: TrackballControls;
+  readonly surface: THREE.Mesh<THREE.BufferGeometry, THREE.MeshStandardMaterial>;
+  readonly springs: THREE.LineSegments<THREE.BufferGeometry, THREE.LineBasicMaterial>;
+  readonly grid = new THREE.GridHelper(20, 40, 0x667788, 0x3a4450);
+  readonly groundPlane: THREE.Mesh;
+  readonly windArrow = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(0, 2.5, 0), 1, 0x44aaff, 0.25, 0.15);
+  private colors = new Float32Array(0);
+
+  constructor(readonly canvas: HTMLCanvasElement) {
+    this.renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+    this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
+    this.scene.background = new THREE.Color(0x20252c);
+    this.scene.add(new THREE.HemisphereLight(0xdde8ff, 0x303030, 1.6));
+    const sun = new THREE.DirectionalLight(0xffffff, 2.2);
+    sun.position.set(3, 6, 4);
+    this.scene.add(sun);
+    this.camera.position.copy(HOME);
+    this.controls = new TrackballControls(this.camera, canvas);
+    this.controls.rotateSpeed = 3;
+    this.controls.zoomSpeed = 1.2;
+    this.controls.panSpeed = 0.6;
+    this.controls.target.copy(TARGET);
+
+    const geometry = new THREE.BufferGeometry();
+    this.surface = new THREE.Mesh(geometry, new THREE.MeshStandardMaterial({ color: 0xd9a066, roughness: 0.55, metalness: 0.05, vertexColors: false, side: THREE.DoubleSide }));
+    this.springs = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0x202020, transparent: true, opacity: 0.45 }));
+    this.springs.visible = false;
+    this.surface.frustumCulled = false;
+    this.springs.frustumCulled = false;
+    this.groundPlane = new THREE.Mesh(new THREE.PlaneGeometry(20, 20), new THREE.MeshStandardMaterial({ color: 0x2c343d, roughness: 1 }));
+    this.groundPlane.rotation.x = -Math.PI / 2;
+    this.groundPlane.position.y = -0.001;
+    this.scene.add(this.surface, this.springs, this.grid, this.groundPlane, this.windArrow);
+    this.windArrow.visible = false;
+    this.resize();
+    window.addEventListener('resize', () => this.resize());
+  }
+
+  resize(): void {
+    const w = this.canvas.clientWidth || window.innerWidth;
+    const h = this.canvas.clientHeight || window.innerHeight;
+    this.renderer.setSize(w, h, false);
+    this.camera.aspect = w / h;
+    this.camera.updateProjectionMatrix();
+    this.controls.handleResize();
+  }
+
+  resetView(): void {
+    this.camera.position.copy(HOME);
+    this.camera.up.set(0, 1, 0);
+    this.controls.target.copy(TARGET);
+    this.camera.lookAt(TARGET);
+    this.controls.update();
+  }
+
+  /** Point the surface and the springs at a (new) body's topology. */
+  attach(body: SoftBody): void {
+    const g = this.surface.geometry;
+    g.setIndex(new THREE.BufferAttribute(body.triangles().slice(), 1));
+    const position = new THREE.BufferAttribute(body.syncRender(), 3);
+    position.setUsage(THREE.DynamicDrawUsage);
+    g.setAttribute('position', position);
+    this.colors = new Float32Array(3 * body.vertexCount).fill(1);
+    g.setAttribute('color', new THREE.BufferAttribute(this.colors, 3));
+    const s = this.springs.geometry;
+    s.setIndex(new THREE.BufferAttribute(body.springs().slice(), 1));
+    s.setAttribute('position', position);
+  }
+
+  /** New positions from the engine: a fresh view over wasm memory, no copy. */
+  update(body: SoftBody): void {
+    const position = this.surface.geometry.getAttribute('position') as THREE.BufferAttribute;
+    (position as any).array = body.syncRender();
+    position.needsUpdate = true;
+    this.surface.geometry.computeVertexNormals();
+    this.surface.geometry.computeBoundingSphere();
+  }
+
+  /** Per-vertex colours (rgb in [0, 1]) or null for the plain material. */
+  setColors(fill: ((colors: Float32Array) => void) | null): void {
+    const m = this.surface.material;
+    if (!fill) {
+      if (m.vertexColors) { m.vertexColors = false; m.color.set(0xd9a066); m.needsUpdate = true; }
+      return;
+    }
+    fill(this.colors);
+    this.surface.geometry.getAttribute('color').needsUpdate = true;
+    if (!m.vertexColors) { m.vertexColors = true; m.color.set(0xffffff); m.needsUpdate = true; }
+  }
+
+  setGround(on: boolean, height: number): void {
+    this.groundPlane.visible = on;
+    this.grid.position.y = height;
+    this.groundPlane.position.y = height - 0.001;
+  }
+
+  setWind(w: [number, number, number]): void {
+    const v = new THREE.Vector3(...w);
+    const len = v.length();
+    this.windArrow.visible = len > 0;
+    if (len > 0) {
+      this.windArrow.setDirection(v.clone().normalize());
+      this.windArrow.setLength(0.4 + 0.1 * Math.min(len, 20), 0.25, 0.15);
+      this.windArrow.position.copy(this.controls.target).addScaledVector(v.clone().normalize(), -2).add(new THREE.Vector3(0, 1.2, 0));
+    }
+  }
+
+  render(): void {
+    this.controls.update();
+    this.renderer.render(this.scene, this.camera);
+  }
+
+  /** The surface point under a pointer event, or null. */
+  pick(ev: { clientX: number; clientY: number }): THREE.Intersection | null {
+    const ray = this.rayAt(ev);
+    this.surface.geometry.computeBoundingSphere();
+    return ray.intersectObject(this.surface, false)[0] ?? null;
+  }
+
+  rayAt(ev: { clientX: number; clientY: number }): THREE.Raycaster {
+    const r = this.canvas.getBoundingClientRect();
+    const ndc = new THREE.Vector2(((ev.clientX - r.left) / r.width) * 2 - 1, -((ev.clientY - r.top) / r.height) * 2 + 1);
+    const ray = new THREE.Raycaster();
+    ray.setFromCamera(ndc, this.camera);
+    return ray;
+  }
+
+  dispose(): void {
+    this.controls.dispose();
+    this.renderer.dispose();
+  }
+}
