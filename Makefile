@@ -1,9 +1,10 @@
-# SoftSculpt: `make run` (the main job) and `make test` (every test) work on a fresh machine.
+# SoftSculpt: `make run` (the modeler) and `make test` (every test) work on a fresh machine.
 SHELL := /bin/bash
 CARGO ?= cargo
 BIN := target/release/softsculpt
+WASM := target/wasm32-unknown-unknown/release/softsculpt_wasm.wasm
 
-.PHONY: run test bench setup build
+.PHONY: run test bench setup build wasm web demo
 
 setup:
 	@scripts/setup.sh
@@ -11,14 +12,29 @@ setup:
 build: setup
 	$(CARGO) build --release -p softsculpt-cli
 
-# The built-in mushroom inflating with gas and settling on the ground (the paper's Fig. 2).
-run: build
+# The engine for the browser (WebAssembly with SIMD, see .cargo/config.toml).
+wasm: setup
+	$(CARGO) build --release -p softsculpt-wasm --target wasm32-unknown-unknown
+	@mkdir -p web/public
+	cp $(WASM) web/public/softsculpt.wasm
+
+web: wasm
+	@scripts/setup.sh web
+	cd web && npx tsc --noEmit && npx vite build
+
+# The modeler on http://127.0.0.1:5173, opening on the mushroom resting on the ground.
+run: web
+	@echo "SoftSculpt modeler: open http://127.0.0.1:5173 (Ctrl+C to stop)"
+	cd web && npx vite preview --host 127.0.0.1 --port 5173 --strictPort
+
+# Headless: the built-in mushroom inflating with gas and settling on the ground (Fig. 2).
+demo: build
 	@mkdir -p out
 	$(BIN) simulate builtin:mushroom --out out/mushroom.obj --gas 30 --ground 0 --damping 2 \
 		--steps 10000 --until-rest 1e-3 --stats out/mushroom-stats.jsonl
 	@echo "SoftSculpt: wrote $(CURDIR)/out/mushroom.obj (statistics: out/mushroom-stats.jsonl)"
 
-test: setup
+test:
 	@scripts/run_tests.sh
 
 # The standard workload side by side with the reference C++ loop in ../shared/bench, then the

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Total the passed/failed counts of every test suite in one or more logs.
 
-Understands cargo test ("test result: ok. 8 passed; 0 failed; ...") and vitest/playwright
-summary lines ("Tests  12 passed (12)", "Tests  1 failed | 11 passed (12)"). Prints one line
+Understands cargo test ("test result: ok. 8 passed; 0 failed; ..."), vitest summary lines
+("Tests  12 passed (12)", "Tests  1 failed | 11 passed (12)") and Node's TAP ("# pass 9"). Prints one line
 "N passed, N failed". A log that is missing counts as one failed suite.
 """
 import re
@@ -10,6 +10,7 @@ import sys
 
 CARGO = re.compile(r"test result: \w+\. (\d+) passed; (\d+) failed")
 VITEST = re.compile(r"^\s*Tests\s+(.*)\(\d+\)\s*$")
+TAP = re.compile(r"^# (pass|fail) (\d+)\s*$", re.M)
 
 
 def count(text):
@@ -25,6 +26,11 @@ def count(text):
                     passed += int(n)
                 else:
                     failed += int(n)
+    for kind, n in TAP.findall(text):
+        if kind == "pass":
+            passed += int(n)
+        else:
+            failed += int(n)
     return passed, failed
 
 

@@ -26,8 +26,10 @@ type Entry = { kind: 'body'; state: BodyState; settings: Settings } | { kind: 'p
 export interface Settings {
   /** Time step (s). */
   dt: number;
-  /** Steps per frame (real time when steps · dt = frame time). */
+  /** Steps per frame when not in real time; in real time, the steps that fill the frame's time. */
   substeps: number;
+  /** Advance simulated time at the pace of the clock (steps per frame follow the frame rate). */
+  realTime: boolean;
   playing: boolean;
   model: string;
 }
@@ -38,9 +40,10 @@ const FRAME_BUDGET_MS = 12;
 export class App implements ToolContext {
   private current!: SoftBody;
   readonly viewport: Viewport;
-  readonly brush = { radius: 0.35, strength: 30 };
+  readonly brush = { radius: 0.35 };
   readonly history = new History<Entry>(50);
-  readonly settings: Settings = { dt: 1e-3, substeps: 16, playing: true, model: 'mushroom' };
+  readonly settings: Settings = { dt: 1e-3, substeps: 16, realTime: true, playing: true, model: 'mushroom' };
+  private lastFrame = 0;
   readonly tools: ToolManager;
   readonly plots: Plots;
   readonly hud: Hud;
@@ -58,7 +61,7 @@ export class App implements ToolContext {
     this.plots = new Plots(plotCanvas);
     this.hud = new Hud(hudRoot, helpText);
     const tools: Tool[] = [new GrabTool(), new PressTool(), new InflateTool(), new MassTool(), new PinTool()];
-    this.tools = new ToolManager(this, tools, () => this.refreshOverlay());
+    this.tools = new ToolManager(this, tools, () => { this.refreshOverlay(); this.changed(); });
   }
 
   body(): SoftBody { return this.current; }
@@ -72,7 +75,7 @@ export class App implements ToolContext {
   private setBody(body: SoftBody): void {
     const old = this.current;
     this.current = body;
-    old?.free();
+    if (old && old !== body) old.free();
     this.viewport.attach(body);
     this.viewport.update(body);
     this.plots.clear();
@@ -251,7 +254,7 @@ export class App implements ToolContext {
   }
 
   projectText(): string {
-    return serialize({ name: this.settings.model, state: capture(this.current), ui: { ...this.settings, brush: this.brush, tool: this.tools.tool.name } });
+    return serialize({ name: this.settings.model, state: capture(this.current), ui: { ...this.settings, brush: this.brush, tool: this.tools.tool.name, strengths: Object.fromEntries(this.tools.tools.map((t) => [t.name, t.strength])) } });
   }
 
   saveProject(): void {
@@ -262,12 +265,14 @@ export class App implements ToolContext {
     const p = parse(text);
     const body = restore(p.state);
     this.edit(`open ${p.name}`, undoable, () => {
-      const ui = p.ui as Partial<Settings> & { brush?: { radius: number; strength: number }; tool?: string };
+      const ui = p.ui as Partial<Settings> & { brush?: { radius: number }; tool?: string; strengths?: Record<string, number> };
       if (typeof ui.dt === 'number' && ui.dt > 0) this.settings.dt = ui.dt;
       if (typeof ui.substeps === 'number' && ui.substeps >= 1) this.settings.substeps = ui.substeps;
       if (typeof ui.playing === 'boolean') this.settings.playing = ui.playing;
+      if (typeof ui.realTime === 'boolean') this.settings.realTime = ui.realTime;
       this.settings.model = p.name;
-      if (ui.brush) Object.assign(this.brush, ui.brush);
+      if (ui.brush && typeof ui.brush.radius === 'number') this.brush.radius = ui.brush.radius;
+      for (const t of this.tools.tools) if (typeof ui.strengths?.[t.name] === 'number') t.strength = ui.strengths[t.name];
       this.setBody(body);
       if (ui.tool) this.tools.select(ui.tool);
     });
@@ -305,7 +310,12 @@ export class App implements ToolContext {
 
   frame(): void {
     const body = this.current;
-    const { dt, substeps } = this.settings;
+    const now = performance.now();
+    // Real time: as many steps as the time since the last frame holds (at most 0.1 s of it).
+    const elapsed = this.lastFrame ? Math.min(0.1, (now - this.lastFrame) / 1000) : 1 / 60;
+    this.lastFrame = now;
+    const { dt } = this.settings;
+    const substeps = this.settings.realTime ? Math.max(1, Math.round(elapsed / dt)) : this.settings.substeps;
     this.tools.update(this.settings.playing ? dt * substeps : 0);
     let done = 0;
     const t0 = performance.now();

@@ -22,6 +22,18 @@ export function inspector(app: App) {
     slowMotion: () => app.slowMotion,
     simMs: () => app.simMs,
     helpVisible: () => app.hud.helpVisible,
+    camera: () => app.viewport.camera.position.toArray(),
+    pixels: () => {
+      // Distinct colours in a 64×64 sample of the rendered view (the canvas keeps its buffer).
+      const c = document.createElement('canvas');
+      c.width = 64; c.height = 64;
+      const g = c.getContext('2d')!;
+      g.drawImage(app.viewport.canvas, 0, 0, 64, 64);
+      const d = g.getImageData(0, 0, 64, 64).data;
+      const seen = new Set<number>();
+      for (let i = 0; i < d.length; i += 4) seen.add((d[i] << 16) | (d[i + 1] << 8) | d[i + 2]);
+      return seen.size;
+    },
     /** Project coordinates of vertex i to page pixels (for driving the mouse in tests). */
     screenOf: (i: number) => {
       const x = app.body().positions();

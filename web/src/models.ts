@@ -33,7 +33,14 @@ export function loadModel(name: ModelName): SoftBody {
     indices = b.triangles().slice();
     b.free();
   }
-  return SoftBody.fromMesh(positions, indices, 1, weld);
+  const body = SoftBody.fromMesh(positions, indices, 1, weld);
+  if (name === 'mushroom') {
+    // Rooted: the foot of the stem is pinned to the ground, as a mushroom grows (otherwise the
+    // heavy cap on a soft stem tips over at the first touch).
+    const x = body.positions();
+    for (let i = 0; i < body.vertexCount; i++) if (x[3 * i + 1] < 0.01) body.setPinned(i, true);
+  }
+  return body;
 }
 
 /** Gas as the product nRT (J) → amount n (mol) at temperature T (K). */
@@ -49,6 +56,9 @@ export function gasAmount(nrt: number, temperature = 300): number {
 export function defaultSettings(body: SoftBody): { dt: number } {
   body.set('stiffness', 100);
   body.set('springDamping', 0.1);
+  // Bending springs as stiff as the edges: the surface resists folding, so a mushroom's stem
+  // carries its cap instead of buckling.
+  body.set('bendingStiffness', 100);
   body.set('damping', 1.5);
   body.set('gravity', 9.81);
   body.set('groundOn', 1);
@@ -61,7 +71,7 @@ export function defaultSettings(body: SoftBody): { dt: number } {
 
 export function stableDt(body: SoftBody): number {
   const m = body.masses().reduce((a, b) => Math.min(a, b), Infinity);
-  const k = body.get('stiffness'), cs = body.get('springDamping');
+  const k = body.get('stiffness') + body.get('bendingStiffness'), cs = 2 * body.get('springDamping');
   const omega = Math.sqrt((12 * k) / m);
   const limits = [1e-3, 0.3 * (2 / omega)];
   if (cs > 0) limits.push((0.3 * 2 * m) / (12 * cs));

@@ -36,8 +36,16 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   tip(tools.add(view, 'tool', toolNames).name('tool').onChange((v: string) => app.tools.select(v)),
     app.tools.tools.map((t) => t.tooltip).join('\n'));
   tip(tools.add(app.brush, 'radius', 0.02, 2, 0.01).name('brush radius (m)'), 'Brush radius in metres ([ and ] keys)');
-  tip(tools.add(app.brush, 'strength', 0.1, 500, 0.1).name('strength'),
-    'Grab: ω (1/s) · Press: pressure (Pa) · Inflate/Mass: rate (1/s)');
+  // The strength slider belongs to the active tool: rebuilt when the tool changes.
+  let strength: Controller | null = null;
+  const showStrength = () => {
+    strength?.destroy();
+    strength = null;
+    const t = app.tools.tool;
+    if (!t.strengthInfo) return;
+    strength = tip(tools.add(t, 'strength', t.strengthInfo.min, t.strengthInfo.max).name(t.strengthInfo.label), `${t.label} strength: ${t.strengthInfo.label}`);
+  };
+  showStrength();
 
   const model = gui.addFolder('Model');
   tip(model.add(view, 'model', [...MODELS]).name('built-in').onChange((v: ModelName) => app.loadBuiltin(v)), 'Load a built-in model (undoable)');
@@ -62,9 +70,11 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   integ.onChange((v: number) => app.setParam('integrator', Number(v)));
   tip(integ, 'euler (order 1), midpoint (2), rk4 (4), symplectic Euler (1, energy-stable; default)');
   tip(sim.add(app.settings, 'dt', 1e-6, 5e-3).name('dt (s)').onFinishChange(() => app.autosave()), 'Time step in seconds: smaller is more stable, slower');
-  tip(sim.add(app.settings, 'substeps', 1, 200, 1).name('steps per frame').onFinishChange(() => app.autosave()), 'Steps per frame; real time when steps · dt = frame time (1/60 s)');
+  tip(sim.add(app.settings, 'realTime').name('real time').onChange(() => app.autosave()), 'Simulated time follows the clock (steps per frame follow the frame rate); off: a fixed number of steps per frame');
+  tip(sim.add(app.settings, 'substeps', 1, 500, 1).name('steps per frame').onFinishChange(() => app.autosave()), 'Steps per frame when not in real time');
   param(sim, 'stiffness', 'stiffness k (N/m)', 'Spring stiffness, N/m: higher keeps the shape', 0, 5000);
   param(sim, 'springDamping', 'spring damping (N·s/m)', 'Damping along each spring, N·s/m: calms vibrations', 0, 5);
+  param(sim, 'bendingStiffness', 'bending k_b (N/m)', 'Stiffness of the bending springs across every edge, N/m: resists folding (0 = a pure balloon)', 0, 5000);
   param(sim, 'damping', 'damping c (1/s)', 'Viscous damping rate, 1/s: velocities decay as e^(−ct)', 0, 20);
   const mass = { total: app.body().masses().reduce((a, b) => a + b, 0) };
   tip(sim.add(mass, 'total', 0.01, 100).name('total mass (kg)').onFinishChange((v: number) => app.edit('set mass', true, () => app.body().set('totalMass', v))),
@@ -108,6 +118,7 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   function refresh(): void {
     Object.assign(p, app.params());
     ground.on = p.groundOn !== 0;
+    if (view.tool !== app.tools.tool.name) showStrength();
     view.tool = app.tools.tool.name;
     view.model = app.settings.model;
     mass.total = app.body().masses().reduce((a, b) => a + b, 0);

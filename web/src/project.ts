@@ -12,6 +12,9 @@ export interface BodyState {
   pinned: Uint8Array;
   frozenPositions: Float64Array;
   frozenRestLengths: Float64Array;
+  /** Rest lengths of the bending springs (m), now and frozen. */
+  bendingRestLengths: Float64Array;
+  frozenBendingRestLengths: Float64Array;
   /** Load kept by a freeze under load (N, xyz per vertex), now and at the last freeze. */
   prestress: Float64Array;
   frozenPrestress: Float64Array;
@@ -33,6 +36,8 @@ export function capture(body: SoftBody): BodyState {
     pinned: body.pinned().slice(),
     frozenPositions: body.frozenPositions().slice(),
     frozenRestLengths: body.frozenRestLengths().slice(),
+    bendingRestLengths: body.bendingRestLengths().slice(),
+    frozenBendingRestLengths: body.frozenBendingRestLengths().slice(),
     prestress: body.prestress().slice(),
     frozenPrestress: body.frozenPrestress().slice(),
     gas: [body.get('ambientPressure'), body.get('referenceVolume')],
@@ -60,6 +65,8 @@ export function restore(s: BodyState): SoftBody {
     body.set('referenceVolume', s.gas[1]);
     body.setFrozen(s.frozenPositions, s.frozenRestLengths, s.frozenGas[0], s.frozenGas[1]);
     body.setPrestress(s.prestress, s.frozenPrestress);
+    if (body.bendingCount !== s.bendingRestLengths.length) throw new Error('the saved bending rest lengths do not match the mesh');
+    body.setBendingRest(s.bendingRestLengths, s.frozenBendingRestLengths);
     return body;
   } catch (e) {
     body.free();
@@ -75,7 +82,7 @@ export interface Project {
   ui: Record<string, unknown>;
 }
 
-const F64 = ['positions', 'velocities', 'restLengths', 'masses', 'frozenPositions', 'frozenRestLengths', 'prestress', 'frozenPrestress'] as const;
+const F64 = ['positions', 'velocities', 'restLengths', 'masses', 'frozenPositions', 'frozenRestLengths', 'prestress', 'frozenPrestress', 'bendingRestLengths', 'frozenBendingRestLengths'] as const;
 
 /** Project file text (JSON; numbers print in shortest round-trip form, so they load back exactly). */
 export function serialize(p: Project): string {

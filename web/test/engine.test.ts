@@ -60,6 +60,7 @@ describe('project state', () => {
   it('round-trips through a project file exactly, and the restored body steps identically', () => {
     const a = SoftBody.builtin('octopus', 2);
     a.set('gasAmount', 0.002);
+    a.set('bendingStiffness', 50);
     a.set('groundOn', 1);
     a.set('groundHeight', -0.1);
     for (let i = 0; i < 30; i++) a.step(1e-3, 5);

@@ -29,6 +29,9 @@ pub struct SimulateArgs {
     /// Damping along each spring cs (N·s/m).
     #[arg(long = "spring-damping", allow_hyphen_values = true, default_value = "0.1", value_parser = args::non_negative, value_name = "CS")]
     pub spring_damping: f64,
+    /// Stiffness of the bending springs across every edge (N/m); 0 = none.
+    #[arg(long, allow_hyphen_values = true, default_value = "0", value_parser = args::non_negative, value_name = "KB")]
+    pub bending: f64,
     /// Viscous damping rate c (1/s): velocities decay as e^(-c t).
     #[arg(long, allow_hyphen_values = true, default_value = "0", value_parser = args::non_negative, value_name = "C")]
     pub damping: f64,
@@ -110,6 +113,7 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     let mut params = Params {
         stiffness: a.stiffness,
         spring_damping: a.spring_damping,
+        bending_stiffness: a.bending,
         damping: a.damping,
         gravity: a.gravity,
         volume_mode: a.volume,

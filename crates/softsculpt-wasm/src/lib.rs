@@ -123,6 +123,16 @@ pub unsafe extern "C" fn ss_create_mesh(pos: *const f64, n_vertices: usize, idx:
     }
 }
 
+/// The standard benchmark workload at an icosphere level (see `softsculpt::workload`), with its
+/// parameters; step it with `ss_step(h, 1e-4, n)`.
+#[no_mangle]
+pub extern "C" fn ss_create_workload(level: u32) -> u32 {
+    if level > 8 {
+        return table::fail(format!("level {level} is too large (at most 8)"));
+    }
+    with_table(|t| t.insert(Entry::new(softsculpt::workload::body(level))))
+}
+
 #[no_mangle]
 pub extern "C" fn ss_free(h: u32) {
     with_table(|t| t.remove(h));
@@ -179,6 +189,32 @@ pub extern "C" fn ss_masses(h: u32) -> *const f64 {
 #[no_mangle]
 pub extern "C" fn ss_rest_lengths(h: u32) -> *const f64 {
     with(h, std::ptr::null(), |e| e.body.rest_lengths().as_ptr())
+}
+/// Bending springs: count and rest lengths (m), now and frozen.
+#[no_mangle]
+pub extern "C" fn ss_bending_count(h: u32) -> u32 {
+    with(h, 0, |e| e.body.bending_rest_lengths().len() as u32)
+}
+#[no_mangle]
+pub extern "C" fn ss_bending_rest_lengths(h: u32) -> *const f64 {
+    with(h, std::ptr::null(), |e| e.body.bending_rest_lengths().as_ptr())
+}
+#[no_mangle]
+pub extern "C" fn ss_frozen_bending_rest_lengths(h: u32) -> *const f64 {
+    with(h, std::ptr::null(), |e| e.body.frozen_bending_rest_lengths().as_ptr())
+}
+/// Set the bending rest lengths now and frozen (`ss_bending_count` f64 each).
+///
+/// # Safety
+/// Both pointers must point to `ss_bending_count(h)` f64.
+#[no_mangle]
+pub unsafe extern "C" fn ss_set_bending_rest(h: u32, now: *const f64, frozen: *const f64) -> u32 {
+    table::status(h, |e| {
+        let n = e.body.bending_rest_lengths().len();
+        let a = std::slice::from_raw_parts(now, n).to_vec();
+        let b = std::slice::from_raw_parts(frozen, n).to_vec();
+        e.body.set_bending_rest_lengths(&a, &b).map_err(|e| e.to_string())
+    })
 }
 #[no_mangle]
 pub extern "C" fn ss_frozen_positions(h: u32) -> *const f64 {
@@ -237,6 +273,7 @@ pub mod param {
     pub const REFERENCE_VOLUME: u32 = 17; // m³
     pub const FROZEN_AMBIENT_PRESSURE: u32 = 18; // Pa (read only)
     pub const FROZEN_REFERENCE_VOLUME: u32 = 19; // m³ (read only)
+    pub const BENDING_STIFFNESS: u32 = 20; // N/m
 }
 
 const INTEGRATORS: [Integrator; 4] = [Integrator::Euler, Integrator::Midpoint, Integrator::Rk4, Integrator::Symplectic];
@@ -268,6 +305,7 @@ pub extern "C" fn ss_get(h: u32, id: u32) -> f64 {
             param::REFERENCE_VOLUME => e.body.gas_reference().reference_volume,
             param::FROZEN_AMBIENT_PRESSURE => e.body.frozen_gas_reference().ambient_pressure,
             param::FROZEN_REFERENCE_VOLUME => e.body.frozen_gas_reference().reference_volume,
+            param::BENDING_STIFFNESS => p.bending_stiffness,
             _ => f64::NAN,
         }
     })
@@ -282,6 +320,7 @@ pub extern "C" fn ss_set(h: u32, id: u32, value: f64) -> u32 {
         match id {
             param::STIFFNESS => p.stiffness = value,
             param::SPRING_DAMPING => p.spring_damping = value,
+            param::BENDING_STIFFNESS => p.bending_stiffness = value,
             param::DAMPING => p.damping = value,
             param::GRAVITY => p.gravity = value,
             param::GAS_AMOUNT => return e.body.set_gas(value, p.temperature).map_err(|e| e.to_string()),

@@ -21,13 +21,14 @@ export const Param = {
   referenceVolume: 17,
   frozenAmbientPressure: 18,
   frozenReferenceVolume: 19,
+  bendingStiffness: 20,
 } as const;
 
 export type ParamName = keyof typeof Param;
 
 /** Parameters a project saves and the panel edits (the gas reference is saved separately). */
 export const EDITABLE: ParamName[] = [
-  'stiffness', 'springDamping', 'damping', 'gravity', 'gasAmount', 'temperature', 'volumeMode',
+  'stiffness', 'springDamping', 'bendingStiffness', 'damping', 'gravity', 'gasAmount', 'temperature', 'volumeMode',
   'windX', 'windY', 'windZ', 'windDrag', 'groundOn', 'groundHeight', 'friction', 'integrator',
 ];
 

@@ -62,6 +62,12 @@ export class SoftBody {
   velocities(): Float64Array { return view.f64(raw().ss_velocities(this.handle), 3 * this.vertexCount); }
   masses(): Float64Array { return view.f64(raw().ss_masses(this.handle), this.vertexCount); }
   restLengths(): Float64Array { return view.f64(raw().ss_rest_lengths(this.handle), this.springCount); }
+  get bendingCount(): number { return raw().ss_bending_count(this.handle); }
+  bendingRestLengths(): Float64Array { return view.f64(raw().ss_bending_rest_lengths(this.handle), this.bendingCount); }
+  frozenBendingRestLengths(): Float64Array { return view.f64(raw().ss_frozen_bending_rest_lengths(this.handle), this.bendingCount); }
+  setBendingRest(now: Float64Array, frozen: Float64Array): void {
+    withArrays([now, frozen], (a, b) => check(raw().ss_set_bending_rest(this.handle, a, b), 'bending rest lengths'));
+  }
   frozenPositions(): Float64Array { return view.f64(raw().ss_frozen_positions(this.handle), 3 * this.vertexCount); }
   frozenRestLengths(): Float64Array { return view.f64(raw().ss_frozen_rest_lengths(this.handle), this.springCount); }
   triangles(): Uint32Array { return view.u32(raw().ss_triangles(this.handle), 3 * this.faceCount); }

@@ -23,6 +23,10 @@ export interface RawEngine {
   ss_masses(h: number): number;
   ss_rest_lengths(h: number): number;
   ss_frozen_positions(h: number): number;
+  ss_bending_count(h: number): number;
+  ss_bending_rest_lengths(h: number): number;
+  ss_frozen_bending_rest_lengths(h: number): number;
+  ss_set_bending_rest(h: number, now: number, frozen: number): number;
   ss_frozen_rest_lengths(h: number): number;
   ss_pinned(h: number): number;
   ss_user_forces(h: number): number;

@@ -11,6 +11,8 @@ export class GrabTool extends BaseTool {
   readonly label = 'Grab';
   readonly key = 'g';
   readonly tooltip = 'Grab (G): drag the surface; the brush area follows the mouse on a spring (strength = ω, 1/s)';
+  strength = 30;
+  readonly strengthInfo = { label: 'pull ω (1/s)', min: 1, max: 200 };
   private picked: Weighted = { indices: [], weights: [] };
   private offsets: number[] = [];
   private plane = new THREE.Plane();
@@ -45,7 +47,7 @@ export class GrabTool extends BaseTool {
     const x = body.positions(), v = body.velocities(), m = body.masses();
     const f = body.userForces();
     f.fill(0);
-    const omega = this.ctx.brush.strength;
+    const omega = this.strength;
     const c = [this.cursor.x, this.cursor.y, this.cursor.z];
     this.picked.indices.forEach((i, k) => {
       for (let d = 0; d < 3; d++) {

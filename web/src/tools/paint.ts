@@ -53,10 +53,12 @@ export class InflateTool extends PaintTool {
   readonly label = 'Inflate';
   readonly key = 'i';
   readonly tooltip = 'Inflate (I): lengthen rest lengths under the brush; Shift deflates (strength = rate, 1/s)';
+  strength = 0.3;
+  readonly strengthInfo = { label: 'growth rate (1/s)', min: 0.01, max: 3 };
   protected paint(body: SoftBody, indices: number[], weights: number[], dt: number): void {
     if (dt <= 0) return;
     const factors = new Float64Array(body.vertexCount).fill(1);
-    indices.forEach((i, k) => (factors[i] = inflateFactor(weights[k], this.ctx!.brush.strength, dt, this.inverted)));
+    indices.forEach((i, k) => (factors[i] = inflateFactor(weights[k], this.strength, dt, this.inverted)));
     body.scaleRestByVertex(factors);
   }
 }
@@ -66,11 +68,13 @@ export class MassTool extends PaintTool {
   readonly label = 'Mass';
   readonly key = 'm';
   readonly tooltip = 'Mass (M): paint vertices heavier so they move less; Shift paints lighter (strength = rate, 1/s)';
+  strength = 2;
+  readonly strengthInfo = { label: 'mass rate (1/s)', min: 0.1, max: 20 };
   protected paint(body: SoftBody, indices: number[], weights: number[], dt: number): void {
     if (dt <= 0) return;
     const m = body.masses().slice();
     indices.forEach((i, k) => {
-      const f = inflateFactor(weights[k], this.ctx!.brush.strength, dt, this.inverted);
+      const f = inflateFactor(weights[k], this.strength, dt, this.inverted);
       m[i] = Math.min(Math.max(m[i] * f, 1e-9), 1e9);
     });
     body.setMasses(m);
@@ -91,6 +95,8 @@ export class PinTool extends PaintTool {
   readonly label = 'Pin';
   readonly key = 'n';
   readonly tooltip = 'Pin (N): pin the vertices under the brush so they never move; Shift unpins';
+  strength = 0;
+  readonly strengthInfo = null;
   protected paint(body: SoftBody, indices: number[]): void {
     const pinned = body.pinned();
     for (const i of indices) if ((pinned[i] === 1) === this.inverted) body.setPinned(i, !this.inverted);

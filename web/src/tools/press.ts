@@ -10,6 +10,8 @@ export class PressTool extends BaseTool {
   readonly label = 'Press';
   readonly key = 'p';
   readonly tooltip = 'Press (P): push the faces under the brush inward (strength = pressure, Pa)';
+  strength = 60;
+  readonly strengthInfo = { label: 'pressure (Pa)', min: 1, max: 2000 };
 
   start(hit: THREE.Intersection, ev: PointerEvent): boolean {
     super.start(hit, ev);
@@ -30,7 +32,7 @@ export class PressTool extends BaseTool {
     const p = body.facePressures();
     p.fill(0);
     const faces = facesAround(body.positions(), body.triangles(), point(hit.point), ctx.brush.radius);
-    faces.indices.forEach((f, k) => (p[f] = ctx.brush.strength * faces.weights[k]));
+    faces.indices.forEach((f, k) => (p[f] = this.strength * faces.weights[k]));
     body.applyFacePressures();
   }
 

@@ -7,10 +7,15 @@ import type { SoftBody } from '../engine/softbody';
 import type { Viewport } from '../view/viewport';
 
 export interface Brush {
-  /** Radius of the brush (m). */
+  /** Radius of the brush (m), shared by the tools. */
   radius: number;
-  /** Strength, in the tool's own unit (see each tool's tooltip). */
-  strength: number;
+}
+
+/** What a tool's strength means: its unit and slider range. */
+export interface Strength {
+  label: string;
+  min: number;
+  max: number;
 }
 
 export interface ToolContext {
@@ -30,6 +35,9 @@ export interface Tool {
   readonly label: string;
   readonly key: string;
   readonly tooltip: string;
+  /** The tool's strength (unit in `strengthInfo`), or null if it has none. */
+  strength: number;
+  readonly strengthInfo: Strength | null;
   connect(ctx: ToolContext): void;
   disconnect(): void;
   dispose(): void;
@@ -49,6 +57,8 @@ export abstract class BaseTool implements Tool {
   abstract readonly label: string;
   abstract readonly key: string;
   abstract readonly tooltip: string;
+  abstract strength: number;
+  abstract readonly strengthInfo: Strength | null;
   protected ctx: ToolContext | null = null;
   protected dragging = false;
   /** Modifier (Shift) inverts the brush: deflate, lighter, unpin. */

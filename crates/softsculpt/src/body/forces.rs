@@ -66,6 +66,9 @@ pub(crate) fn gather(p: &Params, m: &Model, x: &[f64], v: &[f64], f: &mut [f64])
 
     // Stage springs.
     m.springs.accumulate(p.stiffness * inv, p.spring_damping * inv, x, v, f);
+    if p.bending_stiffness > 0.0 {
+        m.bending.accumulate(p.bending_stiffness * inv, p.spring_damping * inv, x, v, f);
+    }
 
     // Stage external: wind and user face pressures.
     if p.wind_drag > 0.0 && p.wind != [0.0; 3] {

@@ -3,7 +3,7 @@
 //! One step (see [`SoftBody::step`]):
 //! 1. **faces**    – exact volume and Σ face normals per vertex, in one pass over faces.
 //! 2. **gas**      – the pressure P = nRT / V from the selected volume, minus the surroundings'.
-//! 3. **springs**  – Hooke + spring damping on every edge.
+//! 3. **springs**  – Hooke + spring damping on every edge (and on the bending springs, if any).
 //! 4. **external** – wind and user face pressures (only when set).
 //! 5. **vertices** – a = f / m + g_vec − c v, then the integrator (fused into this pass for
 //!    symplectic Euler); the force accumulator is cleared on the way.
@@ -40,6 +40,8 @@ use crate::mesh::{topology, TriMesh};
 pub(crate) struct Model {
     pub faces: Faces,
     pub springs: Springs,
+    /// Bending springs across every interior edge (stiffness `Params::bending_stiffness`).
+    pub bending: Springs,
     /// Every edge shared by exactly two faces.
     pub closed: bool,
     /// Vertex masses mi (kg).
@@ -82,6 +84,7 @@ pub(crate) struct Work {
 pub(crate) struct Frozen {
     pub x: Vec<f64>,
     pub rest: Vec<f64>,
+    pub bending_rest: Vec<f64>,
     pub gas: GasReference,
     pub prestress: Vec<f64>,
 }
@@ -123,12 +126,14 @@ impl SoftBody {
         }
         let x = mesh.positions.clone();
         let springs = Springs::new(&topology::edges(&mesh.triangles), &x);
+        let bending = Springs::new(&topology::bending_pairs(&mesh.triangles), &x);
         let faces = Faces::new(mesh.triangles.clone(), n);
         let m = total_mass / n as f64;
         let mut body = SoftBody {
             model: Model {
                 faces,
                 springs,
+                bending,
                 closed,
                 mass: vec![m; n],
                 inv_mass: vec![1.0 / m; n],
@@ -142,14 +147,14 @@ impl SoftBody {
             },
             state: State { v: vec![0.0; 3 * n], x },
             work: Work { f: vec![0.0; 3 * n], ..Default::default() },
-            frozen: Frozen { x: Vec::new(), rest: Vec::new(), gas: GasReference { ambient_pressure: 0.0, reference_volume: 1.0 }, prestress: vec![0.0; 3 * n] },
+            frozen: Frozen { x: Vec::new(), rest: Vec::new(), bending_rest: Vec::new(), gas: GasReference { ambient_pressure: 0.0, reference_volume: 1.0 }, prestress: vec![0.0; 3 * n] },
             params,
             steps: 0,
             time: 0.0,
         };
         let v0 = body.volume();
         body.model.gas.reference_volume = if v0 > 0.0 { v0 } else { 1.0 };
-        body.frozen = Frozen { x: body.state.x.clone(), rest: body.model.springs.rest.clone(), gas: body.model.gas, prestress: body.model.prestress.clone() };
+        body.frozen = Frozen { x: body.state.x.clone(), rest: body.model.springs.rest.clone(), bending_rest: body.model.bending.rest.clone(), gas: body.model.gas, prestress: body.model.prestress.clone() };
         Ok(body)
     }
 
@@ -206,6 +211,13 @@ impl SoftBody {
     pub fn is_pinned(&self, i: usize) -> bool {
         self.model.inv_mass[i] == 0.0
     }
+    /// Bending spring ends and rest lengths (m).
+    pub fn bending_ends(&self) -> (&[u32], &[u32]) {
+        (&self.model.bending.i, &self.model.bending.j)
+    }
+    pub fn bending_rest_lengths(&self) -> &[f64] {
+        &self.model.bending.rest
+    }
     /// Rest lengths (m), one per spring.
     pub fn rest_lengths(&self) -> &[f64] {
         &self.model.springs.rest
@@ -240,9 +252,10 @@ impl SoftBody {
     pub fn pressure(&self) -> f64 {
         gas::pressure(self.params.nrt(), self.volume())
     }
-    /// Σ k (l − L) l over springs (J): 3 nRT at inflated equilibrium without other forces.
+    /// Σ k (l − L) l over all springs, bending ones included (J): 3 nRT at inflated equilibrium
+    /// without other forces.
     pub fn spring_virial(&self) -> f64 {
-        self.model.springs.virial(self.params.stiffness, &self.state.x)
+        self.model.springs.virial(self.params.stiffness, &self.state.x) + self.model.bending.virial(self.params.bending_stiffness, &self.state.x)
     }
     /// Largest vertex speed (m/s).
     pub fn max_speed(&self) -> f64 {

@@ -28,13 +28,14 @@ impl SoftBody {
     /// V0 becomes the current volume. [`SoftBody::reset`] returns to this state.
     pub fn freeze(&mut self) {
         self.model.springs.rest_to_current(&self.state.x);
+        self.model.bending.rest_to_current(&self.state.x);
         self.state.v.fill(0.0);
         let volume = self.volume();
         self.model.gas.ambient_pressure = gas::pressure(self.params.nrt(), volume);
         self.model.gas.reference_volume = volume;
         self.model.prestress.fill(0.0);
         self.update_external();
-        self.frozen = Frozen { x: self.state.x.clone(), rest: self.model.springs.rest.clone(), gas: self.model.gas, prestress: self.model.prestress.clone() };
+        self.frozen = Frozen { x: self.state.x.clone(), rest: self.model.springs.rest.clone(), bending_rest: self.model.bending.rest.clone(), gas: self.model.gas, prestress: self.model.prestress.clone() };
     }
 
     /// Freeze under load: like [`SoftBody::freeze`], but the body keeps carrying the loads it
@@ -51,6 +52,7 @@ impl SoftBody {
         let n = self.state.x.len();
         let mut f = vec![0.0; n];
         self.model.springs.accumulate(self.params.stiffness, 0.0, &self.state.x, &self.state.v, &mut f);
+        self.model.bending.accumulate(self.params.bending_stiffness, 0.0, &self.state.x, &self.state.v, &mut f);
         let mut g = vec![0.0; n];
         let six_v = self.model.faces.volume6_and_normals(&self.state.x, &mut g);
         let volume = gas::measure(self.params.volume_mode, six_v, &self.state.x);
@@ -99,6 +101,7 @@ impl SoftBody {
     pub fn reset(&mut self) {
         self.state.x.copy_from_slice(&self.frozen.x);
         self.model.springs.rest.copy_from_slice(&self.frozen.rest);
+        self.model.bending.rest.copy_from_slice(&self.frozen.bending_rest);
         self.model.gas = self.frozen.gas;
         self.model.prestress.copy_from_slice(&self.frozen.prestress);
         self.update_external();
@@ -108,7 +111,7 @@ impl SoftBody {
     /// Inflate (factor > 1) or deflate (< 1) by scaling every rest length (dimensionless).
     pub fn scale_rest_lengths(&mut self, factor: f64) -> Result<(), SimError> {
         check_positive("factor", factor)?;
-        for l in &mut self.model.springs.rest {
+        for l in self.model.springs.rest.iter_mut().chain(self.model.bending.rest.iter_mut()) {
             *l *= factor;
         }
         Ok(())
@@ -121,11 +124,29 @@ impl SoftBody {
         if let Some(bad) = factors.iter().find(|f| !(f.is_finite() && **f > 0.0)) {
             return Err(SimError::BadParameter { name: "factors", message: format!("must be finite and > 0, got {bad}") });
         }
-        let s = &mut self.model.springs;
-        for e in 0..s.rest.len() {
-            s.rest[e] *= 0.5 * (factors[s.i[e] as usize] + factors[s.j[e] as usize]);
+        for s in [&mut self.model.springs, &mut self.model.bending] {
+            for e in 0..s.rest.len() {
+                s.rest[e] *= 0.5 * (factors[s.i[e] as usize] + factors[s.j[e] as usize]);
+            }
         }
         Ok(())
+    }
+
+    /// Set every bending spring's rest length (m), now and in the frozen state.
+    pub fn set_bending_rest_lengths(&mut self, rest: &[f64], frozen: &[f64]) -> Result<(), SimError> {
+        length_check("bending rest lengths", self.model.bending.len(), rest.len())?;
+        length_check("frozen bending rest lengths", self.model.bending.len(), frozen.len())?;
+        if let Some(bad) = rest.iter().chain(frozen).find(|l| !(l.is_finite() && **l >= 0.0)) {
+            return Err(SimError::BadParameter { name: "bending rest lengths", message: format!("must be finite and ≥ 0, got {bad}") });
+        }
+        self.model.bending.rest.copy_from_slice(rest);
+        self.frozen.bending_rest.copy_from_slice(frozen);
+        Ok(())
+    }
+
+    /// Frozen rest lengths of the bending springs (m).
+    pub fn frozen_bending_rest_lengths(&self) -> &[f64] {
+        &self.frozen.bending_rest
     }
 
     /// Set every rest length (m).

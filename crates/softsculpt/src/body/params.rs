@@ -97,6 +97,10 @@ pub struct Params {
     pub stiffness: f64,
     /// Damping along each spring cs (N·s/m): force cs ((vj − vi) · d) d on i.
     pub spring_damping: f64,
+    /// Stiffness of the bending springs (N/m), which join the two vertices opposite each edge
+    /// and so resist folding across it; 0 (the default) leaves the surface free to fold, as in
+    /// the original model. They use the same damping cs.
+    pub bending_stiffness: f64,
     /// Viscous damping rate c (1/s): force −c mi vi, velocities decay as e^(−c t).
     pub damping: f64,
     /// Gravitational acceleration g (m/s²) along −y.
@@ -126,6 +130,7 @@ impl Default for Params {
         Params {
             stiffness: 1000.0,
             spring_damping: 1.0,
+            bending_stiffness: 0.0,
             damping: 0.0,
             gravity: 9.81,
             gas_amount: 0.0,
@@ -177,6 +182,7 @@ impl Params {
     pub fn validate(&self) -> Result<(), SimError> {
         check_non_negative("stiffness", self.stiffness)?;
         check_non_negative("spring-damping", self.spring_damping)?;
+        check_non_negative("bending", self.bending_stiffness)?;
         check_non_negative("damping", self.damping)?;
         if !self.gravity.is_finite() {
             return Err(bad("gravity", format!("must be finite, got {}", self.gravity)));

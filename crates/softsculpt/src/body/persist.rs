@@ -32,7 +32,7 @@ impl SoftBody {
             return Err(SimError::BadParameter { name: "frozen state", message: "must be finite".into() });
         }
         check_gas(&gas)?;
-        self.frozen = Frozen { x: positions.to_vec(), rest: rest.to_vec(), gas, prestress: self.frozen.prestress.clone() };
+        self.frozen = Frozen { x: positions.to_vec(), rest: rest.to_vec(), bending_rest: self.frozen.bending_rest.clone(), gas, prestress: self.frozen.prestress.clone() };
         Ok(())
     }
 

@@ -18,6 +18,28 @@ pub fn edges(tris: &[[u32; 3]]) -> Vec<[u32; 2]> {
     keys.into_iter().map(|k| [(k >> 32) as u32, k as u32]).collect()
 }
 
+/// Bending pairs: for every edge shared by exactly two faces, the two vertices opposite it
+/// (i < j), sorted and without repeats. A spring between them resists folding across the edge.
+pub fn bending_pairs(tris: &[[u32; 3]]) -> Vec<[u32; 2]> {
+    let h = half_edges(tris);
+    let opposite = |f: u32, key: u64| {
+        let t = tris[f as usize];
+        let (a, b) = ((key >> 32) as u32, key as u32);
+        t.into_iter().find(|&v| v != a && v != b).unwrap_or(a)
+    };
+    let mut pairs: Vec<[u32; 2]> = groups(&h)
+        .filter(|g| g.len() == 2)
+        .map(|g| {
+            let (c, d) = (opposite(g[0].1, g[0].0), opposite(g[1].1, g[1].0));
+            if c < d { [c, d] } else { [d, c] }
+        })
+        .filter(|p| p[0] != p[1])
+        .collect();
+    pairs.sort_unstable();
+    pairs.dedup();
+    pairs
+}
+
 /// Counts of the defects that matter for a closed body.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct EdgeCounts {

@@ -1,0 +1,30 @@
+// The standard workload in WebAssembly (Node's V8, the engine Chromium runs), next to the native
+// `softsculpt bench`, in one run: prints ms per step for both and the ratio.
+//   node bench/wasm-bench.mjs [levels=4,5,6] [steps=300]
+import { readFileSync } from 'node:fs';
+import { execFileSync } from 'node:child_process';
+import { fileURLToPath } from 'node:url';
+
+const levels = (process.argv[2] ?? '4,5,6').split(',').map(Number);
+const steps = Number(process.argv[3] ?? 300);
+const wasm = readFileSync(fileURLToPath(new URL('../public/softsculpt.wasm', import.meta.url)));
+const { instance } = await WebAssembly.instantiate(wasm, {});
+const e = instance.exports;
+const native = fileURLToPath(new URL('../../target/release/softsculpt', import.meta.url));
+
+console.log('vertices  wasm ms/step  native ms/step  wasm/native');
+for (const level of levels) {
+  let best = Infinity, nv = 0;
+  for (let rep = 0; rep < 3; rep++) {
+    const h = e.ss_create_workload(level);
+    nv = e.ss_vertex_count(h);
+    e.ss_step(h, 1e-4, 10); // warm up
+    const t0 = performance.now();
+    if (e.ss_step(h, 1e-4, steps) !== 0) throw new Error('step failed');
+    best = Math.min(best, (performance.now() - t0) / steps);
+    e.ss_free(h);
+  }
+  const out = execFileSync(native, ['bench', '--levels', String(level), '--steps', String(steps), '--reps', '3', '--json']).toString();
+  const nat = JSON.parse(out.trim().split('\n').pop()).ms_per_step;
+  console.log(`${String(nv).padStart(8)}  ${best.toFixed(4).padStart(12)}  ${nat.toFixed(4).padStart(14)}  ${(best / nat).toFixed(2).padStart(11)}`);
+}

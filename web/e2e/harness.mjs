@@ -1,0 +1,76 @@
+// End-to-end harness: serve the built modeler (web/dist) on 127.0.0.1 and drive Debian's chromium
+// with playwright-core. Screenshots go to e2e/screenshots/ (ignored by git).
+
+import { spawn } from 'node:child_process';
+import { mkdirSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+
+const WEB = fileURLToPath(new URL('..', import.meta.url));
+export const SHOTS = fileURLToPath(new URL('./screenshots/', import.meta.url));
+mkdirSync(SHOTS, { recursive: true });
+
+export async function startServer(port = 5199) {
+  const proc = spawn('npx', ['vite', 'preview', '--host', '127.0.0.1', '--port', String(port), '--strictPort'], { cwd: WEB, stdio: 'pipe' });
+  let out = '';
+  proc.stdout.on('data', (d) => (out += d));
+  proc.stderr.on('data', (d) => (out += d));
+  const url = `http://127.0.0.1:${port}/`;
+  for (let i = 0; i < 100; i++) {
+    try {
+      const r = await fetch(url);
+      if (r.ok) return { url, stop: () => proc.kill('SIGTERM') };
+    } catch {}
+    await new Promise((r) => setTimeout(r, 100));
+  }
+  proc.kill('SIGTERM');
+  throw new Error(`the preview server did not start: ${out}`);
+}
+
+export async function launch() {
+  return chromium.launch({
+    executablePath: process.env.CHROMIUM ?? '/usr/bin/chromium',
+    args: ['--no-sandbox', '--disable-gpu', '--enable-unsafe-swiftshader', '--disable-background-networking', '--disable-component-update', '--disable-sync', '--no-first-run'],
+  });
+}
+
+/** A fresh page (own storage) on the modeler, ready. */
+export async function openModeler(browser, url, context) {
+  const ctx = context ?? (await browser.newContext({ viewport: { width: 1280, height: 800 }, acceptDownloads: true }));
+  const page = await ctx.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  await page.goto(url);
+  await page.waitForFunction(() => window.softsculpt?.ready === true, null, { timeout: 30000 });
+  return { page, ctx, errors };
+}
+
+export const inspect = (page, expr, arg) => page.evaluate(expr, arg);
+
+/** Wait until the body is (nearly) still. */
+export async function settle(page, speed = 0.02, timeout = 20000) {
+  await page.waitForFunction((s) => window.softsculpt.stats().maxSpeed < s, speed, { timeout, polling: 100 });
+}
+
+/** The vertex with the largest y (the top of the model) and its screen position. */
+export async function topVertex(page) {
+  return page.evaluate(() => {
+    const x = window.softsculpt.positions();
+    let best = 0;
+    for (let i = 0; i < x.length / 3; i++) if (x[3 * i + 1] > x[3 * best + 1]) best = i;
+    return { index: best, screen: window.softsculpt.screenOf(best), position: x.slice(3 * best, 3 * best + 3) };
+  });
+}
+
+export async function drag(page, from, to, steps = 20, holdMs = 0) {
+  await page.mouse.move(from.x, from.y);
+  await page.mouse.down();
+  for (let i = 1; i <= steps; i++) {
+    await page.mouse.move(from.x + ((to.x - from.x) * i) / steps, from.y + ((to.y - from.y) * i) / steps);
+    await page.waitForTimeout(20);
+  }
+  if (holdMs) await page.waitForTimeout(holdMs);
+}
+
+export const vertex = (page, i) => page.evaluate((j) => window.softsculpt.positions().slice(3 * j, 3 * j + 3), i);
+export const dist = (a, b) => Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);

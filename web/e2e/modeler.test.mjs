@@ -1,0 +1,196 @@
+// The modeler driven like a person: real mouse and keyboard in Debian's chromium; effects checked
+// in the engine's state through the read-only `window.softsculpt` handle.
+
+import { after, before, test } from 'node:test';
+import assert from 'node:assert/strict';
+import { readFileSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { SHOTS, drag, dist, inspect, launch, openModeler, settle, startServer, topVertex, vertex } from './harness.mjs';
+
+let server, browser;
+before(async () => {
+  server = await startServer();
+  browser = await launch();
+});
+after(async () => {
+  await browser?.close();
+  server?.stop();
+});
+
+const shot = (page, name) => page.screenshot({ path: join(SHOTS, `${name}.png`) });
+
+test('the default model renders: the mushroom on the ground, pixels not uniform', async () => {
+  const { page, errors } = await openModeler(browser, server.url);
+  await page.waitForTimeout(500);
+  assert.equal(await inspect(page, () => window.softsculpt.vertexCount()), 362);
+  const colours = await inspect(page, () => window.softsculpt.pixels());
+  assert.ok(colours > 50, `only ${colours} distinct colours`);
+  const s = await inspect(page, () => window.softsculpt.stats());
+  assert.ok(s.volume > 2 && s.pressure > 0, 'gas in it');
+  assert.ok(await inspect(page, () => window.softsculpt.param('groundOn')) === 1);
+  await shot(page, '01-default-mushroom');
+  assert.deepEqual(errors, []);
+  await page.context().close();
+});
+
+test('a trackball drag on empty space turns the view', async () => {
+  const { page } = await openModeler(browser, server.url);
+  const before = await inspect(page, () => window.softsculpt.camera());
+  await drag(page, { x: 150, y: 300 }, { x: 400, y: 350 });
+  await page.mouse.up();
+  await page.waitForTimeout(300);
+  const afterCam = await inspect(page, () => window.softsculpt.camera());
+  assert.ok(dist(before, afterCam) > 0.2, `camera moved ${dist(before, afterCam)}`);
+  await shot(page, '02-turned-view');
+  await page.context().close();
+});
+
+test('a grab drag deforms the body, the camera stays, and it springs back', async () => {
+  const { page } = await openModeler(browser, server.url);
+  await settle(page);
+  const top = await topVertex(page);
+  const cam = await inspect(page, () => window.softsculpt.camera());
+  await drag(page, top.screen, { x: top.screen.x, y: top.screen.y - 90 }, 20, 800);
+  const pulled = await vertex(page, top.index);
+  await shot(page, '03-grab-pulled');
+  assert.ok(dist(pulled, top.position) > 0.1, `pulled ${dist(pulled, top.position)} m`);
+  assert.deepEqual(await inspect(page, () => window.softsculpt.camera()), cam, 'the camera does not move while a tool drags');
+  await page.mouse.up();
+  await settle(page, 0.01, 45000);
+  const back = await vertex(page, top.index);
+  assert.ok(dist(back, top.position) < 0.05, `came back to within ${dist(back, top.position)} m`);
+  await page.context().close();
+});
+
+test('freeze keeps the shape: no creep afterwards', async () => {
+  const { page } = await openModeler(browser, server.url);
+  await settle(page, 0.005);
+  await page.keyboard.press('f');
+  const x0 = await inspect(page, () => window.softsculpt.positions());
+  await page.waitForTimeout(1500);
+  const x1 = await inspect(page, () => window.softsculpt.positions());
+  const creep = Math.max(...x0.map((v, k) => Math.abs(v - x1[k])));
+  assert.ok(creep < 2e-3, `moved ${creep} m after freezing`);
+  assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /frozen/);
+  await page.context().close();
+});
+
+test('the inflate brush grows the volume, and undo restores it', async () => {
+  const { page } = await openModeler(browser, server.url);
+  await settle(page);
+  const v0 = (await inspect(page, () => window.softsculpt.stats())).volume;
+  await page.keyboard.press('i');
+  assert.equal(await inspect(page, () => window.softsculpt.tool()), 'inflate');
+  const top = await topVertex(page);
+  await drag(page, top.screen, { x: top.screen.x + 5, y: top.screen.y + 5 }, 5, 1500);
+  await page.mouse.up();
+  await page.waitForTimeout(1500);
+  const v1 = (await inspect(page, () => window.softsculpt.stats())).volume;
+  await shot(page, '04-inflated');
+  assert.ok(v1 > v0 * 1.02, `volume ${v0} -> ${v1}`);
+  await page.keyboard.press('Control+z');
+  await page.waitForTimeout(1500);
+  const v2 = (await inspect(page, () => window.softsculpt.stats())).volume;
+  assert.ok(Math.abs(v2 - v0) < 0.01 * v0, `after undo ${v2} vs ${v0}`);
+  assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /undid inflate/);
+  await page.context().close();
+});
+
+test('pinned vertices stay fixed under a grab drag', async () => {
+  const { page } = await openModeler(browser, server.url);
+  await settle(page);
+  const top = await topVertex(page);
+  await page.keyboard.press('n');
+  await drag(page, top.screen, top.screen, 2, 100);
+  await page.mouse.up();
+  const pinned = (await inspect(page, () => window.softsculpt.pinned())).flatMap((p, i) => (p ? [i] : []));
+  assert.ok(pinned.length >= 3, `${pinned.length} pinned`);
+  await shot(page, '05-pinned-overlay');
+  const before = await Promise.all(pinned.map((i) => vertex(page, i)));
+  await page.keyboard.press('g');
+  const side = await inspect(page, () => {
+    const x = window.softsculpt.positions();
+    let best = 0;
+    for (let i = 0; i < x.length / 3; i++) if (x[3 * i] > x[3 * best]) best = i; // the rim, far from the pins
+    return { index: best, screen: window.softsculpt.screenOf(best) };
+  });
+  const start = await vertex(page, side.index);
+  await drag(page, side.screen, { x: side.screen.x + 200, y: side.screen.y + 60 }, 20, 800);
+  const moved = await vertex(page, side.index);
+  const after = await Promise.all(pinned.map((i) => vertex(page, i)));
+  await page.mouse.up();
+  assert.ok(dist(moved, start) > 0.05, `the rim moved ${dist(moved, start)}`);
+  after.forEach((p, k) => assert.deepEqual(p, before[k], `pinned vertex ${pinned[k]} moved`));
+  await page.context().close();
+});
+
+const CUBE = `# a cube with quads
+v -0.5 0 -0.5\nv 0.5 0 -0.5\nv 0.5 1 -0.5\nv -0.5 1 -0.5\nv -0.5 0 0.5\nv 0.5 0 0.5\nv 0.5 1 0.5\nv -0.5 1 0.5
+f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n`;
+
+test('importing an OBJ changes the model; garbage shows the error and keeps the model', async () => {
+  const { page } = await openModeler(browser, server.url);
+  const dir = tmpdir();
+  writeFileSync(join(dir, 'cube.obj'), CUBE);
+  writeFileSync(join(dir, 'garbage.obj'), 'this is not a mesh\n\u0001\u0002');
+  const input = page.locator('input[type=file][accept*=".obj"]');
+  await input.setInputFiles(join(dir, 'garbage.obj'));
+  await page.waitForFunction(() => /could not import/.test(window.softsculpt.lastMessage()));
+  assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /garbage\.obj.*(line 1|not a text)/);
+  assert.equal(await inspect(page, () => window.softsculpt.vertexCount()), 362, 'the model is untouched');
+  await shot(page, '06-import-error');
+  await input.setInputFiles(join(dir, 'cube.obj'));
+  await page.waitForFunction(() => window.softsculpt.vertexCount() === 8);
+  assert.equal(await inspect(page, () => window.softsculpt.faceCount()), 12);
+  await page.waitForTimeout(800);
+  await shot(page, '07-imported-cube');
+  await page.context().close();
+});
+
+test('export OBJ downloads a file that parses with the right vertex count', async () => {
+  const { page } = await openModeler(browser, server.url);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.keyboard.press('e')]);
+  const path = join(tmpdir(), 'export.obj');
+  await download.saveAs(path);
+  const text = readFileSync(path, 'utf8');
+  const vertices = text.split('\n').filter((l) => l.startsWith('v ')).length;
+  const faces = text.split('\n').filter((l) => l.startsWith('f ')).length;
+  assert.equal(vertices, 362);
+  assert.equal(faces, 720);
+  assert.match(download.suggestedFilename(), /\.obj$/);
+  await page.context().close();
+});
+
+test('reload restores the autosaved project', async () => {
+  const ctx = await browser.newContext({ viewport: { width: 1280, height: 800 } });
+  const { page } = await openModeler(browser, server.url, ctx);
+  await settle(page);
+  await page.keyboard.press('n');
+  const top = await topVertex(page);
+  await drag(page, top.screen, top.screen, 2, 50);
+  await page.mouse.up();
+  await page.keyboard.press('u'); // subdivide: a different mesh that must come back
+  await page.waitForTimeout(800);
+  const n = await inspect(page, () => window.softsculpt.vertexCount());
+  const pins = (await inspect(page, () => window.softsculpt.pinned())).filter(Boolean).length;
+  assert.ok(n > 362 && pins > 0);
+  await page.reload();
+  await page.waitForFunction(() => window.softsculpt?.ready === true);
+  assert.equal(await inspect(page, () => window.softsculpt.vertexCount()), n);
+  assert.equal((await inspect(page, () => window.softsculpt.pinned())).filter(Boolean).length, pins);
+  assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /restored/);
+  await shot(page, '08-restored-after-reload');
+  await ctx.close();
+});
+
+test('the help overlay opens with ? and lists the shortcuts', async () => {
+  const { page } = await openModeler(browser, server.url);
+  await page.keyboard.press('?');
+  assert.equal(await inspect(page, () => window.softsculpt.helpVisible()), true);
+  assert.ok(await page.getByText('Ctrl+Z / Ctrl+Shift+Z').isVisible());
+  await shot(page, '09-help');
+  await page.keyboard.press('Escape');
+  assert.equal(await inspect(page, () => window.softsculpt.helpVisible()), false);
+  await page.context().close();
+});
