@@ -34,8 +34,13 @@ export interface Settings {
   model: string;
 }
 
-/** Simulation time allowed per frame (ms) before the modeler falls back to slow motion. */
-const FRAME_BUDGET_MS = 12;
+/**
+ * Simulation time allowed per frame (ms) before the modeler falls back to slow motion: half the
+ * time between frames (so drawing and input keep the other half), within [8, 30] ms.
+ */
+function frameBudget(elapsedSeconds: number): number {
+  return Math.min(30, Math.max(8, 500 * elapsedSeconds));
+}
 
 export class App implements ToolContext {
   private current!: SoftBody;
@@ -326,7 +331,7 @@ export class App implements ToolContext {
           const n = Math.min(substeps - done, Math.max(1, Math.ceil(substeps / 8)));
           body.step(dt, n);
           done += n;
-          if (performance.now() - t0 > FRAME_BUDGET_MS) break;
+          if (performance.now() - t0 > frameBudget(elapsed)) break;
         }
       } catch (e) {
         this.blowUp(e);

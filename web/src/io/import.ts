@@ -64,6 +64,9 @@ export async function importModel(name: string, data: ArrayBuffer): Promise<Impo
     }
   } catch (e) {
     const msg = e instanceof Error ? e.message : String(e);
-    throw new Error(msg.startsWith(name) ? msg : `${name}: ${msg}`);
+    if (msg.startsWith(name)) throw e;
+    // Loaders fail with low-level messages (a DataView out of bounds…): say what it means.
+    const known = /no triangles|non-finite|unsupported|empty/.test(msg);
+    throw new Error(`${name}: ${known ? msg : `the file could not be read as ${ext.slice(1).toUpperCase()} (${msg})`}`);
   }
 }

@@ -1,0 +1,82 @@
+import { beforeAll, describe, expect, it } from 'vitest';
+import { loadEngine } from './setup';
+import { falloff, facesAround, grabForce, inflateFactor, verticesAround } from '../src/tools/brush';
+import { defaultSettings, loadModel, placeOnGround, stableDt, MODELS } from '../src/models';
+
+beforeAll(loadEngine);
+
+describe('brush maths', () => {
+  it('falls off smoothly from 1 at the centre to 0 at the rim', () => {
+    expect(falloff(0, 1)).toBe(1);
+    expect(falloff(1, 1)).toBe(0);
+    expect(falloff(2, 1)).toBe(0);
+    expect(falloff(0.5, 1)).toBeCloseTo(0.5625, 15); // (1 − 0.25)²
+    // Zero slope at the rim: the difference quotient vanishes as h → 0 (≈ 8h for h ≪ 1).
+    const h = 1e-4;
+    expect(falloff(1 - h, 1) / h).toBeLessThan(1e-3);
+    expect(falloff(0.5, 0)).toBe(0);
+  });
+
+  it('selects the vertices and faces inside the brush, weighted', () => {
+    const x = [0, 0, 0, 0.5, 0, 0, 2, 0, 0];
+    const w = verticesAround(x, [0, 0, 0], 1);
+    expect(w.indices).toEqual([0, 1]);
+    expect(w.weights[0]).toBe(1);
+    const f = facesAround(x, [0, 1, 2], [0.8, 0, 0], 0.5);
+    expect(f.indices).toEqual([0]); // centroid at x = 0.8333
+  });
+
+  it('pulls with m ω² per metre and damps with m ω per m/s', () => {
+    // F = m w (ω² (target − x) − ω v): m = 2, w = 0.5, ω = 10.
+    expect(grabForce(2, 0.5, 10, 1, 0, 0)).toBeCloseTo(100, 12);
+    expect(grabForce(2, 0.5, 10, 0, 0, 1)).toBeCloseTo(-10, 12);
+  });
+
+  it('inflates and deflates by inverse factors', () => {
+    const up = inflateFactor(1, 0.5, 0.1, false);
+    expect(up).toBeCloseTo(1.05, 15);
+    expect(up * inflateFactor(1, 0.5, 0.1, true)).toBeCloseTo(1, 15);
+  });
+});
+
+describe('models', () => {
+  it('every model loads closed, standing on y = 0, with a stable step', () => {
+    for (const name of MODELS) {
+      const b = loadModel(name);
+      const { dt } = defaultSettings(b);
+      const x = b.positions();
+      let lo = Infinity;
+      for (let i = 1; i < x.length; i += 3) lo = Math.min(lo, x[i]);
+      expect(lo).toBeCloseTo(0, 12);
+      // A second of simulated time at the chosen dt stays finite (no blow-up).
+      b.step(dt, Math.round(1 / dt));
+      expect(b.positions().every(Number.isFinite)).toBe(true);
+      expect(b.stats().volume).toBeGreaterThan(0);
+      b.free();
+    }
+  });
+
+  it('the bunny is the Stanford bunny: 1,839 vertices, closed, scaled to fit', () => {
+    const b = loadModel('bunny');
+    expect(b.vertexCount).toBe(1839);
+    expect(b.faceCount).toBe(3674);
+    b.set('gasAmount', 0.01); // accepted only on a closed surface
+    b.free();
+  });
+
+  it('placing fits the bounding-box diagonal and centres x and z', () => {
+    const { positions, scale } = placeOnGround(new Float64Array([0, 5, 0, 3, 9, 4]), 10);
+    expect(scale).toBeCloseTo(10 / Math.hypot(3, 4, 4), 14);
+    expect(positions[1]).toBe(0);
+    expect(positions[0]).toBeCloseTo(-positions[3], 14);
+  });
+
+  it('the stable step shrinks with lighter vertices and stiffer springs', () => {
+    const b = loadModel('sphere');
+    defaultSettings(b);
+    const dt1 = stableDt(b);
+    b.set('stiffness', 1e5);
+    expect(stableDt(b)).toBeLessThan(dt1);
+    b.free();
+  });
+});
