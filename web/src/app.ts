@@ -49,6 +49,8 @@ export class App implements ToolContext {
   readonly history = new History<Entry>(50);
   readonly settings: Settings = { dt: 1e-3, substeps: 16, realTime: true, playing: true, model: 'mushroom' };
   private lastFrame = 0;
+  /** Measured cost of one step (ms), to size the chunks of steps between budget checks. */
+  private stepCostMs = 0.05;
   readonly tools: ToolManager;
   readonly plots: Plots;
   readonly hud: Hud;
@@ -328,8 +330,11 @@ export class App implements ToolContext {
       try {
         // In chunks, so that a slow machine stops at the budget instead of freezing the page.
         while (done < substeps) {
-          const n = Math.min(substeps - done, Math.max(1, Math.ceil(substeps / 8)));
+          // Chunks of about 2 ms, so the budget is checked often enough on any mesh.
+          const n = Math.min(substeps - done, Math.max(1, Math.floor(2 / this.stepCostMs)));
+          const c0 = performance.now();
           body.step(dt, n);
+          this.stepCostMs = 0.8 * this.stepCostMs + 0.2 * Math.max(1e-4, (performance.now() - c0) / n);
           done += n;
           if (performance.now() - t0 > frameBudget(elapsed)) break;
         }
