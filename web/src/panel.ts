@@ -81,7 +81,13 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
     'Total mass in kg, split equally over the vertices (resets painted masses)');
 
   const world = gui.addFolder('Gravity & ground');
-  param(world, 'gravity', 'gravity g (m/s²)', 'Gravitational acceleration along −y, m/s² (0 = off)', 0, 30);
+  // On/off remembers the last g, so switching gravity back on restores it.
+  const gravity = { on: p.gravity !== 0, last: p.gravity || 9.81 };
+  tip(world.add(gravity, 'on').name('gravity').onChange((on: boolean) => {
+    if (!on && p.gravity !== 0) gravity.last = p.gravity;
+    app.setParam('gravity', on ? gravity.last : 0);
+  }), 'Gravity on or off (keeps g)');
+  param(world, 'gravity', 'gravity g (m/s²)', 'Gravitational acceleration along −y, m/s²', 0, 30);
   const ground = { on: p.groundOn !== 0 };
   tip(world.add(ground, 'on').name('ground').onChange((v: boolean) => app.setParam('groundOn', v ? 1 : 0)), 'A rigid ground plane');
   param(world, 'groundHeight', 'ground height (m)', 'Height of the ground plane, m', -5, 5);
@@ -118,6 +124,8 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   function refresh(): void {
     Object.assign(p, app.params());
     ground.on = p.groundOn !== 0;
+    gravity.on = p.gravity !== 0;
+    if (p.gravity !== 0) gravity.last = p.gravity;
     if (view.tool !== app.tools.tool.name) showStrength();
     view.tool = app.tools.tool.name;
     view.model = app.settings.model;
