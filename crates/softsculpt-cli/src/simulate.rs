@@ -159,7 +159,6 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         b
     });
     let mut calm = 0u64;
-    let mut last_emitted = 0u64;
     let mut stopped_at_rest = false;
     for step in 1..=a.steps {
         body.step(a.dt).map_err(|e| format!("{}: {e}", a.input))?;
@@ -171,7 +170,6 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         }
         if step % every == 0 || step == a.steps || stopped_at_rest {
             emit(&body)?;
-            last_emitted = step;
         }
         if let Some(b) = &bar {
             if step % 64 == 0 {
@@ -185,7 +183,6 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     if let Some(b) = bar {
         b.finish_and_clear();
     }
-    let _ = last_emitted;
     if !body.is_finite() {
         return Err(format!(
             "{}: the simulation blew up (non-finite state at step {}); try a smaller --dt, more damping, or another --integrator",
