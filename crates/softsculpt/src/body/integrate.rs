@@ -1,7 +1,7 @@
 //! The integrators, on the state (x, v) with a(x, v) from the force stages.
 
 use super::forces::{accelerations, gather, symplectic_update, Fault};
-use super::{ground, Integrator, Model, Params, State, Work};
+use super::{ground, obstacles, Integrator, Model, Params, State, Work};
 
 /// a(x, v) into `a` (m/s²).
 fn eval(p: &Params, m: &Model, x: &[f64], v: &[f64], f: &mut [f64], a: &mut [f64]) -> Result<(), Fault> {
@@ -19,7 +19,11 @@ fn ensure(buf: &mut Vec<f64>, n: usize) {
 /// One step of `dt` (s). The state is left untouched if a force evaluation fails.
 pub(crate) fn step(p: &Params, m: &Model, s: &mut State, w: &mut Work, dt: f64) -> Result<(), Fault> {
     let n = s.x.len();
-    let Work { f, xs, vs, a } = w;
+    let Work { f, xs, vs, a, x_prev } = w;
+    if !p.obstacles.is_empty() {
+        ensure(x_prev, n);
+        x_prev.copy_from_slice(&s.x);
+    }
     match p.integrator {
         Integrator::Symplectic => {
             // v' = v + dt a(x, v); x' = x + dt v'
@@ -91,6 +95,9 @@ pub(crate) fn step(p: &Params, m: &Model, s: &mut State, w: &mut Work, dt: f64) 
     }
     if let Some(ground) = p.ground {
         ground::project(&ground, &m.inv_mass, &mut s.x, &mut s.v);
+    }
+    if !p.obstacles.is_empty() {
+        obstacles::resolve(&p.obstacles, &m.inv_mass, x_prev, &mut s.x, &mut s.v);
     }
     Ok(())
 }

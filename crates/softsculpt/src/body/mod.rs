@@ -10,6 +10,7 @@
 //!
 //! Stages 1–4 add into one force accumulator; `forces.rs` explains how the gas force shares it.
 //! 6. **ground**   – project vertices that ended below the ground plane back onto it.
+//! 7. **obstacles** – stop vertices whose path entered a rigid obstacle, push out any inside.
 //!
 //! All arrays are `xyz` interleaved per vertex (`[x0, y0, z0, x1, …]`), so a renderer can read
 //! positions without copying and a spring touches one cache line per end.
@@ -21,12 +22,14 @@ mod gas;
 mod ground;
 mod integrate;
 mod modeling;
+pub mod obstacles;
 mod params;
 mod persist;
 mod springs;
 mod stats;
 
 pub use faces::Faces;
+pub use obstacles::{Obstacle, Shape};
 pub use gas::GasReference;
 pub use params::{check_dt, Ground, Integrator, Params, VolumeMode, DEFAULT_TEMPERATURE, GAS_CONSTANT};
 pub use springs::Springs;
@@ -76,6 +79,8 @@ pub(crate) struct Work {
     /// Intermediate state and stage accelerations of the explicit Runge–Kutta methods.
     pub xs: Vec<f64>,
     pub vs: Vec<f64>,
+    /// Positions at the start of the step (for the obstacles' continuous check).
+    pub x_prev: Vec<f64>,
     pub a: [Vec<f64>; 4],
 }
 

@@ -118,6 +118,8 @@ pub struct Params {
     pub wind_drag: f64,
     /// Optional ground plane.
     pub ground: Option<Ground>,
+    /// Rigid obstacles (spheres, boxes, capsules) the body cannot enter.
+    pub obstacles: Vec<super::obstacles::Obstacle>,
     /// Time integrator.
     pub integrator: Integrator,
 }
@@ -139,6 +141,7 @@ impl Default for Params {
             wind: [0.0; 3],
             wind_drag: 1.0,
             ground: None,
+            obstacles: Vec::new(),
             integrator: Integrator::Symplectic,
         }
     }
@@ -201,6 +204,9 @@ impl Params {
             if !(0.0..=1.0).contains(&g.restitution) {
                 return Err(bad("restitution", format!("must be between 0 and 1, got {}", g.restitution)));
             }
+        }
+        for (k, o) in self.obstacles.iter().enumerate() {
+            o.validate().map_err(|m| bad("obstacle", format!("obstacle {}: {m}", k + 1)))?;
         }
         Ok(())
     }
