@@ -11,19 +11,28 @@ export const SHOTS = fileURLToPath(new URL('./screenshots/', import.meta.url));
 mkdirSync(SHOTS, { recursive: true });
 
 export async function startServer(port = 5199) {
-  const proc = spawn('npx', ['vite', 'preview', '--host', '127.0.0.1', '--port', String(port), '--strictPort'], { cwd: WEB, stdio: 'pipe' });
+  // Vite's own entry run by this node (no npx wrapper), in its own process group, so that
+  // stopping it stops the server itself and nothing keeps the test process alive.
+  const vite = fileURLToPath(new URL('../node_modules/vite/bin/vite.js', import.meta.url));
+  const proc = spawn(process.execPath, [vite, 'preview', '--host', '127.0.0.1', '--port', String(port), '--strictPort'], { cwd: WEB, stdio: ['ignore', 'pipe', 'pipe'], detached: true });
   let out = '';
   proc.stdout.on('data', (d) => (out += d));
   proc.stderr.on('data', (d) => (out += d));
+  const stop = () => {
+    try { process.kill(-proc.pid, 'SIGTERM'); } catch {}
+    proc.stdout.destroy();
+    proc.stderr.destroy();
+    proc.unref();
+  };
   const url = `http://127.0.0.1:${port}/`;
-  for (let i = 0; i < 100; i++) {
+  for (let i = 0; i < 150; i++) {
     try {
       const r = await fetch(url);
-      if (r.ok) return { url, stop: () => proc.kill('SIGTERM') };
+      if (r.ok) return { url, stop };
     } catch {}
     await new Promise((r) => setTimeout(r, 100));
   }
-  proc.kill('SIGTERM');
+  stop();
   throw new Error(`the preview server did not start: ${out}`);
 }
 

@@ -2,5 +2,11 @@
 import { spawnSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
 const dir = fileURLToPath(new URL('.', import.meta.url));
-const r = spawnSync(process.execPath, ['--test', '--test-reporter=tap', '--test-concurrency=1', `${dir}modeler.test.mjs`], { stdio: 'inherit' });
+// A hard limit, so a hung browser can never hold CI past its budget.
+const r = spawnSync(process.execPath, ['--test', '--test-reporter=tap', '--test-concurrency=1', `${dir}modeler.test.mjs`], {
+  stdio: 'inherit',
+  timeout: 15 * 60 * 1000,
+  killSignal: 'SIGKILL',
+});
+if (r.error) console.log(`# fail 1\n# e2e runner stopped: ${r.error.message}`);
 process.exit(r.status ?? 1);
