@@ -27,6 +27,12 @@ impl SpatialHash {
         self.spacing
     }
 
+    /// Change the cell size (m), keeping the memory; rebuild afterwards.
+    pub fn set_spacing(&mut self, spacing: f64) {
+        assert!(spacing.is_finite() && spacing > 0.0, "cell size must be positive");
+        self.spacing = spacing;
+    }
+
     fn cell(&self, x: f64) -> i64 {
         (x / self.spacing).floor() as i64
     }

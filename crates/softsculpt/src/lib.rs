@@ -15,6 +15,7 @@ pub mod hash;
 pub mod mesh;
 pub mod vec3;
 pub mod workload;
+pub mod world;
 
 pub use body::{Integrator, Params, SoftBody, Stats, VolumeMode, GAS_CONSTANT};
 pub use error::{MeshError, SimError};

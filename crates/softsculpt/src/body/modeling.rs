@@ -246,6 +246,18 @@ impl SoftBody {
         Ok(())
     }
 
+    /// Move vertex i by `dx` (m) and change its velocity by `dv` (m/s): for contact responses
+    /// computed outside the body (see `world.rs`). Pinned vertices do not move.
+    pub(crate) fn nudge(&mut self, i: usize, dx: [f64; 3], dv: [f64; 3]) {
+        if self.model.inv_mass[i] == 0.0 {
+            return;
+        }
+        for d in 0..3 {
+            self.state.x[3 * i + d] += dx[d];
+            self.state.v[3 * i + d] += dv[d];
+        }
+    }
+
     fn vertex_index(&self, i: usize) -> Result<(), SimError> {
         if i >= self.vertex_count() {
             return Err(SimError::BadParameter {

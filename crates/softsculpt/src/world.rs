@@ -1,0 +1,198 @@
+//! A world of several soft bodies that collide with each other.
+//!
+//! Each body steps with its own stages (its ground and obstacles included); then the contact
+//! stage keeps every vertex of one body outside the other bodies' surfaces:
+//! 1. broad phase: a spatial hash of all triangle centroids (`hash.rs`), queried around each
+//!    vertex within the largest triangle radius plus the contact thickness;
+//! 2. narrow phase: the closest point q on each candidate triangle of another body; a vertex p
+//!    closer than `thickness` in front of the face, or behind it by less than `max_depth`, is in
+//!    contact, with n the face's outward normal;
+//! 3. response, between the vertex and the triangle's three vertices (barycentric weights b_k):
+//!    a vertex that went behind the face is put back on it along n (only that: pushing it out to
+//!    the thickness would do work and inject energy), and the relative normal velocity removed
+//!    (inelastic) by an impulse J shared by inverse masses,
+//!        J = −(v_p − Σ b_k v_k) · n / (1/m_p + Σ b_k² / m_k),
+//!    so momentum is conserved exactly; Coulomb friction removes up to μ J of relative tangential
+//!    velocity the same way. Corrections move the centre of mass of the pair not at all.
+//!
+//! Self-collision is not handled here (bodies do not collide with themselves).
+
+use crate::body::SoftBody;
+use crate::error::SimError;
+use crate::hash::SpatialHash;
+use crate::vec3::{add, cross, dot, get, norm, scale, sub, V3};
+
+pub struct World {
+    pub bodies: Vec<SoftBody>,
+    /// Distance kept between a vertex and another body's surface (m).
+    pub thickness: f64,
+    /// Coulomb friction between bodies (dimensionless).
+    pub friction: f64,
+    hash: SpatialHash,
+    centroids: Vec<f64>,
+    owners: Vec<(u32, u32)>,
+    candidates: Vec<u32>,
+}
+
+/// Closest point on triangle (a, b, c) to p, as barycentric weights (Ericson, Real-Time
+/// Collision Detection, 5.1.5).
+fn closest_barycentric(p: V3, a: V3, b: V3, c: V3) -> [f64; 3] {
+    let (ab, ac, ap) = (sub(b, a), sub(c, a), sub(p, a));
+    let (d1, d2) = (dot(ab, ap), dot(ac, ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return [1.0, 0.0, 0.0];
+    }
+    let bp = sub(p, b);
+    let (d3, d4) = (dot(ab, bp), dot(ac, bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return [0.0, 1.0, 0.0];
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        let v = d1 / (d1 - d3);
+        return [1.0 - v, v, 0.0];
+    }
+    let cp = sub(p, c);
+    let (d5, d6) = (dot(ab, cp), dot(ac, cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return [0.0, 0.0, 1.0];
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        let w = d2 / (d2 - d6);
+        return [1.0 - w, 0.0, w];
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return [0.0, 1.0 - w, w];
+    }
+    let denom = 1.0 / (va + vb + vc);
+    let (v, w) = (vb * denom, vc * denom);
+    [1.0 - v - w, v, w]
+}
+
+impl World {
+    pub fn new(bodies: Vec<SoftBody>, thickness: f64) -> Self {
+        World { bodies, thickness, friction: 0.5, hash: SpatialHash::new(1.0), centroids: Vec::new(), owners: Vec::new(), candidates: Vec::new() }
+    }
+
+    /// Step every body by `dt` (s), then resolve contacts between bodies.
+    pub fn step(&mut self, dt: f64) -> Result<(), SimError> {
+        for b in &mut self.bodies {
+            b.step(dt)?;
+        }
+        if self.bodies.len() > 1 {
+            self.collide();
+        }
+        Ok(())
+    }
+
+    /// Total of every body's energies (J), for diagnostics.
+    pub fn total_energy(&self) -> f64 {
+        self.bodies.iter().map(|b| b.stats().total_energy).sum()
+    }
+
+    fn collide(&mut self) {
+        // Broad phase over triangle centroids; the cell holds the largest triangle radius.
+        self.centroids.clear();
+        self.owners.clear();
+        let mut reach: f64 = 0.0;
+        for (bi, b) in self.bodies.iter().enumerate() {
+            let x = b.positions();
+            for (f, t) in b.triangles().iter().enumerate() {
+                let (a, bb, c) = (get(x, t[0] as usize), get(x, t[1] as usize), get(x, t[2] as usize));
+                let g = scale(add(add(a, bb), c), 1.0 / 3.0);
+                for p in [a, bb, c] {
+                    reach = reach.max(norm(sub(p, g)));
+                }
+                self.centroids.extend_from_slice(&g);
+                self.owners.push((bi as u32, f as u32));
+            }
+        }
+        let radius = reach + self.thickness;
+        if !(radius.is_finite() && radius > 0.0) {
+            return;
+        }
+        self.hash.set_spacing(2.0 * radius);
+        self.hash.build(&self.centroids);
+        let max_depth = reach;
+
+        for bi in 0..self.bodies.len() {
+            for vi in 0..self.bodies[bi].vertex_count() {
+                let p = get(self.bodies[bi].positions(), vi);
+                self.hash.query(p, radius, &mut self.candidates);
+                // The deepest contact with another body's face decides this vertex's response.
+                let mut best: Option<(usize, usize, [f64; 3], V3, f64)> = None;
+                for &c in &self.candidates {
+                    let (ob, f) = self.owners[c as usize];
+                    let ob = ob as usize;
+                    if ob == bi {
+                        continue;
+                    }
+                    let other = &self.bodies[ob];
+                    let t = other.triangles()[f as usize];
+                    let x = other.positions();
+                    let (a, b, cc) = (get(x, t[0] as usize), get(x, t[1] as usize), get(x, t[2] as usize));
+                    let nf = cross(sub(b, a), sub(cc, a));
+                    let len = norm(nf);
+                    if len == 0.0 {
+                        continue;
+                    }
+                    let n = scale(nf, 1.0 / len);
+                    let w = closest_barycentric(p, a, b, cc);
+                    let q = add(add(scale(a, w[0]), scale(b, w[1])), scale(cc, w[2]));
+                    let s = dot(sub(p, q), n);
+                    let lateral = norm(sub(sub(p, q), scale(n, s)));
+                    if s < self.thickness && s > -max_depth && lateral < 1e-9 + 0.5 * self.thickness.max(1e-6) {
+                        if best.as_ref().map_or(true, |bst| s < bst.4) {
+                            best = Some((ob, f as usize, w, n, s));
+                        }
+                    }
+                }
+                if let Some((ob, f, w, n, s)) = best {
+                    // Velocities respond within the thickness; positions only where a vertex
+                    // went behind the face (moving them further would inject energy).
+                    self.respond(bi, vi, ob, f, w, n, (-s).max(0.0));
+                }
+            }
+        }
+    }
+
+    /// Push vertex `vi` of body `bi` and face `f` of body `ob` apart by `depth` along n and
+    /// remove their approaching relative velocity, sharing both by inverse mass.
+    #[allow(clippy::too_many_arguments)]
+    fn respond(&mut self, bi: usize, vi: usize, ob: usize, f: usize, w: [f64; 3], n: V3, depth: f64) {
+        let t = self.bodies[ob].triangles()[f];
+        let ip = inv_mass(&self.bodies[bi], vi);
+        let it = t.map(|k| inv_mass(&self.bodies[ob], k as usize));
+        let wsum = ip + (0..3).map(|k| w[k] * w[k] * it[k]).sum::<f64>();
+        if wsum == 0.0 {
+            return;
+        }
+        // Positions: the vertex moves along +n, the face's vertices along −n, by inverse mass.
+        let lambda = depth / wsum;
+        // Velocities: inelastic normal impulse and Coulomb friction.
+        let vp = get(self.bodies[bi].velocities(), vi);
+        let vo = self.bodies[ob].velocities();
+        let vq = (0..3).fold([0.0; 3], |acc, k| add(acc, scale(get(vo, t[k] as usize), w[k])));
+        let rel = sub(vp, vq);
+        let vn = dot(rel, n);
+        let mut impulse = [0.0; 3];
+        if vn < 0.0 {
+            let j = -vn / wsum;
+            let tangent = sub(rel, scale(n, vn));
+            let vt = norm(tangent);
+            let jt = if vt > 0.0 { (self.friction * j).min(vt / wsum) } else { 0.0 };
+            impulse = sub(scale(n, j), if vt > 0.0 { scale(tangent, jt / vt) } else { [0.0; 3] });
+        }
+        self.bodies[bi].nudge(vi, scale(n, lambda * ip), scale(impulse, ip));
+        for k in 0..3 {
+            self.bodies[ob].nudge(t[k] as usize, scale(n, -lambda * w[k] * it[k]), scale(impulse, -w[k] * it[k]));
+        }
+    }
+}
+
+fn inv_mass(b: &SoftBody, i: usize) -> f64 {
+    if b.is_pinned(i) { 0.0 } else { 1.0 / b.masses()[i] }
+}
