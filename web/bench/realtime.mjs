@@ -2,7 +2,7 @@
 // growing size into the modeler and read how much of real time the simulation keeps up with.
 //   node bench/realtime.mjs [levels=3,4,5]   (needs web/dist built and python3)
 import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readdirSync } from 'node:fs';
+import { mkdtempSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -29,4 +29,3 @@ for (const level of levels) {
 }
 await browser.close();
 server.stop();
-void readdirSync;

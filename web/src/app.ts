@@ -4,6 +4,7 @@
 // budget (if it cannot keep up it runs in slow motion and says so), then the view reads the
 // engine's positions and renders.
 
+import { Vector3 } from 'three';
 import { SoftBody } from './engine/softbody';
 import { EDITABLE, type ParamName } from './engine/params';
 import { History, travel } from './history';
@@ -237,6 +238,17 @@ export class App implements ToolContext {
       this.settings.substeps = Math.max(1, Math.round(1 / 60 / this.settings.dt));
       this.setBody(this.current);
     });
+  }
+
+  /** Wind blowing along the current view direction at `strength` m/s (0: calm); undoable. */
+  windFromView(strength: number): void {
+    const d = this.viewport.camera.getWorldDirection(new Vector3());
+    this.edit('wind', true, () => {
+      this.current.set('windX', d.x * strength);
+      this.current.set('windY', d.y * strength);
+      this.current.set('windZ', d.z * strength);
+    });
+    this.syncScene();
   }
 
   step(): void {

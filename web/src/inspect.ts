@@ -1,6 +1,7 @@
 // `window.softsculpt`: a small read-only inspection handle for tests and the curious.
 // Reading it never changes the model.
 
+import { Vector3 } from 'three';
 import type { App } from './app';
 
 export function inspector(app: App) {
@@ -11,6 +12,7 @@ export function inspector(app: App) {
     springCount: () => app.body().springCount,
     positions: () => Array.from(app.body().positions()),
     pinned: () => Array.from(app.body().pinned()),
+    masses: () => Array.from(app.body().masses()),
     stats: () => app.body().stats(),
     param: (name: string) => app.body().get(name as never),
     tool: () => app.tools.tool.name,
@@ -38,7 +40,7 @@ export function inspector(app: App) {
     screenOf: (i: number) => {
       const x = app.body().positions();
       const v = app.viewport;
-      const p = new (v.camera.position.constructor as any)(x[3 * i], x[3 * i + 1], x[3 * i + 2]).project(v.camera);
+      const p = new Vector3(x[3 * i], x[3 * i + 1], x[3 * i + 2]).project(v.camera);
       const r = v.canvas.getBoundingClientRect();
       return { x: r.left + ((p.x + 1) / 2) * r.width, y: r.top + ((1 - p.y) / 2) * r.height };
     },

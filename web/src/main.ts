@@ -84,13 +84,9 @@ async function main(): Promise<void> {
       case 'x': case 'X': app.wireframe = !app.wireframe; app.syncScene(); break;
       case 'v': case 'V': app.viewport.resetView(); break;
       case 'e': case 'E': void app.export('obj'); break;
-      case 'w': case 'W': {
-        const d = app.viewport.camera.getWorldDirection(app.viewport.camera.up.clone());
-        const s = Math.max(5, Math.hypot(app.body().get('windX'), app.body().get('windY'), app.body().get('windZ')));
-        app.edit('wind', true, () => { app.body().set('windX', d.x * s); app.body().set('windY', d.y * s); app.body().set('windZ', d.z * s); });
-        app.syncScene();
+      case 'w': case 'W':
+        app.windFromView(Math.max(5, Math.hypot(app.body().get('windX'), app.body().get('windY'), app.body().get('windZ'))));
         break;
-      }
       case '[': app.brush.radius = Math.max(0.02, app.brush.radius / 1.2); break;
       case ']': app.brush.radius = Math.min(3, app.brush.radius * 1.2); break;
       case '?': case 'h': case 'H': app.hud.toggleHelp(); break;

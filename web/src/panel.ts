@@ -2,9 +2,8 @@
 // its unit and shortcut. Parameter edits go through App.setParam (validated, undoable).
 
 import GUI, { type Controller } from 'lil-gui';
-import { Vector3 } from 'three';
 import type { App } from './app';
-import { INTEGRATORS, VOLUME_MODES, GAS_CONSTANT, type ParamName } from './engine/params';
+import { INTEGRATORS, VOLUME_MODES, type ParamName } from './engine/params';
 import { MODELS, type ModelName } from './models';
 import { fmt } from './view/plots';
 
@@ -20,7 +19,7 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   const view: Record<string, any> = {
     tool: app.tools.tool.name,
     model: app.settings.model,
-    gasNRT: 0, pressure: '', volume: '',
+    pressure: '', volume: '',
     windStrength: 0,
   };
 
@@ -103,23 +102,17 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   tip(gas.add(view, 'volume').name('V (m³)').disable(), 'Live volume used by the gas law');
 
   const wind = gui.addFolder('Wind');
-  tip(wind.add(view, 'windStrength', 0, 30, 0.1).name('strength (m/s)').onFinishChange((s: number) => setWindFromView(s)),
+  tip(wind.add(view, 'windStrength', 0, 30, 0.1).name('strength (m/s)').onFinishChange((s: number) => app.windFromView(s)),
     'Wind speed; the wind blows along the current view direction (the arrow shows it)');
-  tip(wind.add({ f: () => setWindFromView(view.windStrength || 5) }, 'f').name('blow from view (W)'), 'Set the wind direction to the view direction (W)');
+  tip(wind.add({ f: () => app.windFromView(view.windStrength || 5) }, 'f').name('blow from view (W)'), 'Set the wind direction to the view direction (W)');
   param(wind, 'windDrag', 'drag cw (N·s/m³)', 'Wind drag coefficient: force = cw · area · (relative wind · normal)', 0, 10);
-  tip(wind.add({ f: () => { view.windStrength = 0; setWindFromView(0); } }, 'f').name('calm'), 'No wind');
+  tip(wind.add({ f: () => { view.windStrength = 0; app.windFromView(0); } }, 'f').name('calm'), 'No wind');
 
   const display = gui.addFolder('View');
   tip(display.add(app, 'wireframe').name('springs (wireframe, X)').onChange(() => app.syncScene()), 'Show the springs (X)');
   tip(display.add({ f: () => app.viewport.resetView() }, 'f').name('reset view (V)'), 'Camera back home (V)');
   tip(display.add({ f: () => app.hud.toggleHelp() }, 'f').name('help (?)'), 'Tools and shortcuts (?)');
 
-  function setWindFromView(strength: number): void {
-    const d = app.viewport.camera.getWorldDirection(new Vector3());
-    const w = [d.x * strength, d.y * strength, d.z * strength];
-    app.edit('wind', true, () => { app.body().set('windX', w[0]); app.body().set('windY', w[1]); app.body().set('windZ', w[2]); });
-    app.syncScene();
-  }
 
   function refresh(): void {
     Object.assign(p, app.params());
@@ -139,7 +132,6 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
     const s = app.body().stats();
     view.pressure = fmt(s.pressure);
     view.volume = fmt(s.volume);
-    view.gasNRT = p.gasAmount * GAS_CONSTANT * p.temperature;
     gui.controllersRecursive().forEach((c) => { if (c.property === 'pressure' || c.property === 'volume') c.updateDisplay(); });
   }, 250);
   return gui;

@@ -480,7 +480,7 @@ pub unsafe extern "C" fn ss_set_rest_lengths(h: u32, ptr: *const f64) -> u32 {
 /// Set every vertex mass from the vertex scratch array (kg).
 #[no_mangle]
 pub extern "C" fn ss_set_masses(h: u32) -> u32 {
-    table::status(h, |e| e.body.set_masses(&e.scratch.clone()).map_err(|e| e.to_string()))
+    table::status(h, |e| e.body.set_masses(&e.scratch).map_err(|e| e.to_string()))
 }
 #[no_mangle]
 pub extern "C" fn ss_set_pinned(h: u32, vertex: u32, pinned: u32) -> u32 {
@@ -493,12 +493,12 @@ pub extern "C" fn ss_set_pinned(h: u32, vertex: u32, pinned: u32) -> u32 {
 /// Apply the user forces staged in `ss_user_forces`.
 #[no_mangle]
 pub extern "C" fn ss_apply_user_forces(h: u32) -> u32 {
-    table::status(h, |e| e.body.set_user_forces(&e.user_forces.clone()).map_err(|e| e.to_string()))
+    table::status(h, |e| e.body.set_user_forces(&e.user_forces).map_err(|e| e.to_string()))
 }
 /// Apply the face pressures staged in `ss_face_pressures`.
 #[no_mangle]
 pub extern "C" fn ss_apply_face_pressures(h: u32) -> u32 {
-    table::status(h, |e| e.body.set_face_pressures(&e.face_pressures.clone()).map_err(|e| e.to_string()))
+    table::status(h, |e| e.body.set_face_pressures(&e.face_pressures).map_err(|e| e.to_string()))
 }
 /// Set positions from `ptr` (3 f64 per vertex) and velocities from the vector scratch array.
 ///
@@ -508,7 +508,7 @@ pub extern "C" fn ss_apply_face_pressures(h: u32) -> u32 {
 pub unsafe extern "C" fn ss_set_state(h: u32, ptr: *const f64) -> u32 {
     table::status(h, |e| {
         let x = std::slice::from_raw_parts(ptr, 3 * e.body.vertex_count()).to_vec();
-        e.body.set_state(&x, &e.vectors.clone()).map_err(|e| e.to_string())
+        e.body.set_state(&x, &e.vectors).map_err(|e| e.to_string())
     })
 }
 /// Set the frozen state (for reset) from positions at `pos` and rest lengths at `rest`, with the

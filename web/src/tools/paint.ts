@@ -55,9 +55,11 @@ export class InflateTool extends PaintTool {
   readonly tooltip = 'Inflate (I): lengthen rest lengths under the brush; Shift deflates (strength = rate, 1/s)';
   strength = 0.3;
   readonly strengthInfo = { label: 'growth rate (1/s)', min: 0.01, max: 3 };
+  private factors = new Float64Array(0);
   protected paint(body: SoftBody, indices: number[], weights: number[], dt: number): void {
     if (dt <= 0) return;
-    const factors = new Float64Array(body.vertexCount).fill(1);
+    if (this.factors.length !== body.vertexCount) this.factors = new Float64Array(body.vertexCount);
+    const factors = this.factors.fill(1);
     indices.forEach((i, k) => (factors[i] = inflateFactor(weights[k], this.strength, dt, this.inverted)));
     body.scaleRestByVertex(factors);
   }

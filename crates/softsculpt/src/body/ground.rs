@@ -18,20 +18,7 @@ pub fn project(ground: &Ground, inv_mass: &[f64], x: &mut [f64], v: &mut [f64]) 
             continue;
         }
         p[1] = h;
-        if u[1] >= 0.0 {
-            continue;
-        }
-        let j = (1.0 + ground.restitution) * -u[1];
-        u[1] *= -ground.restitution;
-        let vt = (u[0] * u[0] + u[2] * u[2]).sqrt();
-        let drop = ground.friction * j;
-        if vt <= drop {
-            u[0] = 0.0;
-            u[2] = 0.0;
-        } else {
-            let s = 1.0 - drop / vt;
-            u[0] *= s;
-            u[2] *= s;
-        }
+        let b = super::contact::bounce([u[0], u[1], u[2]], [0.0, 1.0, 0.0], ground.friction, ground.restitution);
+        u.copy_from_slice(&b);
     }
 }

@@ -15,6 +15,7 @@
 //! All arrays are `xyz` interleaved per vertex (`[x0, y0, z0, x1, …]`), so a renderer can read
 //! positions without copying and a spring touches one cache line per end.
 
+mod contact;
 mod external;
 mod faces;
 mod forces;

@@ -163,10 +163,11 @@ impl SoftBody {
     pub fn set_total_mass(&mut self, total: f64) -> Result<(), SimError> {
         check_positive("mass", total)?;
         let m = total / self.vertex_count() as f64;
-        let pinned: Vec<bool> = (0..self.vertex_count()).map(|i| self.is_pinned(i)).collect();
-        for (i, p) in pinned.into_iter().enumerate() {
-            self.model.mass[i] = m;
-            self.model.inv_mass[i] = if p { 0.0 } else { 1.0 / m };
+        for (mass, inv) in self.model.mass.iter_mut().zip(&mut self.model.inv_mass) {
+            *mass = m;
+            if *inv != 0.0 {
+                *inv = 1.0 / m; // pinned vertices (inv = 0) stay pinned
+            }
         }
         Ok(())
     }

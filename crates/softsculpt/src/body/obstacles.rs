@@ -187,18 +187,9 @@ pub fn resolve(obstacles: &[Obstacle], inv_mass: &[f64], x_prev: &[f64], x: &mut
                 (sub(p1, scale(n1, d1)), n1)
             };
             x[3 * i..3 * i + 3].copy_from_slice(&p);
-            let u = [v[3 * i], v[3 * i + 1], v[3 * i + 2]];
-            let un = dot(u, n);
-            if un >= 0.0 {
-                continue;
-            }
-            // Inelastic normal impulse j = −u·n per unit mass, Coulomb friction up to μ j.
-            let j = -un;
-            let ut = sub(u, scale(n, un));
-            let vt = norm(ut);
-            let drop = o.friction * j;
-            let ut = if vt <= drop { [0.0; 3] } else { scale(ut, 1.0 - drop / vt) };
-            v[3 * i..3 * i + 3].copy_from_slice(&ut);
+            // Inelastic (restitution 0) with Coulomb friction, as on the ground.
+            let u = super::contact::bounce([v[3 * i], v[3 * i + 1], v[3 * i + 2]], n, o.friction, 0.0);
+            v[3 * i..3 * i + 3].copy_from_slice(&u);
         }
     }
 }
