@@ -125,6 +125,41 @@ test('pinned vertices stay fixed under a grab drag', async () => {
   await page.context().close();
 });
 
+test('press pushes the cap in, the mass brush paints heavier, W blows wind from the view', async () => {
+  const { page } = await openModeler(browser, server.url);
+  await settle(page);
+  const top = await topVertex(page);
+  await page.keyboard.press('p');
+  await drag(page, top.screen, top.screen, 2, 1200);
+  const pressed = await vertex(page, top.index);
+  await shot(page, '10-press');
+  await page.mouse.up();
+  assert.ok(top.position[1] - pressed[1] > 0.02, `the top went down by ${top.position[1] - pressed[1]} m while pressed`);
+  await settle(page);
+
+  await page.keyboard.press('m');
+  const m0 = await inspect(page, () => window.softsculpt.masses());
+  const again = await topVertex(page);
+  await drag(page, again.screen, again.screen, 2, 800);
+  await page.mouse.up();
+  const m1 = await inspect(page, () => window.softsculpt.masses());
+  assert.ok(m1[again.index] > 1.2 * m0[again.index], `mass ${m0[again.index]} -> ${m1[again.index]}`);
+  const total0 = m0.reduce((a, b) => a + b, 0), total1 = m1.reduce((a, b) => a + b, 0);
+  assert.ok(total1 > total0, 'painting heavier adds mass');
+  await shot(page, '11-mass-overlay');
+
+  const c0 = (await inspect(page, () => window.softsculpt.stats())).centerOfMass;
+  await page.keyboard.press('w');
+  const w = await inspect(page, () => [0, 1, 2].map((k) => window.softsculpt.param(['windX', 'windY', 'windZ'][k])));
+  assert.ok(Math.abs(Math.hypot(...w) - 5) < 1e-9, `wind ${w}`);
+  await page.waitForTimeout(1500);
+  const c1 = (await inspect(page, () => window.softsculpt.stats())).centerOfMass;
+  const along = (c1[0] - c0[0]) * w[0] + (c1[2] - c0[2]) * w[2];
+  assert.ok(along > 0, `the body leans downwind (${along})`);
+  await shot(page, '12-wind');
+  await page.context().close();
+});
+
 const CUBE = `# a cube with quads
 v -0.5 0 -0.5\nv 0.5 0 -0.5\nv 0.5 1 -0.5\nv -0.5 1 -0.5\nv -0.5 0 0.5\nv 0.5 0 0.5\nv 0.5 1 0.5\nv -0.5 1 0.5
 f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n`;

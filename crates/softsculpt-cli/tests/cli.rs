@@ -230,3 +230,17 @@ fn bench_json_has_the_contract_keys() {
         assert!(lines[1][k].as_f64().unwrap() > 0.0, "{k}");
     }
 }
+
+#[test]
+fn bending_springs_change_the_result() {
+    let d = Dir::new();
+    let run = |kb: &str, name: &str| {
+        let out = d.path(name);
+        let o = softsculpt(&["simulate", "builtin:mushroom", "--out", out.to_str().unwrap(), "--steps", "800", "--gas", "30", "--ground", "0", "--bending", kb]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        std::fs::read_to_string(out).unwrap()
+    };
+    assert_ne!(run("0", "a.obj"), run("100", "b.obj"));
+    let o = softsculpt(&["simulate", "builtin:mushroom", "--out", d.path("c.obj").to_str().unwrap(), "--bending", "-1"]);
+    assert_clean_error(&o, "--bending");
+}
