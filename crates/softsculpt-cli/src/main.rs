@@ -1,14 +1,16 @@
 //! `softsculpt`: the headless front end of the SoftSculpt engine.
 //!
-//! Subcommands: `simulate` (run a body and write the result), `info` (what a mesh is made of),
+//! Subcommands: `simulate` (run a body and write the result), `run` (play a scene file), `info` (what a mesh is made of),
 //! `bench` (the standard workload). Every failure prints one line starting `error:` on stderr
 //! and exits with status 1 (2 for a malformed command line); nothing panics on bad input.
 
 mod args;
 mod bench;
+mod gltf;
 mod info;
 mod input;
 mod output;
+mod run;
 mod simulate;
 
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
@@ -27,6 +29,8 @@ enum Command {
     /// Simulate a body and write its final shape as OBJ.
     #[command(allow_negative_numbers = true)]
     Simulate(simulate::SimulateArgs),
+    /// Play a scene file (bodies, obstacles, timed events) and write the results.
+    Run(run::RunArgs),
     /// Print what a mesh is made of: counts, welds, defects, volume, bounds.
     Info(info::InfoArgs),
     /// Run the standard benchmark workload (icospheres of increasing size).
@@ -44,6 +48,7 @@ fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Simulate(a) => simulate::run(a),
+        Command::Run(a) => run::run(a),
         Command::Info(a) => info::run(a),
         Command::Bench(a) => bench::run(a),
     };

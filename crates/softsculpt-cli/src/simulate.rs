@@ -85,6 +85,11 @@ fn parse_volume(s: &str) -> Result<VolumeMode, String> {
 pub const REST_WINDOW: u64 = 100;
 
 pub fn stats_line(s: &softsculpt::Stats) -> String {
+    stats_json(s).to_string()
+}
+
+/// The stats keys of the contract, in order.
+pub fn stats_json(s: &softsculpt::Stats) -> serde_json::Value {
     json!({
         "step": s.step,
         "time": s.time,
@@ -99,7 +104,6 @@ pub fn stats_line(s: &softsculpt::Stats) -> String {
         "center_of_mass": s.center_of_mass,
         "max_speed": s.max_speed,
     })
-    .to_string()
 }
 
 pub fn run(a: SimulateArgs) -> Result<(), String> {

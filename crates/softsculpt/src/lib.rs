@@ -13,6 +13,7 @@ pub mod body;
 pub mod error;
 pub mod hash;
 pub mod mesh;
+pub mod scene;
 pub mod vec3;
 pub mod workload;
 pub mod world;

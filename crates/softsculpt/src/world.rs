@@ -36,7 +36,7 @@ pub struct World {
 
 /// Closest point on triangle (a, b, c) to p, as barycentric weights (Ericson, Real-Time
 /// Collision Detection, 5.1.5).
-fn closest_barycentric(p: V3, a: V3, b: V3, c: V3) -> [f64; 3] {
+pub(crate) fn closest_barycentric(p: V3, a: V3, b: V3, c: V3) -> [f64; 3] {
     let (ab, ac, ap) = (sub(b, a), sub(c, a), sub(p, a));
     let (d1, d2) = (dot(ab, ap), dot(ac, ap));
     if d1 <= 0.0 && d2 <= 0.0 {

@@ -8,7 +8,10 @@
 //! the velocity loses its inward normal part (inelastic: impulse per unit mass j = −v·n) and
 //! Coulomb friction removes up to μ j of its tangential part.
 
+use super::mesh_obstacle::MeshShape;
+use crate::mesh::TriMesh;
 use crate::vec3::{add, cross, dot, norm, scale, sub, V3};
+use std::sync::Arc;
 
 /// The shape of an obstacle (metres).
 #[derive(Debug, Clone, PartialEq)]
@@ -19,6 +22,14 @@ pub enum Shape {
     Box { center: V3, half: V3, axes: [V3; 3] },
     /// All points within `radius` of the segment from `a` to `b`.
     Capsule { a: V3, b: V3, radius: f64 },
+    /// A static triangle mesh: solid behind its faces (see `mesh_obstacle.rs`).
+    Mesh(Arc<MeshShape>),
+}
+
+impl PartialEq for MeshShape {
+    fn eq(&self, other: &Self) -> bool {
+        std::ptr::eq(self, other)
+    }
 }
 
 /// A rigid obstacle with its Coulomb friction coefficient (dimensionless).
@@ -47,6 +58,10 @@ impl Obstacle {
     pub fn capsule(a: V3, b: V3, radius: f64) -> Self {
         Obstacle { shape: Shape::Capsule { a, b, radius }, friction: 0.5 }
     }
+    /// A static triangle mesh (its faces' normals say which side is outside).
+    pub fn triangle_mesh(mesh: &TriMesh) -> Result<Self, String> {
+        Ok(Obstacle { shape: Shape::Mesh(Arc::new(MeshShape::new(mesh)?)), friction: 0.5 })
+    }
 
     /// Every number finite, sizes positive, axes orthonormal.
     pub fn validate(&self) -> Result<(), String> {
@@ -70,6 +85,7 @@ impl Obstacle {
                 Ok(())
             }
             Shape::Capsule { a, b, radius } if finite(a) && finite(b) && radius.is_finite() && *radius > 0.0 => Ok(()),
+            Shape::Mesh(_) => Ok(()), // checked when built
             _ => Err(format!("obstacle sizes must be finite and positive: {:?}", self.shape)),
         }
     }
@@ -112,6 +128,9 @@ impl Shape {
                 let n = if r > 0.0 { scale(d, 1.0 / r) } else { [0.0, 1.0, 0.0] };
                 (r - radius, n)
             }
+            // Beyond its reach a mesh reports "that far outside", which is all the contact
+            // stage needs to know.
+            Shape::Mesh(m) => m.closest(p, m.reach).unwrap_or((m.reach, [0.0, 1.0, 0.0])),
         }
     }
 
@@ -119,6 +138,9 @@ impl Shape {
     /// way; found by bisection on the signed distance after a conservative march, which is exact
     /// to 1e-12 of the segment for these convex shapes.
     fn entry(&self, p0: V3, p1: V3) -> Option<f64> {
+        if let Shape::Mesh(m) = self {
+            return if self.distance(p0).0 <= TOUCH { None } else { m.first_hit(p0, p1) };
+        }
         let at = |t: f64| self.distance(add(p0, scale(sub(p1, p0), t))).0;
         if at(0.0) <= TOUCH {
             return None; // starts on or in the surface: handled by the caller

@@ -122,6 +122,9 @@ pub struct Params {
     pub obstacles: Vec<super::obstacles::Obstacle>,
     /// Time integrator.
     pub integrator: Integrator,
+    /// Keep the body's vertices out of its own faces. Only a [`crate::world::World`] does this
+    /// (it needs the broad phase); off by default.
+    pub self_collision: bool,
 }
 
 /// Default temperature (K) used when a total nRT is given.
@@ -143,6 +146,7 @@ impl Default for Params {
             ground: None,
             obstacles: Vec::new(),
             integrator: Integrator::Symplectic,
+            self_collision: false,
         }
     }
 }

@@ -1,0 +1,114 @@
+//! `softsculpt run SCENE --out DIR [--frames N]`: play a scene file headless.
+//!
+//! Writes, into DIR (created if needed), only once the whole run has succeeded, each file
+//! atomically:
+//! - `NAME.obj` — every body's final shape (in its source file's vertex order and polygons);
+//! - `summary.json` — time, steps and every body's final statistics (the `simulate` stats keys);
+//! - with `--frames N`: `frames/NAME_0000.obj` … (N frames at equal intervals from the start to
+//!   the end, both included) and `animation.glb`, a glTF 2.0 with the motion as morph targets.
+
+use crate::{gltf, output};
+use clap::Args;
+use serde_json::json;
+use softsculpt::scene::SceneRun;
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+
+#[derive(Args, Debug)]
+pub struct RunArgs {
+    /// The scene file (.toml); see docs/scenes.md.
+    pub scene: PathBuf,
+    /// Directory for the outputs.
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Also write N frames (OBJ per body and frame, and animation.glb); N ≥ 2.
+    #[arg(long, value_parser = crate::args::count_positive, value_name = "N")]
+    pub frames: Option<u64>,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+pub fn run(a: RunArgs) -> Result<(), String> {
+    let shown = a.scene.display().to_string();
+    let text = std::fs::read(&a.scene).map_err(|e| format!("{shown}: cannot read: {e}"))?;
+    let text = String::from_utf8(text).map_err(|_| format!("{shown}: not UTF-8 text"))?;
+    let dir = a.scene.parent().map(Path::to_path_buf).unwrap_or_default();
+    let mut resolve = |path: &str| -> Result<Vec<u8>, String> { std::fs::read(dir.join(path)).map_err(|e| e.to_string()) };
+    let mut scene = SceneRun::load(&text, &mut resolve).map_err(|e| format!("{shown}: {e}"))?;
+    if a.frames == Some(1) {
+        return Err("--frames: at least 2 (the first frame is the start, the last the end)".into());
+    }
+    if a.out.is_file() {
+        return Err(format!("{}: is a file, --out needs a directory", a.out.display()));
+    }
+
+    let total = scene.total_steps();
+    // Steps at which frames are taken: k · total / (N − 1), rounded.
+    let frame_steps: Vec<u64> = match a.frames {
+        Some(n) => (0..n).map(|k| ((k as f64) * total as f64 / (n - 1) as f64).round() as u64).collect(),
+        None => Vec::new(),
+    };
+    let mut frames: Vec<Vec<Vec<f64>>> = vec![Vec::new(); scene.world.bodies.len()];
+    let mut times = Vec::new();
+    let take = |s: &SceneRun, frames: &mut Vec<Vec<Vec<f64>>>, times: &mut Vec<f64>| {
+        while times.len() < frame_steps.len() && frame_steps[times.len()] <= s.steps() {
+            times.push(s.time());
+            for (k, b) in s.world.bodies.iter().enumerate() {
+                frames[k].push(b.positions().to_vec());
+            }
+        }
+    };
+    take(&scene, &mut frames, &mut times);
+    let bar = (!a.quiet && std::io::stderr().is_terminal()).then(|| {
+        let b = indicatif::ProgressBar::new(total);
+        b.set_style(
+            indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} steps  {elapsed_precise} (eta {eta})")
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        b
+    });
+    scene
+        .run(|s| {
+            take(s, &mut frames, &mut times);
+            if let Some(b) = &bar {
+                if s.steps() % 100 == 0 {
+                    b.set_position(s.steps());
+                }
+            }
+        })
+        .map_err(|e| format!("{shown}: {e}"))?;
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+
+    let header = |t: f64| format!("softsculpt run {shown}: t = {t} s");
+    let mut summary = serde_json::Map::new();
+    summary.insert("time".into(), json!(scene.time()));
+    summary.insert("steps".into(), json!(scene.steps()));
+    let mut bodies = serde_json::Map::new();
+    for (k, b) in scene.world.bodies.iter().enumerate() {
+        let name = &scene.names[k];
+        output::write_atomic(&a.out.join(format!("{name}.obj")), &scene.meshes[k].write_obj(b.positions(), &header(scene.time())))?;
+        bodies.insert(name.clone(), crate::simulate::stats_json(&b.stats()));
+    }
+    summary.insert("bodies".into(), json!(bodies));
+    if !times.is_empty() {
+        for (k, name) in scene.names.iter().enumerate() {
+            for (f, x) in frames[k].iter().enumerate() {
+                let path = a.out.join("frames").join(format!("{name}_{f:04}.obj"));
+                output::write_atomic(&path, &scene.meshes[k].write_obj(x, &header(times[f])))?;
+            }
+        }
+        let tracks: Vec<gltf::Track> = scene
+            .names
+            .iter()
+            .enumerate()
+            .map(|(k, name)| gltf::Track { name, triangles: scene.world.bodies[k].triangles(), frames: &frames[k] })
+            .collect();
+        output::write_atomic(&a.out.join("animation.glb"), &gltf::animation_glb(&tracks, &times))?;
+    }
+    let text = serde_json::to_string_pretty(&json!(summary)).expect("JSON of plain values");
+    output::write_atomic(&a.out.join("summary.json"), format!("{text}\n").as_bytes())?;
+    Ok(())
+}

@@ -1,0 +1,419 @@
+//! From a parsed scene to a world: load and place meshes, set materials, resolve regions and
+//! events, and check what the file format alone cannot, naming the line of the table at fault.
+
+use super::events::{check_keys, Action, Event};
+use super::spec::{BodySpec, ObstacleSpec, RegionSpec, RotateSpec, SceneSpec};
+use super::{line_of, SceneError};
+use crate::body::obstacles::Obstacle;
+use crate::body::params::{Ground, DEFAULT_TEMPERATURE};
+use crate::body::{Integrator, Params, SoftBody, VolumeMode, GAS_CONSTANT};
+use crate::mesh::{builtin, load_obj, LoadedMesh};
+use crate::vec3::{add, cross, dot, normalize, scale, V3};
+
+/// Reads a mesh file named in the scene (a path relative to the scene file) as bytes.
+pub type Resolver<'a> = &'a mut dyn FnMut(&str) -> Result<Vec<u8>, String>;
+
+/// A body ready to run, with what output needs.
+pub struct BuiltBody {
+    pub name: String,
+    pub body: SoftBody,
+    /// The mesh as loaded (its source polygons and vertex order, for writing OBJ files).
+    pub mesh: LoadedMesh,
+}
+
+pub struct Built {
+    pub bodies: Vec<BuiltBody>,
+    pub events: Vec<Event>,
+    pub dt: f64,
+    pub duration: f64,
+    pub contact_thickness: f64,
+    pub contact_friction: f64,
+}
+
+struct Ctx {
+    line: usize,
+    table: String,
+}
+
+impl Ctx {
+    fn err(&self, key: &str, message: impl Into<String>) -> SceneError {
+        let key = if key.is_empty() { self.table.clone() } else { format!("{}.{key}", self.table) };
+        SceneError { line: Some(self.line), key: Some(key), message: message.into() }
+    }
+    fn finite(&self, key: &str, v: f64) -> Result<f64, SceneError> {
+        if v.is_finite() { Ok(v) } else { Err(self.err(key, format!("must be a finite number, got {v}"))) }
+    }
+    fn positive(&self, key: &str, v: f64) -> Result<f64, SceneError> {
+        if v.is_finite() && v > 0.0 { Ok(v) } else { Err(self.err(key, format!("must be greater than 0, got {v}"))) }
+    }
+    fn non_negative(&self, key: &str, v: f64) -> Result<f64, SceneError> {
+        if v.is_finite() && v >= 0.0 { Ok(v) } else { Err(self.err(key, format!("must be 0 or more, got {v}"))) }
+    }
+    fn vec(&self, key: &str, v: [f64; 3]) -> Result<V3, SceneError> {
+        if v.iter().all(|x| x.is_finite()) { Ok(v) } else { Err(self.err(key, format!("must be finite, got {v:?}"))) }
+    }
+}
+
+/// Build every body, obstacle and event of `spec` (parsed from `text`).
+pub fn build(spec: &SceneSpec, text: &str, resolve: Resolver) -> Result<Built, SceneError> {
+    let w = &spec.world;
+    let mut cx = Ctx { line: 1, table: "world".into() };
+    if let Some(pos) = text.find("[world]") {
+        cx.line = line_of(text, pos);
+    }
+    cx.positive("dt", w.dt)?;
+    cx.positive("duration", w.duration)?;
+    if w.duration / w.dt > 1e9 {
+        return Err(cx.err("dt", format!("{} s in steps of {} s is more than 10⁹ steps", w.duration, w.dt)));
+    }
+    let integrator = Integrator::from_name(&w.integrator)
+        .ok_or_else(|| cx.err("integrator", format!("unknown integrator '{}' (euler, midpoint, rk4, symplectic)", w.integrator)))?;
+    cx.finite("gravity", w.gravity)?;
+    cx.vec("wind", w.wind)?;
+    cx.non_negative("wind_drag", w.wind_drag)?;
+    cx.non_negative("contact_thickness", w.contact_thickness)?;
+    cx.non_negative("contact_friction", w.contact_friction)?;
+    let ground = match &w.ground {
+        Some(g) => {
+            cx.finite("ground.height", g.height)?;
+            cx.non_negative("ground.friction", g.friction)?;
+            if !(0.0..=1.0).contains(&g.restitution) {
+                return Err(cx.err("ground.restitution", format!("must be between 0 and 1, got {}", g.restitution)));
+            }
+            Some(Ground { height: g.height, friction: g.friction, restitution: g.restitution })
+        }
+        None => None,
+    };
+
+    let mut obstacles = Vec::new();
+    for (k, o) in spec.obstacles.iter().enumerate() {
+        let cx = Ctx { line: line_of(text, o.span().start), table: format!("obstacle[{k}]") };
+        obstacles.push(obstacle(&cx, o.get_ref(), resolve)?);
+    }
+
+    let mut bodies: Vec<BuiltBody> = Vec::new();
+    for (k, b) in spec.bodies.iter().enumerate() {
+        let cx = Ctx { line: line_of(text, b.span().start), table: format!("body[{k}]") };
+        let params = Params {
+            gravity: w.gravity,
+            wind: w.wind,
+            wind_drag: w.wind_drag,
+            ground,
+            obstacles: obstacles.clone(),
+            integrator,
+            ..Params::default()
+        };
+        let built = body(&cx, b.get_ref(), params, k, resolve)?;
+        if bodies.iter().any(|o| o.name == built.name) {
+            return Err(cx.err("name", format!("two bodies are named '{}'", built.name)));
+        }
+        bodies.push(built);
+    }
+    if bodies.is_empty() {
+        return Err(SceneError { line: None, key: Some("body".into()), message: "the scene has no [[body]]".into() });
+    }
+
+    let mut events = Vec::new();
+    let mut last = 0.0;
+    for (k, e) in spec.events.iter().enumerate() {
+        let cx = Ctx { line: line_of(text, e.span().start), table: format!("event[{k}]") };
+        let e = e.get_ref();
+        if !(e.time.is_finite() && e.time >= 0.0) {
+            return Err(cx.err("time", format!("must be 0 or more, got {}", e.time)));
+        }
+        if e.time < last {
+            return Err(cx.err("time", format!("events must be in time order: {} s comes after an event at {last} s", e.time)));
+        }
+        last = e.time;
+        check_keys(e).map_err(|m| cx.err("action", m))?;
+        let targets: Vec<usize> = match &e.body {
+            Some(name) => vec![bodies
+                .iter()
+                .position(|b| &b.name == name)
+                .ok_or_else(|| cx.err("body", format!("no body is named '{name}'")))?],
+            None => (0..bodies.len()).collect(),
+        };
+        let until = match e.duration {
+            Some(d) => e.time + cx.positive("duration", d)?,
+            None => f64::INFINITY,
+        };
+        for bi in targets {
+            let b = &bodies[bi];
+            let region = |cx: &Ctx| -> Result<Vec<usize>, SceneError> {
+                match &e.region {
+                    Some(r) => select(cx, "region", r, b),
+                    None => Ok((0..b.body.vertex_count()).collect()),
+                }
+            };
+            let action = match e.action.as_str() {
+                "freeze" => Action::Freeze { under_load: e.under_load.unwrap_or(w.gravity != 0.0) },
+                "reset" => Action::Reset,
+                "set_gas" => {
+                    if let Some(a) = e.amount {
+                        cx.non_negative("amount", a)?;
+                    }
+                    if let Some(t) = e.temperature {
+                        cx.positive("temperature", t)?;
+                    }
+                    if let Some(n) = e.nrt {
+                        cx.non_negative("nrt", n)?;
+                    }
+                    if (e.amount.unwrap_or(0.0) > 0.0 || e.nrt.unwrap_or(0.0) > 0.0) && !b.body.is_closed() {
+                        return Err(cx.err("amount", format!("body '{}' is open: gas needs a closed surface", b.name)));
+                    }
+                    Action::SetGas { amount: e.amount, temperature: e.temperature, nrt: e.nrt }
+                }
+                "set_wind" => Action::SetWind(cx.vec("wind", e.wind.unwrap_or_default())?),
+                "force" => {
+                    let vertices = region(&cx)?;
+                    let f = cx.vec("force", e.force.unwrap_or_default())?;
+                    Action::Force { per_vertex: scale(f, 1.0 / vertices.len() as f64), vertices, until }
+                }
+                "pressure" => {
+                    let p = cx.finite("pressure", e.pressure.unwrap_or(0.0))?;
+                    let sel = vertex_mask(b.body.vertex_count(), &region(&cx)?);
+                    let faces: Vec<usize> = (0..b.body.face_count())
+                        .filter(|&f| b.body.triangles()[f].iter().all(|&v| sel[v as usize]))
+                        .collect();
+                    if faces.is_empty() {
+                        return Err(cx.err("region", "selects no whole face (a face needs all three vertices inside)"));
+                    }
+                    Action::Pressure { faces, pressure: p, until }
+                }
+                "pin" => Action::Pin(region(&cx)?),
+                "unpin" => Action::Unpin(region(&cx)?),
+                "inflate" => {
+                    let f = cx.positive("factor", e.factor.unwrap_or(1.0))?;
+                    let mut factors = vec![1.0; b.body.vertex_count()];
+                    for v in region(&cx)? {
+                        factors[v] = f;
+                    }
+                    Action::Inflate(factors)
+                }
+                "set_mass" => Action::SetMass { vertices: region(&cx)?, mass: cx.positive("mass", e.mass.unwrap_or(0.0))? },
+                other => unreachable!("check_keys accepted unknown action {other}"),
+            };
+            events.push(Event { time: e.time, body: bi, action, line: cx.line });
+        }
+    }
+    Ok(Built { bodies, events, dt: w.dt, duration: w.duration, contact_thickness: w.contact_thickness, contact_friction: w.contact_friction })
+}
+
+fn body(cx: &Ctx, b: &BodySpec, mut params: Params, index: usize, resolve: Resolver) -> Result<BuiltBody, SceneError> {
+    let name = b.name.clone().unwrap_or_else(|| format!("body{}", index + 1));
+    if name.is_empty() || !name.chars().all(|c| c.is_alphanumeric() || c == '_' || c == '-') {
+        return Err(cx.err("name", format!("'{name}' must be letters, digits, '_' or '-' (it names output files)")));
+    }
+    let mut mesh = match (&b.model, &b.mesh, &b.obj) {
+        (Some(m), None, None) => LoadedMesh::from_trimesh(builtin::builtin(m).map_err(|e| cx.err("model", e.to_string()))?),
+        (None, Some(path), None) => {
+            let bytes = resolve(path).map_err(|e| cx.err("mesh", format!("cannot read '{path}': {e}")))?;
+            load_obj(&bytes).map_err(|e| cx.err("mesh", format!("{path}: {e}")))?
+        }
+        (None, None, Some(text)) => load_obj(text.as_bytes()).map_err(|e| cx.err("obj", e.to_string()))?,
+        (None, None, None) => return Err(cx.err("", "needs a surface: `model`, `mesh` or `obj`")),
+        _ => return Err(cx.err("", "give exactly one of `model`, `mesh` and `obj`")),
+    };
+    let s = cx.positive("scale", b.scale)?;
+    let rot = match &b.rotate {
+        Some(r) => Some(rotation(cx, "rotate", r)?),
+        None => None,
+    };
+    let t = cx.vec("translate", b.translate)?;
+    let place = |p: V3| add(rot.as_ref().map_or(scale(p, s), |r| r(scale(p, s))), t);
+    for x in [&mut mesh.mesh.positions, &mut mesh.source.positions] {
+        for c in x.chunks_exact_mut(3) {
+            c.copy_from_slice(&place([c[0], c[1], c[2]]));
+        }
+    }
+    if b.on_ground {
+        let Some(g) = params.ground else {
+            return Err(cx.err("on_ground", "needs a ground: add [world.ground]"));
+        };
+        let lowest = mesh.mesh.positions.chunks_exact(3).map(|c| c[1]).fold(f64::INFINITY, f64::min);
+        for x in [&mut mesh.mesh.positions, &mut mesh.source.positions] {
+            for c in x.chunks_exact_mut(3) {
+                c[1] += g.height - lowest;
+            }
+        }
+    }
+    params.stiffness = cx.non_negative("stiffness", b.stiffness)?;
+    params.spring_damping = cx.non_negative("spring_damping", b.spring_damping)?;
+    params.bending_stiffness = cx.non_negative("bending", b.bending)?;
+    params.damping = cx.non_negative("damping", b.damping)?;
+    params.self_collision = b.self_collision;
+    if let Some(g) = &b.gas {
+        params.temperature = cx.positive("gas.temperature", g.temperature.unwrap_or(DEFAULT_TEMPERATURE))?;
+        params.gas_amount = match (g.amount, g.nrt) {
+            (Some(_), Some(_)) => return Err(cx.err("gas", "give `amount` (mol) or `nrt` (J), not both")),
+            (Some(a), None) => cx.non_negative("gas.amount", a)?,
+            (None, Some(n)) => cx.non_negative("gas.nrt", n)? / (GAS_CONSTANT * params.temperature),
+            (None, None) => return Err(cx.err("gas", "needs `amount` (mol) or `nrt` (J)")),
+        };
+        if let Some(v) = &g.volume {
+            params.volume_mode = VolumeMode::from_name(v)
+                .ok_or_else(|| cx.err("gas.volume", format!("unknown volume mode '{v}' (exact, box, sphere)")))?;
+        }
+    }
+    let mass = cx.positive("mass", b.mass)?;
+    let mut body = SoftBody::new(&mesh.mesh, mass, params).map_err(|e| cx.err(if b.gas.is_some() { "gas" } else { "" }, e.to_string()))?;
+    for (k, m) in b.masses.iter().enumerate() {
+        let key = format!("masses[{k}]");
+        let mass = cx.positive(&format!("{key}.mass"), m.mass)?;
+        for v in select_in(cx, &format!("{key}.region"), &m.region, &body, &mesh)? {
+            body.set_vertex_mass(v, mass).map_err(|e| cx.err(&key, e.to_string()))?;
+        }
+    }
+    for (k, r) in b.pins.iter().enumerate() {
+        for v in select_in(cx, &format!("pins[{k}]"), r, &body, &mesh)? {
+            body.set_pinned(v, true).map_err(|e| cx.err("pins", e.to_string()))?;
+        }
+    }
+    body.set_uniform_velocity(cx.vec("velocity", b.velocity)?).map_err(|e| cx.err("velocity", e.to_string()))?;
+    Ok(BuiltBody { name, body, mesh })
+}
+
+fn obstacle(cx: &Ctx, o: &ObstacleSpec, resolve: Resolver) -> Result<Obstacle, SceneError> {
+    let need = |v: Option<[f64; 3]>, key: &str| -> Result<V3, SceneError> {
+        cx.vec(key, v.ok_or_else(|| cx.err(key, format!("a {} obstacle needs `{key}`", o.shape)))?)
+    };
+    let radius = || cx.positive("radius", o.radius.ok_or_else(|| cx.err("radius", format!("a {} obstacle needs `radius`", o.shape)))?);
+    let allowed: &[&str] = match o.shape.as_str() {
+        "sphere" => &["center", "radius"],
+        "box" => &["center", "half_extents", "rotate"],
+        "capsule" => &["a", "b", "radius"],
+        "mesh" => &["mesh", "model", "scale", "translate"],
+        s => return Err(cx.err("shape", format!("unknown shape '{s}' (sphere, box, capsule, mesh)"))),
+    };
+    let set = [
+        ("center", o.center.is_some()),
+        ("radius", o.radius.is_some()),
+        ("half_extents", o.half_extents.is_some()),
+        ("rotate", o.rotate.is_some()),
+        ("a", o.a.is_some()),
+        ("b", o.b.is_some()),
+        ("mesh", o.mesh.is_some()),
+        ("model", o.model.is_some()),
+        ("scale", o.scale.is_some()),
+        ("translate", o.translate.is_some()),
+    ];
+    if let Some((k, _)) = set.iter().find(|(k, s)| *s && !allowed.contains(k)) {
+        return Err(cx.err(k, format!("a {} obstacle does not take `{k}`", o.shape)));
+    }
+    let mut ob = match o.shape.as_str() {
+        "sphere" => Obstacle::sphere(need(o.center, "center")?, radius()?),
+        "box" => {
+            let half = need(o.half_extents, "half_extents")?;
+            for h in half {
+                cx.positive("half_extents", h)?;
+            }
+            match &o.rotate {
+                Some(r) => {
+                    cx.vec("rotate.axis", r.axis)?;
+                    if dot(r.axis, r.axis) == 0.0 {
+                        return Err(cx.err("rotate.axis", "must not be zero"));
+                    }
+                    Obstacle::rotated_box(need(o.center, "center")?, half, r.axis, cx.finite("rotate.degrees", r.degrees)?.to_radians())
+                }
+                None => Obstacle::aabb(need(o.center, "center")?, half),
+            }
+        }
+        "capsule" => Obstacle::capsule(need(o.a, "a")?, need(o.b, "b")?, radius()?),
+        _ => {
+            let mut mesh = match (&o.mesh, &o.model) {
+                (Some(path), None) => {
+                    let bytes = resolve(path).map_err(|e| cx.err("mesh", format!("cannot read '{path}': {e}")))?;
+                    load_obj(&bytes).map_err(|e| cx.err("mesh", format!("{path}: {e}")))?.mesh
+                }
+                (None, Some(m)) => builtin::builtin(m).map_err(|e| cx.err("model", e.to_string()))?,
+                _ => return Err(cx.err("mesh", "a mesh obstacle needs exactly one of `mesh` (a file) and `model`")),
+            };
+            let s = cx.positive("scale", o.scale.unwrap_or(1.0))?;
+            let t = cx.vec("translate", o.translate.unwrap_or_default())?;
+            for c in mesh.positions.chunks_exact_mut(3) {
+                c.copy_from_slice(&add(scale([c[0], c[1], c[2]], s), t));
+            }
+            Obstacle::triangle_mesh(&mesh).map_err(|m| cx.err("mesh", m))?
+        }
+    };
+    if let Some(f) = o.friction {
+        ob.friction = cx.non_negative("friction", f)?;
+    }
+    ob.validate().map_err(|m| cx.err("", m))?;
+    Ok(ob)
+}
+
+/// Rotation by `degrees` about `axis` (Rodrigues' formula).
+fn rotation(cx: &Ctx, key: &str, r: &RotateSpec) -> Result<impl Fn(V3) -> V3, SceneError> {
+    let axis = cx.vec(&format!("{key}.axis"), r.axis)?;
+    if dot(axis, axis) == 0.0 {
+        return Err(cx.err(&format!("{key}.axis"), "must not be zero"));
+    }
+    let k = normalize(axis);
+    let (s, c) = cx.finite(&format!("{key}.degrees"), r.degrees)?.to_radians().sin_cos();
+    Ok(move |v: V3| add(add(scale(v, c), scale(cross(k, v), s)), scale(k, dot(k, v) * (1.0 - c))))
+}
+
+fn vertex_mask(n: usize, vertices: &[usize]) -> Vec<bool> {
+    let mut m = vec![false; n];
+    for &v in vertices {
+        m[v] = true;
+    }
+    m
+}
+
+fn select(cx: &Ctx, key: &str, r: &RegionSpec, b: &BuiltBody) -> Result<Vec<usize>, SceneError> {
+    select_in(cx, key, r, &b.body, &b.mesh)
+}
+
+/// The body's vertices in region `r` (positions at the start; `vertices` are indices into the
+/// source file's vertex list, as a user sees them).
+fn select_in(cx: &Ctx, key: &str, r: &RegionSpec, body: &SoftBody, mesh: &LoadedMesh) -> Result<Vec<usize>, SceneError> {
+    let forms = [r.center.is_some() || r.radius.is_some(), r.min.is_some() || r.max.is_some(), r.vertices.is_some(), r.all.is_some()];
+    if forms.iter().filter(|&&f| f).count() != 1 {
+        return Err(cx.err(key, "a region is exactly one of: `center` + `radius`, `min` + `max`, `vertices`, `all = true`"));
+    }
+    let x = body.positions();
+    let n = body.vertex_count();
+    let inside: Vec<usize> = if let Some(list) = &r.vertices {
+        let mut out = Vec::new();
+        for &s in list {
+            let m = mesh.source_to_mesh.get(s as usize).copied().unwrap_or(u32::MAX);
+            if m == u32::MAX {
+                return Err(cx.err(&format!("{key}.vertices"), format!("vertex {s} is not a vertex of the mesh (it has {} vertices)", mesh.source_to_mesh.len())));
+            }
+            out.push(m as usize);
+        }
+        out
+    } else if r.all.is_some() {
+        if r.all != Some(true) {
+            return Err(cx.err(&format!("{key}.all"), "only `all = true` makes sense"));
+        }
+        (0..n).collect()
+    } else if r.center.is_some() || r.radius.is_some() {
+        let (Some(c), Some(rad)) = (r.center, r.radius) else {
+            return Err(cx.err(key, "a sphere region needs both `center` and `radius`"));
+        };
+        let c = cx.vec(&format!("{key}.center"), c)?;
+        let rad = cx.positive(&format!("{key}.radius"), rad)?;
+        (0..n).filter(|&i| {
+            let d = [x[3 * i] - c[0], x[3 * i + 1] - c[1], x[3 * i + 2] - c[2]];
+            dot(d, d) <= rad * rad
+        })
+        .collect()
+    } else {
+        let (Some(lo), Some(hi)) = (r.min, r.max) else {
+            return Err(cx.err(key, "a box region needs both `min` and `max`"));
+        };
+        let lo = cx.vec(&format!("{key}.min"), lo)?;
+        let hi = cx.vec(&format!("{key}.max"), hi)?;
+        if (0..3).any(|d| lo[d] > hi[d]) {
+            return Err(cx.err(key, format!("`min` {lo:?} must not exceed `max` {hi:?}")));
+        }
+        (0..n).filter(|&i| (0..3).all(|d| x[3 * i + d] >= lo[d] && x[3 * i + d] <= hi[d])).collect()
+    };
+    if inside.is_empty() {
+        return Err(cx.err(key, "selects no vertex of the body"));
+    }
+    Ok(inside)
+}

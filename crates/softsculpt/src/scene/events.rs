@@ -1,0 +1,103 @@
+//! Timed events: what each action takes, and how it acts on a body.
+//!
+//! Regions select vertices (and, for pressures, the faces whose three vertices are all selected)
+//! by where they are when the scene starts, after placement: an event always acts on the same
+//! material points, however the body has moved since.
+
+use super::spec::EventSpec;
+
+/// Every action, with the keys it requires and the keys it may take (besides `time`, `action`
+/// and `body`, which every event may have).
+pub const ACTIONS: &[(&str, &[&str], &[&str])] = &[
+    ("freeze", &[], &["under_load"]),
+    ("reset", &[], &[]),
+    ("set_gas", &[], &["amount", "temperature", "nrt"]),
+    ("set_wind", &["wind"], &[]),
+    ("force", &["region", "force"], &["duration"]),
+    ("pressure", &["region", "pressure"], &["duration"]),
+    ("pin", &["region"], &[]),
+    ("unpin", &["region"], &[]),
+    ("inflate", &["factor"], &["region"]),
+    ("set_mass", &["region", "mass"], &[]),
+];
+
+/// A resolved action on one body (indices are the body's vertices and faces).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Action {
+    /// Rest shape := current shape; `under_load` keeps the current loads balanced (see
+    /// `SoftBody::freeze_under_load`).
+    Freeze { under_load: bool },
+    /// Back to the last frozen state.
+    Reset,
+    /// Gas amount n (mol) and temperature T (K); `None` keeps the current value.
+    SetGas { amount: Option<f64>, temperature: Option<f64>, nrt: Option<f64> },
+    /// Wind velocity (m/s).
+    SetWind([f64; 3]),
+    /// Force (N) on each listed vertex, from now until `until` (s).
+    Force { vertices: Vec<usize>, per_vertex: [f64; 3], until: f64 },
+    /// Pressure (Pa, inward) on each listed face until `until` (s).
+    Pressure { faces: Vec<usize>, pressure: f64, until: f64 },
+    Pin(Vec<usize>),
+    Unpin(Vec<usize>),
+    /// Rest-length factor per vertex (1 outside the region).
+    Inflate(Vec<f64>),
+    SetMass { vertices: Vec<usize>, mass: f64 },
+}
+
+/// An action due at `time` (s) on body `body`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Event {
+    pub time: f64,
+    pub body: usize,
+    pub action: Action,
+    /// 1-based line of the event in the scene file, for run-time errors.
+    pub line: usize,
+}
+
+/// Keys of `e` that are set, besides `time`, `action` and `body`.
+pub fn present_keys(e: &EventSpec) -> Vec<&'static str> {
+    let mut keys = Vec::new();
+    let mut add = |set: bool, k: &'static str| {
+        if set {
+            keys.push(k)
+        }
+    };
+    add(e.duration.is_some(), "duration");
+    add(e.region.is_some(), "region");
+    add(e.force.is_some(), "force");
+    add(e.pressure.is_some(), "pressure");
+    add(e.amount.is_some(), "amount");
+    add(e.temperature.is_some(), "temperature");
+    add(e.nrt.is_some(), "nrt");
+    add(e.wind.is_some(), "wind");
+    add(e.factor.is_some(), "factor");
+    add(e.mass.is_some(), "mass");
+    add(e.under_load.is_some(), "under_load");
+    keys
+}
+
+/// Check an event's keys against its action: unknown action, missing or stray keys.
+pub fn check_keys(e: &EventSpec) -> Result<(), String> {
+    let Some((_, required, optional)) = ACTIONS.iter().find(|(name, _, _)| *name == e.action) else {
+        let names: Vec<&str> = ACTIONS.iter().map(|a| a.0).collect();
+        return Err(format!("unknown action '{}' (one of: {})", e.action, names.join(", ")));
+    };
+    let present = present_keys(e);
+    for r in *required {
+        if !present.contains(r) {
+            return Err(format!("action '{}' needs `{r}`", e.action));
+        }
+    }
+    for p in &present {
+        if !required.contains(p) && !optional.contains(p) {
+            return Err(format!("action '{}' does not take `{p}`", e.action));
+        }
+    }
+    if e.action == "set_gas" && present.is_empty() {
+        return Err("action 'set_gas' needs `amount`, `nrt` or `temperature`".into());
+    }
+    if e.amount.is_some() && e.nrt.is_some() {
+        return Err("give the gas as `amount` (mol) or as `nrt` (J), not both".into());
+    }
+    Ok(())
+}

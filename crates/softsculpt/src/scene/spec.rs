@@ -1,0 +1,289 @@
+//! The scene file format: what a TOML scene may say, field by field, with units and defaults.
+//! `docs/scenes.md` is the user's version of this file; keep the two in step.
+//!
+//! Unknown keys are errors (`deny_unknown_fields`), so a typo never silently falls back to a
+//! default. Bodies, obstacles and events keep their source span, so checks done after parsing
+//! can name the line.
+
+use serde::{Deserialize, Serialize};
+use toml::Spanned;
+
+/// A whole scene file.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneSpec {
+    #[serde(default)]
+    pub world: WorldSpec,
+    /// `[[body]]` tables.
+    #[serde(default, rename = "body", skip_serializing_if = "Vec::is_empty")]
+    pub bodies: Vec<Spanned<BodySpec>>,
+    /// `[[obstacle]]` tables.
+    #[serde(default, rename = "obstacle", skip_serializing_if = "Vec::is_empty")]
+    pub obstacles: Vec<Spanned<ObstacleSpec>>,
+    /// `[[event]]` tables, in time order.
+    #[serde(default, rename = "event", skip_serializing_if = "Vec::is_empty")]
+    pub events: Vec<Spanned<EventSpec>>,
+}
+
+/// `[world]`: what every body shares.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct WorldSpec {
+    /// Time step (s).
+    pub dt: f64,
+    /// Length of the run (s).
+    pub duration: f64,
+    /// `euler`, `midpoint`, `rk4` or `symplectic`.
+    pub integrator: String,
+    /// Gravitational acceleration g (m/s²) along −y.
+    pub gravity: f64,
+    /// Wind velocity (m/s).
+    pub wind: [f64; 3],
+    /// Wind drag coefficient (N·s/m³).
+    pub wind_drag: f64,
+    /// The ground plane y = height; absent means no ground.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ground: Option<GroundSpec>,
+    /// Distance kept between bodies in contact (m).
+    pub contact_thickness: f64,
+    /// Coulomb friction between bodies (dimensionless).
+    pub contact_friction: f64,
+}
+
+impl Default for WorldSpec {
+    fn default() -> Self {
+        WorldSpec {
+            dt: 1e-3,
+            duration: 1.0,
+            integrator: "symplectic".into(),
+            gravity: 9.81,
+            wind: [0.0; 3],
+            wind_drag: 1.0,
+            ground: None,
+            contact_thickness: 0.005,
+            contact_friction: 0.5,
+        }
+    }
+}
+
+/// `[world.ground]`.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct GroundSpec {
+    /// Height of the plane (m).
+    pub height: f64,
+    /// Coulomb friction (dimensionless).
+    pub friction: f64,
+    /// Restitution of the normal velocity, 0..1.
+    pub restitution: f64,
+}
+
+impl Default for GroundSpec {
+    fn default() -> Self {
+        GroundSpec { height: 0.0, friction: 0.5, restitution: 0.0 }
+    }
+}
+
+/// `[[body]]`: one soft body. Exactly one of `model`, `mesh`, `obj` gives its surface.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct BodySpec {
+    /// Name used by events (`body = "…"`) and for output files; default `body1`, `body2`, ….
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// A built-in model: `sphere`, `mushroom`, `octopus`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub model: Option<String>,
+    /// An OBJ file, relative to the scene file.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mesh: Option<String>,
+    /// OBJ text inline (what the modeler writes for a shape it made).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub obj: Option<String>,
+    /// Uniform scale applied first (dimensionless).
+    pub scale: f64,
+    /// Rotation applied second.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rotate: Option<RotateSpec>,
+    /// Translation applied last (m).
+    pub translate: [f64; 3],
+    /// Move the body so its lowest point touches the ground (needs `[world.ground]`).
+    pub on_ground: bool,
+    /// Total mass (kg), split equally over the vertices before `[[body.masses]]`.
+    pub mass: f64,
+    /// Spring stiffness k (N/m).
+    pub stiffness: f64,
+    /// Spring damping cs (N·s/m).
+    pub spring_damping: f64,
+    /// Bending spring stiffness (N/m).
+    pub bending: f64,
+    /// Viscous damping c (1/s).
+    pub damping: f64,
+    /// Gas inside (absent: none).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gas: Option<GasSpec>,
+    /// Initial velocity (m/s).
+    pub velocity: [f64; 3],
+    /// Collide the body with itself.
+    pub self_collision: bool,
+    /// Regions whose vertices are pinned (fixed in space).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub pins: Vec<RegionSpec>,
+    /// Regions with their own vertex mass, applied in order.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub masses: Vec<MassSpec>,
+}
+
+impl Default for BodySpec {
+    fn default() -> Self {
+        BodySpec {
+            name: None,
+            model: None,
+            mesh: None,
+            obj: None,
+            scale: 1.0,
+            rotate: None,
+            translate: [0.0; 3],
+            on_ground: false,
+            mass: 1.0,
+            stiffness: 100.0,
+            spring_damping: 0.1,
+            bending: 0.0,
+            damping: 0.0,
+            gas: None,
+            velocity: [0.0; 3],
+            self_collision: false,
+            pins: Vec::new(),
+            masses: Vec::new(),
+        }
+    }
+}
+
+/// A rotation by `degrees` about `axis`.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RotateSpec {
+    pub axis: [f64; 3],
+    pub degrees: f64,
+}
+
+/// Gas: either `amount` (mol, with `temperature` K) or the product `nrt` (J).
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct GasSpec {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub amount: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub temperature: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub nrt: Option<f64>,
+    /// `exact`, `box` or `sphere`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub volume: Option<String>,
+}
+
+/// A set of vertices, by exactly one of: a sphere (`center`, `radius`), a box (`min`, `max`),
+/// a list of `vertices` (0-based, in the body's order), or `all = true`.
+#[derive(Debug, Clone, Default, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct RegionSpec {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub center: Option<[f64; 3]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub radius: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min: Option<[f64; 3]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max: Option<[f64; 3]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub vertices: Option<Vec<u32>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub all: Option<bool>,
+}
+
+/// `[[body.masses]]`: every vertex of `region` gets mass `mass` (kg).
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct MassSpec {
+    pub region: RegionSpec,
+    pub mass: f64,
+}
+
+/// `[[obstacle]]`: a rigid shape; `shape` picks which keys apply.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObstacleSpec {
+    /// `sphere`, `box`, `capsule` or `mesh`.
+    pub shape: String,
+    /// Sphere and box centre (m).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub center: Option<[f64; 3]>,
+    /// Sphere and capsule radius (m).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub radius: Option<f64>,
+    /// Box half extents along its axes (m).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub half_extents: Option<[f64; 3]>,
+    /// Box rotation (absent: axis-aligned).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rotate: Option<RotateSpec>,
+    /// Capsule segment ends (m).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub a: Option<[f64; 3]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub b: Option<[f64; 3]>,
+    /// Mesh obstacle: an OBJ file relative to the scene, or a built-in model.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mesh: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub model: Option<String>,
+    /// Mesh obstacle placement: uniform scale, then translation (m).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub scale: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub translate: Option<[f64; 3]>,
+    /// Coulomb friction (dimensionless), default 0.5.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub friction: Option<f64>,
+}
+
+/// `[[event]]`: at `time` (s), do `action` to `body` (default: every body). Which other keys an
+/// action takes is listed in [`super::events::ACTIONS`].
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct EventSpec {
+    pub time: f64,
+    pub action: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub body: Option<String>,
+    /// How long a force or pressure lasts (s); absent: to the end.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub duration: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub region: Option<RegionSpec>,
+    /// Total force over the region (N), shared equally by its vertices.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub force: Option<[f64; 3]>,
+    /// Pressure on the region's faces (Pa), positive pushing inward.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pressure: Option<f64>,
+    /// Gas amount (mol), temperature (K) or product nRT (J).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub amount: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub temperature: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub nrt: Option<f64>,
+    /// Wind velocity (m/s).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wind: Option<[f64; 3]>,
+    /// Rest-length factor for `inflate` (dimensionless; > 1 grows).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub factor: Option<f64>,
+    /// Vertex mass for `set_mass` (kg).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mass: Option<f64>,
+    /// `freeze` only: keep the current loads balanced (default: when gravity is on).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub under_load: Option<bool>,
+}
