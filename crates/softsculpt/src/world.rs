@@ -15,7 +15,11 @@
 //!    so momentum is conserved exactly; Coulomb friction removes up to μ J of relative tangential
 //!    velocity the same way. Corrections move the centre of mass of the pair not at all.
 //!
-//! Self-collision is not handled here (bodies do not collide with themselves).
+//! Self-collision (a body's `params.self_collision`): a vertex is also tested against its own
+//! body's faces, except the faces near it on the surface — those whose closest point was nearer
+//! than their longest edge in the rest shape (the faces around the vertex and the next ring),
+//! which touch it by construction. A fold brings together parts that were far apart at rest, so
+//! they still collide. The response is the same impulse, within one body.
 
 use crate::body::SoftBody;
 use crate::error::SimError;
@@ -31,7 +35,11 @@ pub struct World {
     hash: SpatialHash,
     centroids: Vec<f64>,
     owners: Vec<(u32, u32)>,
+    /// Each triangle's radius about its centroid (m): a cheap first test per candidate.
+    radii: Vec<f64>,
     candidates: Vec<u32>,
+    /// Every body's positions at the start of the step (flat xyz, m), for self-contact sides.
+    prev: Vec<Vec<f64>>,
 }
 
 /// Closest point on triangle (a, b, c) to p, as barycentric weights (Ericson, Real-Time
@@ -74,15 +82,23 @@ pub(crate) fn closest_barycentric(p: V3, a: V3, b: V3, c: V3) -> [f64; 3] {
 
 impl World {
     pub fn new(bodies: Vec<SoftBody>, thickness: f64) -> Self {
-        World { bodies, thickness, friction: 0.5, hash: SpatialHash::new(1.0), centroids: Vec::new(), owners: Vec::new(), candidates: Vec::new() }
+        World { bodies, thickness, friction: 0.5, hash: SpatialHash::new(1.0), centroids: Vec::new(), owners: Vec::new(), radii: Vec::new(), candidates: Vec::new(), prev: Vec::new() }
     }
 
     /// Step every body by `dt` (s), then resolve contacts between bodies.
     pub fn step(&mut self, dt: f64) -> Result<(), SimError> {
+        let selfish = self.bodies.iter().any(|b| b.params.self_collision);
+        if selfish {
+            self.prev.resize(self.bodies.len(), Vec::new());
+            for (p, b) in self.prev.iter_mut().zip(&self.bodies) {
+                p.clear();
+                p.extend_from_slice(b.positions());
+            }
+        }
         for b in &mut self.bodies {
             b.step(dt)?;
         }
-        if self.bodies.len() > 1 {
+        if self.bodies.len() > 1 || selfish {
             self.collide();
         }
         Ok(())
@@ -97,15 +113,16 @@ impl World {
         // Broad phase over triangle centroids; the cell holds the largest triangle radius.
         self.centroids.clear();
         self.owners.clear();
+        self.radii.clear();
         let mut reach: f64 = 0.0;
         for (bi, b) in self.bodies.iter().enumerate() {
             let x = b.positions();
             for (f, t) in b.triangles().iter().enumerate() {
                 let (a, bb, c) = (get(x, t[0] as usize), get(x, t[1] as usize), get(x, t[2] as usize));
                 let g = scale(add(add(a, bb), c), 1.0 / 3.0);
-                for p in [a, bb, c] {
-                    reach = reach.max(norm(sub(p, g)));
-                }
+                let r = norm(sub(a, g)).max(norm(sub(bb, g))).max(norm(sub(c, g)));
+                reach = reach.max(r);
+                self.radii.push(r);
                 self.centroids.extend_from_slice(&g);
                 self.owners.push((bi as u32, f as u32));
             }
@@ -127,11 +144,20 @@ impl World {
                 for &c in &self.candidates {
                     let (ob, f) = self.owners[c as usize];
                     let ob = ob as usize;
-                    if ob == bi {
+                    let g = get(&self.centroids, c as usize);
+                    // A vertex within the thickness of the triangle is within its radius plus the
+                    // thickness of its centroid; so is one that crossed it less deeply than the
+                    // distance from its crossing point to the rim (a crossing within one step).
+                    let r = self.radii[c as usize] + self.thickness;
+                    let d = sub(p, g);
+                    if dot(d, d) > r * r {
                         continue;
                     }
                     let other = &self.bodies[ob];
                     let t = other.triangles()[f as usize];
+                    if ob == bi && (!other.params.self_collision || t.contains(&(vi as u32))) {
+                        continue;
+                    }
                     let x = other.positions();
                     let (a, b, cc) = (get(x, t[0] as usize), get(x, t[1] as usize), get(x, t[2] as usize));
                     let nf = cross(sub(b, a), sub(cc, a));
@@ -139,21 +165,38 @@ impl World {
                     if len == 0.0 {
                         continue;
                     }
-                    let n = scale(nf, 1.0 / len);
+                    let mut n = scale(nf, 1.0 / len);
                     let w = closest_barycentric(p, a, b, cc);
                     let q = add(add(scale(a, w[0]), scale(b, w[1])), scale(cc, w[2]));
-                    let s = dot(sub(p, q), n);
+                    let mut s = dot(sub(p, q), n);
                     let lateral = norm(sub(sub(p, q), scale(n, s)));
-                    if s < self.thickness && s > -max_depth && lateral < 1e-9 + 0.5 * self.thickness.max(1e-6) {
-                        if best.as_ref().map_or(true, |bst| s < bst.4) {
-                            best = Some((ob, f as usize, w, n, s));
+                    if lateral >= 1e-9 + 0.5 * self.thickness.max(1e-6) || s.abs() >= self.thickness.max(max_depth) {
+                        continue;
+                    }
+                    if ob == bi {
+                        // Only faces away from the vertex on the surface (the checks cost two
+                        // more closest points, so they come after the cheap ones). Inside a
+                        // closed body its own skin is met from behind: the side the vertex was
+                        // on at the start of the step is the side to keep it on.
+                        if !far_at_rest(other, vi, t) {
+                            continue;
                         }
+                        let side = self_side(&self.prev[bi], vi, t);
+                        n = scale(n, side);
+                        s *= side;
+                    }
+                    if s < self.thickness && s > -max_depth && best.as_ref().map_or(true, |bst| s < bst.4) {
+                        best = Some((ob, f as usize, w, n, s));
                     }
                 }
                 if let Some((ob, f, w, n, s)) = best {
                     // Velocities respond within the thickness; positions only where a vertex
                     // went behind the face (moving them further would inject energy).
-                    self.respond(bi, vi, ob, f, w, n, (-s).max(0.0));
+                    // Within one body a steady load (its weight, a press) would otherwise close
+                    // the gap to nothing and leave the two skins coplanar, one step from
+                    // crossing: self-contacts are pushed halfway back to the thickness each step.
+                    let depth = if ob == bi { 0.5 * (self.thickness - s) } else { (-s).max(0.0) };
+                    self.respond(bi, vi, ob, f, w, n, depth);
                 }
             }
         }
@@ -191,6 +234,28 @@ impl World {
             self.bodies[ob].nudge(t[k] as usize, scale(n, -lambda * w[k] * it[k]), scale(impulse, -w[k] * it[k]));
         }
     }
+}
+
+/// +1 if vertex `v` was in front of face `t` (along its normal) in positions `x0`, else −1.
+fn self_side(x0: &[f64], v: usize, t: [u32; 3]) -> f64 {
+    let (p, a, b, c) = (get(x0, v), get(x0, t[0] as usize), get(x0, t[1] as usize), get(x0, t[2] as usize));
+    let w = closest_barycentric(p, a, b, c);
+    let q = add(add(scale(a, w[0]), scale(b, w[1])), scale(c, w[2]));
+    if dot(sub(p, q), cross(sub(b, a), sub(c, a))) >= 0.0 { 1.0 } else { -1.0 }
+}
+
+/// Whether vertex `v` was at least the face's longest edge away from face `t` in the rest shape
+/// (so it is not one of the faces around it).
+fn far_at_rest(b: &SoftBody, v: usize, t: [u32; 3]) -> bool {
+    if t.contains(&(v as u32)) {
+        return false;
+    }
+    let x = b.frozen_positions();
+    let (p, a, bb, c) = (get(x, v), get(x, t[0] as usize), get(x, t[1] as usize), get(x, t[2] as usize));
+    let w = closest_barycentric(p, a, bb, c);
+    let q = add(add(scale(a, w[0]), scale(bb, w[1])), scale(c, w[2]));
+    let longest = norm(sub(bb, a)).max(norm(sub(c, bb))).max(norm(sub(a, c)));
+    norm(sub(p, q)) >= longest
 }
 
 fn inv_mass(b: &SoftBody, i: usize) -> f64 {

@@ -1,0 +1,221 @@
+//! The scenes in `scenes/` reproduce the paper's figures; each test plays one and checks the
+//! effect the figure shows, numerically.
+
+use softsculpt::scene::SceneRun;
+use softsculpt::SoftBody;
+use std::path::PathBuf;
+
+fn scenes_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../scenes")
+}
+
+fn text(name: &str) -> String {
+    std::fs::read_to_string(scenes_dir().join(name)).unwrap()
+}
+
+fn load(text: &str) -> SceneRun {
+    let dir = scenes_dir();
+    let mut resolve = |p: &str| std::fs::read(dir.join(p)).map_err(|e| e.to_string());
+    SceneRun::load(text, &mut resolve).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Step until the scene's clock reaches `t` (s).
+fn run_to(s: &mut SceneRun, t: f64) {
+    while s.time() < t - 0.5 * s.dt && !s.finished() {
+        s.step().unwrap();
+    }
+}
+
+fn extent(b: &SoftBody, axis: usize) -> (f64, f64) {
+    let x = b.positions();
+    (0..b.vertex_count()).map(|i| x[3 * i + axis]).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)))
+}
+
+fn width(b: &SoftBody) -> f64 {
+    let (lo, hi) = extent(b, 0);
+    hi - lo
+}
+
+fn height(b: &SoftBody) -> f64 {
+    let (lo, hi) = extent(b, 1);
+    hi - lo
+}
+
+#[test]
+fn every_shipped_scene_loads() {
+    for e in std::fs::read_dir(scenes_dir()).unwrap() {
+        let p = e.unwrap().path();
+        if p.extension().is_some_and(|x| x == "toml") {
+            let t = std::fs::read_to_string(&p).unwrap();
+            let s = load(&t);
+            assert!(s.total_steps() > 0, "{}", p.display());
+        }
+    }
+}
+
+#[test]
+fn fig2_more_gas_inflates_the_mushroom() {
+    let mut s = load(&text("fig2_mushroom_gas.toml"));
+    run_to(&mut s, 1.5);
+    let b = &s.world.bodies[0];
+    let (v0, h0) = (b.exact_volume(), height(b));
+    run_to(&mut s, 4.0);
+    let b = &s.world.bodies[0];
+    let (v1, h1) = (b.exact_volume(), height(b));
+    eprintln!("fig2: V {v0} -> {v1}, h {h0} -> {h1}");
+    // Five times the gas at fixed T: P = nRT/V rises until the stretched springs balance it.
+    // Measured: +25 % volume, +12 % height; the bounds leave room for tuning, not for no effect.
+    assert!(v1 > 1.15 * v0, "volume {v0} -> {v1}");
+    assert!(h1 > 1.05 * h0, "height {h0} -> {h1}");
+    // Pinned foot: it stays rooted.
+    assert!(extent(b, 1).0.abs() < 1e-9);
+}
+
+fn top_region_mean_y(b: &SoftBody, vertices: &[usize]) -> f64 {
+    vertices.iter().map(|&i| b.positions()[3 * i + 1]).sum::<f64>() / vertices.len() as f64
+}
+
+#[test]
+fn fig3_the_dropped_sphere_rests_flattened_by_gravity_and_gas() {
+    let t = text("fig3_sphere_drop.toml");
+    let mut s = load(&t);
+    run_to(&mut s, 6.0);
+    let b = &s.world.bodies[0];
+    let (lo, _) = extent(b, 1);
+    let flat = height(b) / width(b);
+    let ke = b.stats().kinetic_energy;
+    // Twice the gas: stiffer, less flattened.
+    let mut s2 = load(&t.replace("gas = { nrt = 60.0 }", "gas = { nrt = 120.0 }"));
+    run_to(&mut s2, 6.0);
+    let flat2 = height(&s2.world.bodies[0]) / width(&s2.world.bodies[0]);
+    eprintln!("fig3: lowest {lo}, h/w {flat} (twice the gas: {flat2}), KE {ke}");
+    // Nothing below the ground (the contact stage projects every vertex onto y ≥ 0 exactly).
+    assert!(lo >= -1e-12, "lowest point {lo}");
+    // At rest: 6 s with c = 1 1/s damps the bounce by e⁻⁶; measured 0.004 J of 14 J dropped.
+    assert!(ke < 0.02, "kinetic energy {ke} J");
+    // Flattened by its weight (a free sphere has h/w = 1; measured 0.90) and less so with more
+    // gas (measured 0.93): the pressure, not the springs alone, carries the weight.
+    assert!(flat < 0.95, "h/w {flat}");
+    assert!(flat2 > flat + 0.01, "more gas: h/w {flat2} vs {flat}");
+}
+
+#[test]
+fn fig4a_a_frozen_dent_stays_and_a_second_press_adds_another() {
+    let t = text("fig4a_mushroom_press_wind.toml");
+    let measure = |text: &str| {
+        let mut s = load(text);
+        let front: Vec<usize> = region(&s.world.bodies[0], [0.0, 1.5, 0.9], 0.45);
+        let back: Vec<usize> = region(&s.world.bodies[0], [0.0, 1.5, -0.9], 0.45);
+        let z0 = mean_z(&s.world.bodies[0], &front);
+        run_to(&mut s, 1.5);
+        let dent = z0 - mean_z(&s.world.bodies[0], &front);
+        run_to(&mut s, 2.0);
+        let kept = z0 - mean_z(&s.world.bodies[0], &front);
+        let zb0 = mean_z(&s.world.bodies[0], &back);
+        run_to(&mut s, 3.0);
+        let back_dent = mean_z(&s.world.bodies[0], &back) - zb0;
+        run_to(&mut s, 4.0);
+        let b = &s.world.bodies[0];
+        (dent, kept, back_dent, z0 - mean_z(b, &front), mean_z(b, &back) - zb0)
+    };
+    let with = measure(&t);
+    // The same scene with the freeze replaced by a no-op.
+    let without = measure(&t.replace("action = \"freeze\"", "action = \"set_wind\"\nwind = [0.0, 0.0, 0.0]"));
+    eprintln!("fig4a: with freeze {with:?}; without {without:?}");
+    let (dent, kept, back, front_end, _) = with;
+    // The press makes a dent (measured 6 cm).
+    assert!(dent > 0.03, "dent {dent}");
+    // Frozen, the dent stays after the press ends (the gas top-up pushes it out a little);
+    // without the freeze it springs back.
+    assert!(kept > 0.8 * dent, "kept {kept} of {dent}");
+    assert!(without.1.abs() < 0.3 * dent, "unfrozen dent {} should spring back", without.1);
+    // The second press dents the back (measured 11 cm) and the first dent survives it.
+    assert!(back > 0.05, "back dent {back}");
+    assert!(front_end > 0.5 * dent, "front dent at the end {front_end}");
+}
+
+fn region(b: &SoftBody, c: [f64; 3], r: f64) -> Vec<usize> {
+    let x = b.positions();
+    (0..b.vertex_count()).filter(|&i| (0..3).map(|d| (x[3 * i + d] - c[d]).powi(2)).sum::<f64>() <= r * r).collect()
+}
+
+fn mean_z(b: &SoftBody, v: &[usize]) -> f64 {
+    v.iter().map(|&i| b.positions()[3 * i + 2]).sum::<f64>() / v.len() as f64
+}
+
+#[test]
+fn fig4b_a_push_on_top_flattens_the_sphere_and_it_springs_back() {
+    let mut s = load(&text("fig4b_sphere_push.toml"));
+    let top = region(&s.world.bodies[0], [0.0, 2.0, 0.0], 0.35);
+    run_to(&mut s, 1.0);
+    let y_rest = top_region_mean_y(&s.world.bodies[0], &top);
+    run_to(&mut s, 3.0);
+    let y_pushed = top_region_mean_y(&s.world.bodies[0], &top);
+    run_to(&mut s, 5.0);
+    let y_after = top_region_mean_y(&s.world.bodies[0], &top);
+    eprintln!("fig4b: top {y_rest} -> {y_pushed} -> {y_after}");
+    // 10 N on the top of a 1 kg balloon flattens it by a large fraction of its radius (measured
+    // 0.40 m); released, it springs back to within 5 cm (measured 2 cm: still settling).
+    assert!(y_rest - y_pushed > 0.2, "pushed {y_rest} -> {y_pushed}");
+    assert!((y_after - y_rest).abs() < 0.05, "back to {y_after} from {y_rest}");
+}
+
+#[test]
+fn fig6_less_gas_shrinks_the_octopus_head() {
+    let mut s = load(&text("fig6_octopus_less_gas.toml"));
+    let head = region(&s.world.bodies[0], [0.0, 1.3, 0.0], 0.5);
+    run_to(&mut s, 1.5);
+    let b = &s.world.bodies[0];
+    let (v0, h0, top0) = (b.exact_volume(), head_width(b, &head), extent(b, 1).1);
+    run_to(&mut s, 4.0);
+    let b = &s.world.bodies[0];
+    let (v1, h1, top1) = (b.exact_volume(), head_width(b, &head), extent(b, 1).1);
+    eprintln!("fig6: V {v0} -> {v1}, head width {h0} -> {h1}, top {top0} -> {top1}, KE {}", b.stats().kinetic_energy);
+    // A tenth of the gas: the volume drops (measured −10 %) and the head sinks (measured
+    // 0.21 m) and narrows; the body has settled.
+    assert!(v1 < 0.95 * v0, "volume {v0} -> {v1}");
+    assert!(top0 - top1 > 0.1, "head top {top0} -> {top1}");
+    assert!(h1 < h0, "head width {h0} -> {h1}");
+    assert!(b.stats().kinetic_energy < 0.01);
+}
+
+fn head_width(b: &SoftBody, v: &[usize]) -> f64 {
+    let x = b.positions();
+    let (lo, hi) = v.iter().map(|&i| x[3 * i]).fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), a| (l.min(a), h.max(a)));
+    hi - lo
+}
+
+/// Mean displacement (m) of `set` from `x0`, less the body's centre-of-mass displacement.
+fn local_motion(b: &SoftBody, x0: &[f64], set: &[usize]) -> f64 {
+    let (x, m) = (b.positions(), b.masses());
+    let mt: f64 = m.iter().sum();
+    let com = |x: &[f64]| (0..3).map(|d| (0..m.len()).map(|i| m[i] * x[3 * i + d]).sum::<f64>() / mt).collect::<Vec<_>>();
+    let (c0, c1) = (com(x0), com(x));
+    let mean = |x: &[f64], c: &[f64]| (0..3).map(|d| set.iter().map(|&i| x[3 * i + d] - c[d]).sum::<f64>() / set.len() as f64).collect::<Vec<_>>();
+    let (a, b) = (mean(x0, &c0), mean(x, &c1));
+    (0..3).map(|d| (b[d] - a[d]).powi(2)).sum::<f64>().sqrt()
+}
+
+#[test]
+fn fig7_only_the_light_parts_deform_much() {
+    let t = text("fig7_local_deformation.toml");
+    let measure = |text: &str| {
+        let mut s = load(text);
+        let x0 = s.world.bodies[0].positions().to_vec();
+        let tip = region(&s.world.bodies[0], [0.95, -0.4, -0.18], 0.25);
+        let head = region(&s.world.bodies[0], [0.0, 1.78, 0.0], 0.25);
+        run_to(&mut s, 0.4);
+        let b = &s.world.bodies[0];
+        (local_motion(b, &x0, &tip), local_motion(b, &x0, &head))
+    };
+    let (tip, head) = measure(&t);
+    // The same scene unpainted (every vertex 0.01 kg): the same two pushes.
+    let (tip_u, head_u) = measure(&t.replace("mass = 0.0005 }", "mass = 0.01 }"));
+    eprintln!("fig7: painted tip {tip} head {head}; unpainted tip {tip_u} head {head_u}");
+    // Same push: the light tip moves far more than the heavy head (measured 28×), and about
+    // twice as far as the same tip unpainted (measured 2.1×), while the head barely changes.
+    assert!(tip > 10.0 * head, "tip {tip} vs head {head}");
+    assert!(tip > 1.5 * tip_u, "painted tip {tip} vs unpainted {tip_u}");
+    assert!((head - head_u).abs() < 0.5 * head_u, "head {head} vs unpainted {head_u}");
+}
+
