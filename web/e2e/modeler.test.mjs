@@ -169,7 +169,7 @@ test('importing an OBJ changes the model; garbage shows the error and keeps the 
   const dir = tmpdir();
   writeFileSync(join(dir, 'cube.obj'), CUBE);
   writeFileSync(join(dir, 'garbage.obj'), 'this is not a mesh\n\u0001\u0002');
-  const input = page.locator('input[type=file][accept*=".obj"]');
+  const input = page.locator('input[data-picker=import]');
   await input.setInputFiles(join(dir, 'garbage.obj'));
   await page.waitForFunction(() => /could not import/.test(window.softsculpt.lastMessage()));
   assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /garbage\.obj.*(line 1|not a text)/);

@@ -1,4 +1,5 @@
-// The modeler: one body, the view, the tools, undo, autosave, and the frame loop.
+// The modeler: one body (or a scene's bodies, the first one active), the view, the tools, undo,
+// autosave, and the frame loop.
 //
 // A frame: the active tool updates its forces, the simulation runs its steps within a time
 // budget (if it cannot keep up it runs in slow motion and says so), then the view reads the
@@ -6,6 +7,7 @@
 
 import { Vector3 } from 'three';
 import { SoftBody } from './engine/softbody';
+import { Scene } from './engine/scene';
 import { EDITABLE, type ParamName } from './engine/params';
 import { History, travel } from './history';
 import { capture, parse, restore, serialize, type BodyState } from './project';
@@ -22,7 +24,18 @@ import { importModel } from './io/import';
 import { download, exportShape, type ExportFormat } from './io/export';
 import { loadAutosave, saveAutosave } from './storage';
 
-type Entry = { kind: 'body'; state: BodyState; settings: Settings } | { kind: 'params'; params: Partial<Record<ParamName, number>> };
+type Entry =
+  | { kind: 'body'; state: BodyState; settings: Settings }
+  | { kind: 'params'; params: Partial<Record<ParamName, number>> }
+  // Undo of opening a scene: back to the body before it; its inverse opens the scene again.
+  | { kind: 'before-scene'; state: BodyState; settings: Settings }
+  | { kind: 'reopen-scene'; source: SceneSource };
+
+/** What a scene was opened from, to restart it. */
+interface SceneSource { name: string; text: string; files: Map<string, Uint8Array> }
+
+/** Parameters of the world rather than of one body: a scene's bodies share them. */
+const WORLD_PARAMS: ParamName[] = ['gravity', 'windX', 'windY', 'windZ', 'windDrag', 'groundOn', 'groundHeight', 'friction', 'integrator'];
 
 export interface Settings {
   /** Time step (s). */
@@ -63,6 +76,9 @@ export class App implements ToolContext {
   private saveTimer = 0;
   private listeners: (() => void)[] = [];
   private lastMessage = '';
+  /** The open scene (its first body is the active body), if any. */
+  private scene: Scene | null = null;
+  private sceneSource: SceneSource | null = null;
 
   constructor(canvas: HTMLCanvasElement, plotCanvas: HTMLCanvasElement, hudRoot: HTMLElement, helpText: string) {
     this.viewport = new Viewport(canvas);
@@ -83,6 +99,10 @@ export class App implements ToolContext {
   private setBody(body: SoftBody): void {
     const old = this.current;
     this.current = body;
+    if (this.scene && this.scene.bodies[0] !== body) {
+      const note = this.scene.replaceBody(0, body);
+      if (note) this.message(note, 'warn');
+    }
     if (old && old !== body) old.free();
     this.viewport.attach(body);
     this.viewport.update(body);
@@ -111,6 +131,7 @@ export class App implements ToolContext {
   loadBuiltin(name: ModelName, undoable = true): void {
     this.edit(`load ${name}`, undoable, () => {
       const body = loadModel(name);
+      this.closeScene();
       const { dt } = defaultSettings(body);
       this.settings.dt = dt;
       this.settings.substeps = Math.max(1, Math.round(1 / 60 / dt));
@@ -131,6 +152,7 @@ export class App implements ToolContext {
       body.free();
       body = placedBody;
       this.edit(`import ${name}`, true, () => {
+        this.closeScene();
         const { dt } = defaultSettings(body);
         this.settings.dt = dt;
         this.settings.substeps = Math.max(1, Math.round(1 / 60 / dt));
@@ -184,6 +206,7 @@ export class App implements ToolContext {
       return false;
     }
     this.history.push(`set ${name}`, { kind: 'params', params: before });
+    this.shareWorld([name]);
     this.syncScene();
     this.changed();
     this.autosave();
@@ -197,8 +220,21 @@ export class App implements ToolContext {
         now[k] = this.current.get(k);
         this.current.set(k, v);
       }
+      this.shareWorld(Object.keys(entry.params) as ParamName[]);
       this.syncScene();
       return { kind: 'params', params: now };
+    }
+    if (entry.kind === 'before-scene') {
+      const source = this.sceneSource;
+      this.closeScene();
+      Object.assign(this.settings, entry.settings);
+      this.setBody(restore(entry.state));
+      return { kind: 'reopen-scene', source: source! };
+    }
+    if (entry.kind === 'reopen-scene') {
+      const now: Entry = { kind: 'before-scene', state: capture(this.current), settings: { ...this.settings } };
+      this.enterScene(Scene.open(entry.source.text, entry.source.files), entry.source);
+      return now;
     }
     const now: Entry = { kind: 'body', state: capture(this.current), settings: { ...this.settings } };
     Object.assign(this.settings, entry.settings);
@@ -234,6 +270,10 @@ export class App implements ToolContext {
     if (this.current.vertexCount > 200_000) { this.message('the mesh is already very fine; not subdividing', 'warn'); return; }
     this.edit('subdivide', true, () => {
       this.current.subdivide();
+      if (this.scene) {
+        const note = this.scene.replaceBody(0, this.current);
+        if (note) this.message(note, 'warn');
+      }
       this.settings.dt = Math.min(this.settings.dt, stableDt(this.current));
       this.settings.substeps = Math.max(1, Math.round(1 / 60 / this.settings.dt));
       this.setBody(this.current);
@@ -247,15 +287,96 @@ export class App implements ToolContext {
       this.current.set('windX', d.x * strength);
       this.current.set('windY', d.y * strength);
       this.current.set('windZ', d.z * strength);
+      this.shareWorld(['windX', 'windY', 'windZ']);
     });
     this.syncScene();
   }
 
   step(): void {
     try {
-      this.current.step(this.settings.dt, this.settings.substeps);
+      this.advance(this.settings.dt, this.settings.substeps);
+      this.viewport.extras.update();
     } catch (e) {
       this.blowUp(e);
+    }
+  }
+
+  /** `n` steps of `dt`: the whole scene (contacts, events) if one is open, else the body. */
+  private advance(dt: number, n: number): void {
+    if (this.scene) this.scene.step(dt, n);
+    else this.current.step(dt, n);
+  }
+
+  // ----- scenes ---------------------------------------------------------------------------------
+
+  /** Open a scene file (with the mesh files it names); undoable. False if it could not be read. */
+  openScene(name: string, text: string, files: Map<string, Uint8Array> = new Map()): boolean {
+    let scene: Scene;
+    try {
+      scene = Scene.open(text, files);
+    } catch (e) {
+      this.message(`could not open ${name}: ${errorText(e).replace(/^scene: /, '')} — the current model is unchanged`, 'error');
+      return false;
+    }
+    const before: Entry = { kind: 'before-scene', state: capture(this.current), settings: { ...this.settings } };
+    this.enterScene(scene, { name, text, files });
+    this.history.push(`open ${name}`, before);
+    this.message(`opened scene ${name}: ${scene.bodies.length} ${scene.bodies.length === 1 ? 'body' : 'bodies'}, ${scene.duration} s of events — play to run it`);
+    this.changed();
+    this.autosave();
+    return true;
+  }
+
+  private enterScene(scene: Scene, source: SceneSource): void {
+    this.closeScene();
+    this.settings.dt = scene.dt;
+    this.settings.substeps = Math.max(1, Math.round(1 / 60 / scene.dt));
+    this.settings.model = source.name;
+    this.scene = scene;
+    this.sceneSource = source;
+    this.setBody(scene.bodies[0]);
+    this.viewport.extras.setBodies(scene.bodies.slice(1));
+    this.viewport.extras.setObstacles(scene.obstacles());
+  }
+
+  /** Play the open scene again from its start (undoable like opening it). */
+  restartScene(): void {
+    if (!this.sceneSource) { this.message('no scene is open (Files › Open scene…)', 'warn'); return; }
+    const s = this.sceneSource;
+    this.openScene(s.name, s.text, s.files);
+  }
+
+  /** Download the open scene (or the body alone) as a scene file, the shapes as they are now. */
+  saveScene(): void {
+    try {
+      const bodies = this.scene ? this.scene.bodies : [this.current];
+      const text = Scene.save(bodies, this.settings.dt, this.scene?.duration ?? 10, this.scene);
+      download(new Blob([text], { type: 'application/toml' }), `${baseName(this.settings.model)}.toml`);
+      this.message('saved the scene: the shapes as they are now, opening at rest');
+    } catch (e) {
+      this.message(`could not save the scene: ${errorText(e)}`, 'error');
+    }
+  }
+
+  get sceneInfo(): { name: string; time: number; duration: number; bodies: number } | null {
+    return this.scene && this.sceneSource ? { name: this.sceneSource.name, time: this.scene.time, duration: this.scene.duration, bodies: this.scene.bodies.length } : null;
+  }
+
+  /** Leave the scene: its other bodies go; the active body stays (until replaced). */
+  private closeScene(): void {
+    if (!this.scene) return;
+    for (const b of this.scene.bodies.slice(1)) b.free();
+    this.scene.free();
+    this.scene = null;
+    this.sceneSource = null;
+    this.viewport.extras.clear();
+  }
+
+  /** Give a scene's other bodies the active body's value of each world parameter in `names`. */
+  private shareWorld(names: ParamName[]): void {
+    if (!this.scene) return;
+    for (const name of names.filter((n) => WORLD_PARAMS.includes(n))) {
+      for (const b of this.scene.bodies) if (b !== this.current) b.set(name, this.current.get(name));
     }
   }
 
@@ -292,6 +413,7 @@ export class App implements ToolContext {
       this.settings.model = p.name;
       if (ui.brush && typeof ui.brush.radius === 'number') this.brush.radius = ui.brush.radius;
       for (const t of this.tools.tools) if (typeof ui.strengths?.[t.name] === 'number') t.strength = ui.strengths[t.name];
+      this.closeScene();
       this.setBody(body);
       if (ui.tool) this.tools.select(ui.tool);
     });
@@ -345,7 +467,7 @@ export class App implements ToolContext {
           // Chunks of about 2 ms, so the budget is checked often enough on any mesh.
           const n = Math.min(substeps - done, Math.max(1, Math.floor(2 / this.stepCostMs)));
           const c0 = performance.now();
-          body.step(dt, n);
+          this.advance(dt, n);
           this.stepCostMs = 0.8 * this.stepCostMs + 0.2 * Math.max(1e-4, (performance.now() - c0) / n);
           done += n;
           if (performance.now() - t0 > frameBudget(elapsed)) break;
@@ -357,6 +479,7 @@ export class App implements ToolContext {
     this.simMs = performance.now() - t0;
     this.slowMotion = this.settings.playing && done < substeps;
     this.viewport.update(body);
+    this.viewport.extras.update();
     if (this.tools.tool.overlay && this.tools.isDragging) this.refreshOverlay();
     const s = body.stats();
     this.plots.push(s.time, [s.volume, s.pressure, s.kinetic, s.elastic, s.gas]);
@@ -366,6 +489,7 @@ export class App implements ToolContext {
       `${this.hud.fps.toFixed(0)} fps   sim ${this.simMs.toFixed(1)} ms/frame${this.slowMotion ? `   SLOW MOTION (${((done / substeps) * 100).toFixed(0)}% of real time)` : ''}${this.settings.playing ? '' : '   PAUSED'}`,
       `${body.vertexCount} vertices   ${body.springCount} springs   ${body.faceCount} faces   tool: ${this.tools.tool.label}`,
       `t ${s.time.toFixed(2)} s   V ${s.volume.toFixed(4)} m³   P ${s.pressure.toFixed(2)} Pa   max speed ${s.maxSpeed.toFixed(3)} m/s`,
+      ...(this.scene ? [`scene ${this.settings.model}: ${this.scene.bodies.length} ${this.scene.bodies.length === 1 ? 'body' : 'bodies'}   t ${this.scene.time.toFixed(2)} of ${this.scene.duration} s${this.scene.time >= this.scene.duration ? ' (events done)' : ''}`] : []),
     ]);
     this.viewport.render();
   }

@@ -16,6 +16,7 @@ export function inspector(app: App) {
     stats: () => app.body().stats(),
     param: (name: string) => app.body().get(name as never),
     tool: () => app.tools.tool.name,
+    scene: () => app.sceneInfo,
     playing: () => app.settings.playing,
     settings: () => ({ ...app.settings }),
     history: () => app.history.sizes,

@@ -23,21 +23,37 @@ const HELP = `<h2>SoftSculpt</h2>
 <tr><td>X / V</td><td>Springs wireframe / reset view</td></tr>
 <tr><td>Ctrl+Z / Ctrl+Shift+Z</td><td>Undo / redo</td></tr>
 <tr><td>Ctrl+S / Ctrl+O / Ctrl+I / E</td><td>Save project / open project / import / export OBJ</td></tr>
+<tr><td>Files › Open scene…</td><td>A scene file (.toml) with its mesh files: bodies, obstacles, timed events (or drop them on the page)</td></tr>
 <tr><td>?</td><td>This help</td></tr>
 </table><p>Your work is saved in this browser after every operation and restored on reload.</p>`;
 
-function picker(accept: string, onFile: (f: File) => void): () => void {
+function picker(name: string, accept: string, onFile: (f: File) => void): () => void {
+  return multiPicker(name, accept, false, (fs) => onFile(fs[0]));
+}
+
+function multiPicker(name: string, accept: string, multiple: boolean, onFiles: (f: File[]) => void): () => void {
   const input = document.createElement('input');
   input.type = 'file';
   input.accept = accept;
+  input.multiple = multiple;
+  input.dataset.picker = name;
   input.style.display = 'none';
   document.body.appendChild(input);
   input.addEventListener('change', () => {
-    const f = input.files?.[0];
-    if (f) onFile(f);
+    const fs = Array.from(input.files ?? []);
+    if (fs.length > 0) onFiles(fs);
     input.value = '';
   });
   return () => input.click();
+}
+
+/** A scene file among `files` opened with the others as the mesh files it may name. */
+async function openSceneFiles(app: App, files: File[]): Promise<void> {
+  const scene = files.find((f) => f.name.endsWith('.toml'));
+  if (!scene) { app.message('choose a scene file (.toml), with the mesh files it names', 'warn'); return; }
+  const meshes = new Map<string, Uint8Array>();
+  for (const f of files) if (f !== scene) meshes.set(f.name, new Uint8Array(await f.arrayBuffer()));
+  app.openScene(scene.name, await scene.text(), meshes);
 }
 
 async function main(): Promise<void> {
@@ -58,9 +74,10 @@ async function main(): Promise<void> {
   await app.start();
   status.remove();
 
-  const importFile = picker(IMPORT_EXTENSIONS.join(','), async (f) => app.importFile(f.name, await f.arrayBuffer()));
-  const openProject = picker('.json,.softsculpt.json', async (f) => app.openProjectFile(f.name, await f.text()));
-  const gui = buildPanel(app, { importFile, openProject });
+  const importFile = picker('import', IMPORT_EXTENSIONS.join(','), async (f) => app.importFile(f.name, await f.arrayBuffer()));
+  const openProject = picker('project', '.json,.softsculpt.json', async (f) => app.openProjectFile(f.name, await f.text()));
+  const openScene = multiPicker('scene', '.toml,.obj', true, (fs) => void openSceneFiles(app, fs));
+  const gui = buildPanel(app, { importFile, openProject, openScene });
   gui.domElement.id = 'panel';
 
   window.addEventListener('keydown', (ev) => {
@@ -96,13 +113,15 @@ async function main(): Promise<void> {
     gui.controllersRecursive().forEach((c) => c.updateDisplay());
   });
 
-  // Drag and drop: model files import, project files open.
+  // Drag and drop: model files import, project files open, a scene file (with its meshes) opens.
   window.addEventListener('dragover', (ev) => { ev.preventDefault(); document.body.classList.add('dropping'); });
   window.addEventListener('dragleave', () => document.body.classList.remove('dropping'));
   window.addEventListener('drop', async (ev) => {
     ev.preventDefault();
     document.body.classList.remove('dropping');
-    const f = ev.dataTransfer?.files?.[0];
+    const all = Array.from(ev.dataTransfer?.files ?? []);
+    if (all.some((x) => x.name.endsWith('.toml'))) { await openSceneFiles(app, all); return; }
+    const f = all[0];
     if (!f) return;
     if (f.name.endsWith('.json')) await app.openProjectFile(f.name, await f.text());
     else await app.importFile(f.name, await f.arrayBuffer());

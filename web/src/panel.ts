@@ -10,6 +10,8 @@ import { fmt } from './view/plots';
 export interface PanelActions {
   importFile(): void;
   openProject(): void;
+  /** Pick a scene file (.toml) and the mesh files it names. */
+  openScene(): void;
 }
 
 export function buildPanel(app: App, actions: PanelActions): GUI {
@@ -61,10 +63,15 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   tip(files.add({ f: () => app.export('glb') }, 'f').name('Export GLB'), 'Download the current shape as glTF binary');
   tip(files.add({ f: () => app.saveProject() }, 'f').name('Save project (Ctrl+S)'), 'Download a project file: mesh, rest lengths, masses, pins, every parameter');
   tip(files.add({ f: () => actions.openProject() }, 'f').name('Open project (Ctrl+O)'), 'Open a saved project file');
+  tip(files.add({ f: () => actions.openScene() }, 'f').name('Open scene…'),
+    'Open a scene file (.toml: bodies, obstacles, timed events; see docs/scenes.md). Select the mesh files it names together with it');
+  tip(files.add({ f: () => app.saveScene() }, 'f').name('Save scene'),
+    'Download the bodies as a scene file (.toml), their shapes as they are now; an open scene keeps its obstacles and events');
 
   const sim = gui.addFolder('Simulation');
   tip(sim.add(app.settings, 'playing').name('play (Space)').onChange(() => app.autosave()), 'Play / pause the simulation (Space)');
   tip(sim.add({ f: () => app.step() }, 'f').name('single step (.)'), 'Advance one frame of steps while paused (.)');
+  tip(sim.add({ f: () => app.restartScene() }, 'f').name('restart scene'), 'Play the open scene again from its start');
   const integ = sim.add(p, 'integrator', Object.fromEntries(INTEGRATORS.map((n, i) => [n, i]))).name('integrator');
   integ.onChange((v: number) => app.setParam('integrator', Number(v)));
   tip(integ, 'euler (order 1), midpoint (2), rk4 (4), symplectic Euler (1, energy-stable; default)');
@@ -75,6 +82,9 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   param(sim, 'springDamping', 'spring damping (N·s/m)', 'Damping along each spring, N·s/m: calms vibrations', 0, 5);
   param(sim, 'bendingStiffness', 'bending k_b (N/m)', 'Stiffness of the bending springs across every edge, N/m: resists folding (0 = a pure balloon)', 0, 5000);
   param(sim, 'damping', 'damping c (1/s)', 'Viscous damping rate, 1/s: velocities decay as e^(−ct)', 0, 20);
+  const selfHit = { on: p.selfCollision !== 0 };
+  tip(sim.add(selfHit, 'on').name('self-collision').onChange((v: boolean) => app.setParam('selfCollision', v ? 1 : 0)),
+    'Keep the surface from passing through itself (a crushed or folded body); costs time, off by default');
   const mass = { total: app.body().masses().reduce((a, b) => a + b, 0) };
   tip(sim.add(mass, 'total', 0.01, 100).name('total mass (kg)').onFinishChange((v: number) => app.edit('set mass', true, () => app.body().set('totalMass', v))),
     'Total mass in kg, split equally over the vertices (resets painted masses)');
@@ -117,6 +127,7 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   function refresh(): void {
     Object.assign(p, app.params());
     ground.on = p.groundOn !== 0;
+    selfHit.on = p.selfCollision !== 0;
     gravity.on = p.gravity !== 0;
     if (p.gravity !== 0) gravity.last = p.gravity;
     if (view.tool !== app.tools.tool.name) showStrength();

@@ -10,6 +10,7 @@
 //! Every fallible call returns a status (0 = ok, 1 = failed) or a handle (0 = failed); the
 //! message is then in `ss_message_ptr`/`ss_message_len`. Nothing here panics on bad input.
 
+mod scene;
 mod table;
 
 use softsculpt::body::{GasReference, Ground, Integrator, Params, SoftBody, VolumeMode};
@@ -46,7 +47,7 @@ pub extern "C" fn ss_message_len() -> usize {
     table::message_len()
 }
 
-unsafe fn bytes<'a>(ptr: *const u8, len: usize) -> &'a [u8] {
+pub(crate) unsafe fn bytes<'a>(ptr: *const u8, len: usize) -> &'a [u8] {
     if len == 0 || ptr.is_null() {
         &[]
     } else {
@@ -274,6 +275,7 @@ pub mod param {
     pub const FROZEN_AMBIENT_PRESSURE: u32 = 18; // Pa (read only)
     pub const FROZEN_REFERENCE_VOLUME: u32 = 19; // m³ (read only)
     pub const BENDING_STIFFNESS: u32 = 20; // N/m
+    pub const SELF_COLLISION: u32 = 21; // 0/1 (acts in a scene's world)
 }
 
 const INTEGRATORS: [Integrator; 4] = [Integrator::Euler, Integrator::Midpoint, Integrator::Rk4, Integrator::Symplectic];
@@ -306,6 +308,7 @@ pub extern "C" fn ss_get(h: u32, id: u32) -> f64 {
             param::FROZEN_AMBIENT_PRESSURE => e.body.frozen_gas_reference().ambient_pressure,
             param::FROZEN_REFERENCE_VOLUME => e.body.frozen_gas_reference().reference_volume,
             param::BENDING_STIFFNESS => p.bending_stiffness,
+            param::SELF_COLLISION => p.self_collision as u8 as f64,
             _ => f64::NAN,
         }
     })
@@ -321,6 +324,7 @@ pub extern "C" fn ss_set(h: u32, id: u32, value: f64) -> u32 {
             param::STIFFNESS => p.stiffness = value,
             param::SPRING_DAMPING => p.spring_damping = value,
             param::BENDING_STIFFNESS => p.bending_stiffness = value,
+            param::SELF_COLLISION => p.self_collision = value != 0.0,
             param::DAMPING => p.damping = value,
             param::GRAVITY => p.gravity = value,
             param::GAS_AMOUNT => return e.body.set_gas(value, p.temperature).map_err(|e| e.to_string()),
@@ -371,7 +375,7 @@ pub extern "C" fn ss_step(h: u32, dt: f64, substeps: u32) -> u32 {
     table::status(h, |e| {
         e.checkpoint();
         for _ in 0..substeps {
-            if let Err(err) = e.body.step(dt) {
+            if let Err(err) = e.step(dt) {
                 e.rollback();
                 return Err(format!("{err} — rolled back to the last good state"));
             }

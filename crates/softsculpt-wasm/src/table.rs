@@ -19,6 +19,9 @@ pub struct Entry {
     pub ground: Ground,
     backup_x: Vec<f64>,
     backup_v: Vec<f64>,
+    /// A one-body world for self-collision, made when first needed (it holds a stand-in body
+    /// between steps; the real one is swapped in to step).
+    world: Option<softsculpt::world::World>,
 }
 
 impl Entry {
@@ -39,6 +42,7 @@ impl Entry {
             ground: body.params.ground.unwrap_or(crate::default_ground()),
             backup_x: body.positions().to_vec(),
             backup_v: body.velocities().to_vec(),
+            world: None,
             body,
         };
         e.sync();
@@ -53,6 +57,22 @@ impl Entry {
         self.backup_x.copy_from_slice(self.body.positions());
         self.backup_v.copy_from_slice(self.body.velocities());
     }
+    /// One step of `dt` s: alone, or in a one-body world when the body collides with itself.
+    /// The contact thickness there is a fifth of the mean rest edge length.
+    pub fn step(&mut self, dt: f64) -> Result<(), softsculpt::SimError> {
+        if !self.body.params.self_collision {
+            return self.body.step(dt);
+        }
+        let rest = self.body.rest_lengths();
+        let thickness = 0.2 * rest.iter().sum::<f64>() / rest.len().max(1) as f64;
+        let world = self.world.get_or_insert_with(|| softsculpt::world::World::new(vec![self.body.clone()], thickness));
+        world.thickness = thickness;
+        std::mem::swap(&mut self.body, &mut world.bodies[0]);
+        let r = world.step(dt);
+        std::mem::swap(&mut self.body, &mut world.bodies[0]);
+        r
+    }
+
     pub fn rollback(&mut self) {
         // The backup was finite when taken, so this cannot fail.
         let _ = self.body.set_state(&self.backup_x, &self.backup_v);

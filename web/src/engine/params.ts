@@ -22,6 +22,8 @@ export const Param = {
   frozenAmbientPressure: 18,
   frozenReferenceVolume: 19,
   bendingStiffness: 20,
+  /** 0/1: the body collides with itself (in a scene's world). */
+  selfCollision: 21,
 } as const;
 
 export type ParamName = keyof typeof Param;
@@ -29,7 +31,7 @@ export type ParamName = keyof typeof Param;
 /** Parameters a project saves and the panel edits (the gas reference is saved separately). */
 export const EDITABLE: ParamName[] = [
   'stiffness', 'springDamping', 'bendingStiffness', 'damping', 'gravity', 'gasAmount', 'temperature', 'volumeMode',
-  'windX', 'windY', 'windZ', 'windDrag', 'groundOn', 'groundHeight', 'friction', 'integrator',
+  'windX', 'windY', 'windZ', 'windDrag', 'groundOn', 'groundHeight', 'friction', 'integrator', 'selfCollision',
 ];
 
 export const INTEGRATORS = ['euler', 'midpoint', 'rk4', 'symplectic'] as const;

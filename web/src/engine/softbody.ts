@@ -46,6 +46,11 @@ export class SoftBody {
     return new SoftBody(created(h, 'mesh'));
   }
 
+  /** A body the engine already holds (a scene's body, see `Scene`). */
+  static adopt(handle: number): SoftBody { return new SoftBody(created(handle, 'body')); }
+  /** The engine's handle, for calls that take several bodies (`Scene`). */
+  get id(): number { return this.handle; }
+
   get alive(): boolean { return this.handle !== 0; }
   free(): void {
     if (this.handle !== 0) raw().ss_free(this.handle);

@@ -53,6 +53,20 @@ export interface RawEngine {
   ss_apply_face_pressures(h: number): number;
   ss_set_state(h: number, ptr: number): number;
   ss_set_frozen(h: number, pos: number, rest: number, ambient: number, volume: number): number;
+  ss_scene_add_file(name: number, nameLen: number, ptr: number, len: number): void;
+  ss_scene_open(ptr: number, len: number): number;
+  ss_scene_free(s: number): void;
+  ss_scene_body_count(s: number): number;
+  ss_scene_body(s: number, i: number): number;
+  ss_scene_names(s: number): number;
+  ss_scene_set_body(s: number, i: number, h: number): number;
+  ss_scene_step(s: number, dt: number, substeps: number): number;
+  ss_scene_time(s: number): number;
+  ss_scene_duration(s: number): number;
+  ss_scene_dt(s: number): number;
+  ss_scene_obstacles(s: number): number;
+  ss_scene_obstacles_len(s: number): number;
+  ss_scene_save(s: number, hs: number, n: number, dt: number, duration: number): number;
 }
 
 let engine: RawEngine | null = null;

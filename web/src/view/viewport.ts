@@ -4,6 +4,7 @@
 import * as THREE from 'three';
 import { TrackballControls } from 'three/examples/jsm/controls/TrackballControls.js';
 import type { SoftBody } from '../engine/softbody';
+import { SceneExtras } from './extras';
 
 const HOME = new THREE.Vector3(3.2, 2.4, 4.2);
 const TARGET = new THREE.Vector3(0, 0.8, 0);
@@ -18,6 +19,8 @@ export class Viewport {
   readonly grid = new THREE.GridHelper(20, 40, 0x667788, 0x3a4450);
   readonly groundPlane: THREE.Mesh;
   readonly windArrow = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(0, 2.5, 0), 1, 0x44aaff, 0.25, 0.15);
+  /** A scene's other bodies and obstacles. */
+  readonly extras = new SceneExtras();
   private colors = new Float32Array(0);
 
   constructor(readonly canvas: HTMLCanvasElement) {
@@ -44,7 +47,7 @@ export class Viewport {
     this.groundPlane = new THREE.Mesh(new THREE.PlaneGeometry(20, 20), new THREE.MeshStandardMaterial({ color: 0x2c343d, roughness: 1 }));
     this.groundPlane.rotation.x = -Math.PI / 2;
     this.groundPlane.position.y = -0.001;
-    this.scene.add(this.surface, this.springs, this.grid, this.groundPlane, this.windArrow);
+    this.scene.add(this.surface, this.springs, this.grid, this.groundPlane, this.windArrow, this.extras.group);
     this.windArrow.visible = false;
     this.resize();
     window.addEventListener('resize', () => this.resize());

@@ -79,6 +79,14 @@ impl MeshShape {
         Ok(shape)
     }
 
+    /// The mesh (degenerate faces dropped): positions (m, flat xyz) and triangles.
+    pub fn positions(&self) -> &[f64] {
+        &self.positions
+    }
+    pub fn triangles(&self) -> &[[u32; 3]] {
+        &self.triangles
+    }
+
     fn corners(&self, t: u32) -> [V3; 3] {
         let t = self.triangles[t as usize];
         [get(&self.positions, t[0] as usize), get(&self.positions, t[1] as usize), get(&self.positions, t[2] as usize)]

@@ -6,7 +6,7 @@ use super::spec::{BodySpec, ObstacleSpec, RegionSpec, RotateSpec, SceneSpec};
 use super::{line_of, SceneError};
 use crate::body::obstacles::Obstacle;
 use crate::body::params::{Ground, DEFAULT_TEMPERATURE};
-use crate::body::{Integrator, Params, SoftBody, VolumeMode, GAS_CONSTANT};
+use crate::body::{GasReference, Integrator, Params, SoftBody, VolumeMode, GAS_CONSTANT};
 use crate::mesh::{builtin, load_obj, LoadedMesh};
 use crate::vec3::{add, cross, dot, normalize, scale, V3};
 
@@ -257,6 +257,11 @@ fn body(cx: &Ctx, b: &BodySpec, mut params: Params, index: usize, resolve: Resol
     }
     let mass = cx.positive("mass", b.mass)?;
     let mut body = SoftBody::new(&mesh.mesh, mass, params).map_err(|e| cx.err(if b.gas.is_some() { "gas" } else { "" }, e.to_string()))?;
+    if let Some(ambient) = b.gas.as_ref().and_then(|g| g.ambient) {
+        let gas = GasReference { ambient_pressure: cx.non_negative("gas.ambient", ambient)?, reference_volume: body.gas_reference().reference_volume };
+        let (x, rest) = (body.positions().to_vec(), body.rest_lengths().to_vec());
+        body.set_gas_reference(gas).and_then(|_| body.set_frozen(&x, &rest, gas)).map_err(|e| cx.err("gas.ambient", e.to_string()))?;
+    }
     for (k, m) in b.masses.iter().enumerate() {
         let key = format!("masses[{k}]");
         let mass = cx.positive(&format!("{key}.mass"), m.mass)?;

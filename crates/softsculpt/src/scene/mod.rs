@@ -14,6 +14,7 @@
 pub mod build;
 pub mod events;
 pub mod run;
+pub mod save;
 pub mod spec;
 
 pub use run::SceneRun;

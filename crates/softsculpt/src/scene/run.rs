@@ -27,6 +27,9 @@ pub struct SceneRun {
     /// Time step and length of the run (s).
     pub dt: f64,
     pub duration: f64,
+    /// Time (s) when `dt` last changed, and steps since.
+    t_base: f64,
+    since: u64,
     events: Vec<Event>,
     next: usize,
     loads: Vec<Load>,
@@ -58,6 +61,8 @@ impl SceneRun {
             meshes,
             dt: built.dt,
             duration: built.duration,
+            t_base: 0.0,
+            since: 0,
             events: built.events,
             next: 0,
             loads: Vec::new(),
@@ -67,9 +72,39 @@ impl SceneRun {
         })
     }
 
-    /// Simulated time (s).
+    /// Simulated time (s): steps · dt since the last change of dt (never a running sum).
     pub fn time(&self) -> f64 {
-        self.steps as f64 * self.dt
+        self.t_base + self.since as f64 * self.dt
+    }
+
+    /// Change the time step from now on (s).
+    pub fn set_dt(&mut self, dt: f64) {
+        if dt != self.dt && dt.is_finite() && dt > 0.0 {
+            self.t_base = self.time();
+            self.since = 0;
+            self.dt = dt;
+        }
+    }
+
+    /// Body `i` was replaced by one with `vertices` vertices and `faces` faces (the modeler
+    /// subdivided it, say): if the counts changed, its pending events and loads no longer fit
+    /// and are dropped. Returns how many events were dropped.
+    pub fn body_replaced(&mut self, i: usize, vertices: usize, faces: usize) -> usize {
+        if self.forces[i].len() == 3 * vertices && self.pressures[i].len() == faces {
+            return 0;
+        }
+        self.forces[i] = vec![0.0; 3 * vertices];
+        self.pressures[i] = vec![0.0; faces];
+        self.loads.retain(|l| l.body != i);
+        let before = self.events.len();
+        // Events before `next` have fired: only pending ones are dropped, so `next` stays put.
+        let next = self.next;
+        let mut k = 0;
+        self.events.retain(|e| {
+            k += 1;
+            k - 1 < next || e.body != i
+        });
+        before - self.events.len()
     }
 
     pub fn steps(&self) -> u64 {
@@ -82,7 +117,7 @@ impl SceneRun {
     }
 
     pub fn finished(&self) -> bool {
-        self.steps >= self.total_steps()
+        self.time() >= self.duration - 0.5 * self.dt
     }
 
     /// Fire due events, end expired loads, then step the world once.
@@ -103,6 +138,7 @@ impl SceneRun {
         }
         self.world.step(self.dt).map_err(|e| SceneError { line: None, key: None, message: format!("at {t} s: {e}") })?;
         self.steps += 1;
+        self.since += 1;
         Ok(())
     }
 

@@ -180,6 +180,10 @@ pub struct GasSpec {
     /// `exact`, `box` or `sphere`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub volume: Option<String>,
+    /// Pressure of the surroundings P_ref (Pa, default 0): the gas pushes with P − P_ref. The
+    /// modeler saves the current pressure here, so a saved shape opens in equilibrium.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ambient: Option<f64>,
 }
 
 /// A set of vertices, by exactly one of: a sphere (`center`, `radius`), a box (`min`, `max`),
