@@ -112,17 +112,27 @@ test('save scene downloads a file that opens again as the same body', async () =
   await page.context().close();
 });
 
-// One screenshot per shipped scene, at the end of its run: the figures of the paper.
+// One screenshot per shipped scene — the figures of the paper — at the end of its run, or where
+// the figure shows it: Fig. 4b while pushed, Fig. 7 at the end of the push with the mass brush's
+// overlay showing the painted masses (dark: heavy).
+const MOMENT = { 'fig4b_sphere_push.toml': 2.5, 'fig7_local_deformation.toml': 0.4 };
+const KEYS = { 'fig7_local_deformation.toml': 'm' };
 for (const file of readdirSync(SCENES).filter((f) => f.endsWith('.toml')).sort()) {
   test(`figure scene ${file} plays to its end in the modeler`, async () => {
     const { page, errors } = await openModeler(browser, server.url);
     await sceneInput(page).setInputFiles(join(SCENES, file));
     await page.waitForFunction(() => window.softsculpt.scene() !== null);
+    if (KEYS[file]) await page.keyboard.press(KEYS[file]);
     const { duration } = await inspect(page, () => window.softsculpt.scene());
-    await page.waitForFunction((d) => window.softsculpt.scene().time >= d, duration, { timeout: 120000, polling: 200 });
+    const at = MOMENT[file] ?? duration;
+    await page.waitForFunction((t) => window.softsculpt.scene().time >= t, at, { timeout: 120000, polling: 50 });
+    await page.keyboard.press(' ');
+    await page.waitForTimeout(300);
     mkdirSync(FIGURES, { recursive: true });
     await page.screenshot({ path: join(FIGURES, file.replace('.toml', '.png')) });
-    assert.ok((await sceneTime(page)) >= duration);
+    assert.ok((await sceneTime(page)) >= at);
+    await page.keyboard.press(' ');
+    await page.waitForFunction((d) => window.softsculpt.scene().time >= d, duration, { timeout: 120000, polling: 200 });
     assert.deepEqual(errors, []);
     await page.context().close();
   });
