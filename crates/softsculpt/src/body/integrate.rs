@@ -98,6 +98,7 @@ pub(crate) fn step(p: &Params, m: &Model, s: &mut State, w: &mut Work, dt: f64) 
     }
     if !p.obstacles.is_empty() {
         obstacles::resolve(&p.obstacles, &m.inv_mass, x_prev, &mut s.x, &mut s.v);
+        obstacles::resolve_edges(&p.obstacles, &m.inv_mass, &m.springs.i, &m.springs.j, &mut s.x, &mut s.v);
     }
     Ok(())
 }

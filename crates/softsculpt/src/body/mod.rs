@@ -10,7 +10,11 @@
 //!
 //! Stages 1–4 add into one force accumulator; `forces.rs` explains how the gas force shares it.
 //! 6. **ground**   – project vertices that ended below the ground plane back onto it.
-//! 7. **obstacles** – stop vertices whose path entered a rigid obstacle, push out any inside.
+//! 7. **obstacles** – stop vertices whose path entered a rigid obstacle, push out any inside;
+//!    then keep edges out of spheres and capsules thinner than them.
+//!
+//! Contact between bodies and self-collision need the other bodies: `crate::world::World` runs
+//! them after every body's step.
 //!
 //! All arrays are `xyz` interleaved per vertex (`[x0, y0, z0, x1, …]`), so a renderer can read
 //! positions without copying and a spring touches one cache line per end.

@@ -7,6 +7,8 @@
 //! found inside is pushed out to the nearest surface point. Then, with n the outward normal there,
 //! the velocity loses its inward normal part (inelastic: impulse per unit mass j = −v·n) and
 //! Coulomb friction removes up to μ j of its tangential part.
+//! Then the edges (`resolve_edges`): spheres and capsules thinner than the mesh's edges would
+//! otherwise pass between two vertices.
 
 use super::mesh_obstacle::MeshShape;
 use crate::mesh::TriMesh;
@@ -212,6 +214,106 @@ pub fn resolve(obstacles: &[Obstacle], inv_mass: &[f64], x_prev: &[f64], x: &mut
             // Inelastic (restitution 0) with Coulomb friction, as on the ground.
             let u = super::contact::bounce([v[3 * i], v[3 * i + 1], v[3 * i + 2]], n, o.friction, 0.0);
             v[3 * i..3 * i + 3].copy_from_slice(&u);
+        }
+    }
+}
+
+/// Closest points of segments p0p1 and q0q1: parameters (s, t) ∈ [0, 1]² (Ericson, Real-Time
+/// Collision Detection, 5.1.9).
+fn closest_segments(p0: V3, p1: V3, q0: V3, q1: V3) -> (f64, f64) {
+    let (d1, d2, r) = (sub(p1, p0), sub(q1, q0), sub(p0, q0));
+    let (a, e, f) = (dot(d1, d1), dot(d2, d2), dot(d2, r));
+    if a <= 1e-300 && e <= 1e-300 {
+        return (0.0, 0.0);
+    }
+    if a <= 1e-300 {
+        return (0.0, (f / e).clamp(0.0, 1.0));
+    }
+    let c = dot(d1, r);
+    if e <= 1e-300 {
+        return ((-c / a).clamp(0.0, 1.0), 0.0);
+    }
+    let b = dot(d1, d2);
+    let denom = a * e - b * b;
+    let mut s = if denom > 0.0 { ((b * f - c * e) / denom).clamp(0.0, 1.0) } else { 0.0 };
+    let mut t = (b * s + f) / e;
+    if t < 0.0 {
+        t = 0.0;
+        s = (-c / a).clamp(0.0, 1.0);
+    } else if t > 1.0 {
+        t = 1.0;
+        s = ((b - c) / a).clamp(0.0, 1.0);
+    }
+    (s, t)
+}
+
+/// Stage "obstacle edges": keep the edges (springs) of the mesh out of spheres and capsules, so
+/// a bar or a ball thinner than the edges cannot slip between two vertices. For an edge from
+/// x_i to x_j whose closest point x_e = (1 − s) x_i + s x_j is inside the obstacle by depth d
+/// along n (the outward normal there), both ends move out by inverse mass w, as one constraint
+/// C = distance − radius ≥ 0 with gradients (1 − s) n and s n:
+///     Δx_i = (1 − s) w_i λ n,  Δx_j = s w_j λ n,  λ = d / ((1 − s)² w_i + s² w_j),
+/// and the inward normal velocity of x_e is removed by the impulse shared the same way
+/// (inelastic, like the vertex contact). The end points themselves are left to the vertex
+/// stage (s strictly inside (0, 1)).
+///
+/// An edge of length L whose two ends rest on a round surface of radius r dips into it by the
+/// sagitta r − √(r² − L²/4) (a chord): that much is allowed, or the stage would push resting
+/// bodies off every ball and bar (and do work doing it). Thin obstacles (r < L/2), the ones
+/// that can pass between two vertices, allow nothing.
+pub fn resolve_edges(obstacles: &[Obstacle], inv_mass: &[f64], ei: &[u32], ej: &[u32], x: &mut [f64], v: &mut [f64]) {
+    for o in obstacles {
+        if !matches!(o.shape, Shape::Sphere { .. } | Shape::Capsule { .. }) {
+            continue;
+        }
+        for (&i, &j) in ei.iter().zip(ej) {
+            let (i, j) = (i as usize, j as usize);
+            let (wi, wj) = (inv_mass[i], inv_mass[j]);
+            if wi == 0.0 && wj == 0.0 {
+                continue;
+            }
+            let (a, b) = ([x[3 * i], x[3 * i + 1], x[3 * i + 2]], [x[3 * j], x[3 * j + 1], x[3 * j + 2]]);
+            let (s, core, radius) = match &o.shape {
+                Shape::Sphere { center, radius } => {
+                    let ab = sub(b, a);
+                    let l2 = dot(ab, ab);
+                    let s = if l2 > 0.0 { (dot(sub(*center, a), ab) / l2).clamp(0.0, 1.0) } else { 0.0 };
+                    (s, *center, *radius)
+                }
+                Shape::Capsule { a: qa, b: qb, radius } => {
+                    let (s, t) = closest_segments(a, b, *qa, *qb);
+                    (s, add(*qa, scale(sub(*qb, *qa), t)), *radius)
+                }
+                _ => unreachable!(),
+            };
+            if s <= 1e-9 || s >= 1.0 - 1e-9 {
+                continue;
+            }
+            let e = add(a, scale(sub(b, a), s));
+            let off = sub(e, core);
+            let dist = norm(off);
+            if dist >= radius || dist == 0.0 {
+                continue;
+            }
+            let half = 0.5 * norm(sub(b, a));
+            let sagitta = if radius > half { radius - (radius * radius - half * half).sqrt() } else { 0.0 };
+            let depth = radius - dist - sagitta;
+            if depth <= 0.0 {
+                continue;
+            }
+            let n = scale(off, 1.0 / dist);
+            let (gi, gj) = (1.0 - s, s);
+            let wsum = gi * gi * wi + gj * gj * wj;
+            let lambda = depth / wsum;
+            let ve = add(scale([v[3 * i], v[3 * i + 1], v[3 * i + 2]], gi), scale([v[3 * j], v[3 * j + 1], v[3 * j + 2]], gj));
+            let vn = dot(ve, n);
+            let jn = if vn < 0.0 { -vn / wsum } else { 0.0 };
+            for (k, g, w) in [(i, gi, wi), (j, gj, wj)] {
+                for d in 0..3 {
+                    x[3 * k + d] += g * w * lambda * n[d];
+                    v[3 * k + d] += g * w * jn * n[d];
+                }
+            }
         }
     }
 }
