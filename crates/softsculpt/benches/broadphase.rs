@@ -1,6 +1,11 @@
 //! The broad phase's cost per vertex must stay about flat from 10k to 640k vertices: build the
 //! spatial hash over k side-by-side icospheres (10,242 vertices each) and query every vertex's
 //! neighbourhood within 5 cm (cells of 10 cm, so each query visits at most 8 cells).
+//!
+//! `world_step`: the whole contact world — k balloons of 2,562 vertices in a grid, each touching
+//! its neighbours, stepped together (every body's step, then the contact stage over all of them)
+//! — from 10k to 640k vertices; `bodies_only` steps the same bodies without the contact stage, so
+//! the difference is what contacts cost.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use softsculpt::hash::SpatialHash;
@@ -40,5 +45,47 @@ fn broadphase(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, broadphase);
+/// k gas-filled balloons (icospheres of radius 1, 2,562 vertices) in a grid, 1.99 m apart so
+/// that neighbours touch within the contact thickness.
+fn balloons(k: usize) -> softsculpt::world::World {
+    use softsculpt::body::{Params, SoftBody};
+    let side = (k as f64).sqrt().ceil() as usize;
+    let (ball, _) = reorder::by_locality(&icosphere(4, 1.0));
+    let bodies = (0..k)
+        .map(|c| {
+            let mut mesh = ball.clone();
+            let (ox, oz) = ((c % side) as f64 * 1.99, (c / side) as f64 * 1.99);
+            for p in mesh.positions.chunks_exact_mut(3) {
+                p[0] += ox;
+                p[2] += oz;
+            }
+            let mut p = Params { stiffness: 100.0, spring_damping: 0.05, gravity: 0.0, ..Params::default() };
+            p.set_nrt(20.0);
+            SoftBody::new(&mesh, 1.0, p).expect("a valid balloon")
+        })
+        .collect();
+    softsculpt::world::World::new(bodies, 0.02)
+}
+
+fn world_step(c: &mut Criterion) {
+    let mut g = c.benchmark_group("world_step");
+    g.sample_size(10);
+    for k in [4usize, 16, 64, 250] {
+        let mut w = balloons(k);
+        let n: usize = w.bodies.iter().map(|b| b.vertex_count()).sum();
+        g.throughput(Throughput::Elements(n as u64));
+        g.bench_with_input(BenchmarkId::new("with_contacts", n), &n, |b, _| b.iter(|| w.step(2e-4).expect("steps")));
+        let mut w = balloons(k);
+        g.bench_with_input(BenchmarkId::new("bodies_only", n), &n, |b, _| {
+            b.iter(|| {
+                for body in &mut w.bodies {
+                    body.step(2e-4).expect("steps");
+                }
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, broadphase, world_step);
 criterion_main!(benches);

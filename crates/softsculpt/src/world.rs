@@ -110,34 +110,87 @@ impl World {
     }
 
     fn collide(&mut self) {
-        // Broad phase over triangle centroids; the cell holds the largest triangle radius.
-        self.centroids.clear();
-        self.owners.clear();
-        self.radii.clear();
+        // The largest triangle radius (about its centroid) sets the reach of the queries.
         let mut reach: f64 = 0.0;
-        for (bi, b) in self.bodies.iter().enumerate() {
+        for b in &self.bodies {
             let x = b.positions();
-            for (f, t) in b.triangles().iter().enumerate() {
+            for t in b.triangles() {
                 let (a, bb, c) = (get(x, t[0] as usize), get(x, t[1] as usize), get(x, t[2] as usize));
                 let g = scale(add(add(a, bb), c), 1.0 / 3.0);
-                let r = norm(sub(a, g)).max(norm(sub(bb, g))).max(norm(sub(c, g)));
-                reach = reach.max(r);
-                self.radii.push(r);
-                self.centroids.extend_from_slice(&g);
-                self.owners.push((bi as u32, f as u32));
+                reach = reach.max(norm(sub(a, g)).max(norm(sub(bb, g))).max(norm(sub(c, g))));
             }
         }
         let radius = reach + self.thickness;
         if !(radius.is_finite() && radius > 0.0) {
             return;
         }
-        self.hash.set_spacing(2.0 * radius);
-        self.hash.build(&self.centroids);
         let max_depth = reach;
 
+        // Where each body can touch another: the overlaps of its bounding box with the others'
+        // (both grown by the query radius). Only vertices and faces inside these zones take
+        // part — most of a body, most of the time, does not. A self-colliding body can touch
+        // itself anywhere.
+        let boxes: Vec<(V3, V3)> = self
+            .bodies
+            .iter()
+            .map(|b| {
+                let (lo, hi) = crate::mesh::bounds(b.positions());
+                (sub(lo, [radius; 3]), add(hi, [radius; 3]))
+            })
+            .collect();
+        let zones: Vec<Vec<(V3, V3)>> = (0..self.bodies.len())
+            .map(|bi| {
+                if self.bodies[bi].params.self_collision {
+                    return vec![boxes[bi]];
+                }
+                boxes
+                    .iter()
+                    .enumerate()
+                    .filter(|&(ob, _)| ob != bi)
+                    .map(|(_, other)| (max3(boxes[bi].0, other.0), min3(boxes[bi].1, other.1)))
+                    .filter(|(lo, hi)| (0..3).all(|d| lo[d] <= hi[d]))
+                    .collect()
+            })
+            .collect();
+        let inside = |zs: &[(V3, V3)], p: V3, grow: f64| zs.iter().any(|(lo, hi)| (0..3).all(|d| p[d] >= lo[d] - grow && p[d] <= hi[d] + grow));
+
+        // Broad phase over the centroids of the triangles in the zones.
+        self.centroids.clear();
+        self.owners.clear();
+        self.radii.clear();
+        for (bi, b) in self.bodies.iter().enumerate() {
+            if zones[bi].is_empty() {
+                continue;
+            }
+            let x = b.positions();
+            for (f, t) in b.triangles().iter().enumerate() {
+                let (a, bb, c) = (get(x, t[0] as usize), get(x, t[1] as usize), get(x, t[2] as usize));
+                let g = scale(add(add(a, bb), c), 1.0 / 3.0);
+                let r = norm(sub(a, g)).max(norm(sub(bb, g))).max(norm(sub(c, g)));
+                if !inside(&zones[bi], g, r) {
+                    continue;
+                }
+                self.radii.push(r);
+                self.centroids.extend_from_slice(&g);
+                self.owners.push((bi as u32, f as u32));
+            }
+        }
+        if self.owners.is_empty() {
+            return;
+        }
+        self.hash.set_spacing(2.0 * radius);
+        self.hash.build(&self.centroids);
+
         for bi in 0..self.bodies.len() {
+            let zones = &zones[bi];
+            if zones.is_empty() {
+                continue;
+            }
             for vi in 0..self.bodies[bi].vertex_count() {
                 let p = get(self.bodies[bi].positions(), vi);
+                if !inside(zones, p, 0.0) {
+                    continue;
+                }
                 self.hash.query(p, radius, &mut self.candidates);
                 // The deepest contact with another body's face decides this vertex's response.
                 let mut best: Option<(usize, usize, [f64; 3], V3, f64)> = None;
@@ -256,6 +309,13 @@ fn far_at_rest(b: &SoftBody, v: usize, t: [u32; 3]) -> bool {
     let q = add(add(scale(a, w[0]), scale(bb, w[1])), scale(c, w[2]));
     let longest = norm(sub(bb, a)).max(norm(sub(c, bb))).max(norm(sub(a, c)));
     norm(sub(p, q)) >= longest
+}
+
+fn max3(a: V3, b: V3) -> V3 {
+    [a[0].max(b[0]), a[1].max(b[1]), a[2].max(b[2])]
+}
+fn min3(a: V3, b: V3) -> V3 {
+    [a[0].min(b[0]), a[1].min(b[1]), a[2].min(b[2])]
 }
 
 fn inv_mass(b: &SoftBody, i: usize) -> f64 {
