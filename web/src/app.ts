@@ -8,6 +8,7 @@
 import { Vector3 } from 'three';
 import { SoftBody } from './engine/softbody';
 import { Scene } from './engine/scene';
+import { SceneSession, type SceneSource } from './scene-session';
 import { EDITABLE, type ParamName } from './engine/params';
 import { History, travel } from './history';
 import { capture, parse, restore, serialize, type BodyState } from './project';
@@ -31,11 +32,7 @@ type Entry =
   | { kind: 'before-scene'; state: BodyState; settings: Settings }
   | { kind: 'reopen-scene'; source: SceneSource };
 
-/** What a scene was opened from, to restart it. */
-interface SceneSource { name: string; text: string; files: Map<string, Uint8Array> }
 
-/** Parameters of the world rather than of one body: a scene's bodies share them. */
-const WORLD_PARAMS: ParamName[] = ['gravity', 'windX', 'windY', 'windZ', 'windDrag', 'groundOn', 'groundHeight', 'friction', 'integrator'];
 
 export interface Settings {
   /** Time step (s). */
@@ -77,8 +74,7 @@ export class App implements ToolContext {
   private listeners: (() => void)[] = [];
   private lastMessage = '';
   /** The open scene (its first body is the active body), if any. */
-  private scene: Scene | null = null;
-  private sceneSource: SceneSource | null = null;
+  private session: SceneSession | null = null;
 
   constructor(canvas: HTMLCanvasElement, plotCanvas: HTMLCanvasElement, hudRoot: HTMLElement, helpText: string) {
     this.viewport = new Viewport(canvas);
@@ -99,8 +95,8 @@ export class App implements ToolContext {
   private setBody(body: SoftBody): void {
     const old = this.current;
     this.current = body;
-    if (this.scene && this.scene.bodies[0] !== body) {
-      const note = this.scene.replaceBody(0, body);
+    if (this.session && this.session.active !== body) {
+      const note = this.session.adopt(body);
       if (note) this.message(note, 'warn');
     }
     if (old && old !== body) old.free();
@@ -225,7 +221,7 @@ export class App implements ToolContext {
       return { kind: 'params', params: now };
     }
     if (entry.kind === 'before-scene') {
-      const source = this.sceneSource;
+      const source = this.session?.source;
       this.closeScene();
       Object.assign(this.settings, entry.settings);
       this.setBody(restore(entry.state));
@@ -233,7 +229,7 @@ export class App implements ToolContext {
     }
     if (entry.kind === 'reopen-scene') {
       const now: Entry = { kind: 'before-scene', state: capture(this.current), settings: { ...this.settings } };
-      this.enterScene(Scene.open(entry.source.text, entry.source.files), entry.source);
+      this.enterScene(SceneSession.open(entry.source));
       return now;
     }
     const now: Entry = { kind: 'body', state: capture(this.current), settings: { ...this.settings } };
@@ -270,10 +266,8 @@ export class App implements ToolContext {
     if (this.current.vertexCount > 200_000) { this.message('the mesh is already very fine; not subdividing', 'warn'); return; }
     this.edit('subdivide', true, () => {
       this.current.subdivide();
-      if (this.scene) {
-        const note = this.scene.replaceBody(0, this.current);
-        if (note) this.message(note, 'warn');
-      }
+      const note = this.session?.adopt(this.current);
+      if (note) this.message(note, 'warn');
       this.settings.dt = Math.min(this.settings.dt, stableDt(this.current));
       this.settings.substeps = Math.max(1, Math.round(1 / 60 / this.settings.dt));
       this.setBody(this.current);
@@ -303,7 +297,7 @@ export class App implements ToolContext {
 
   /** `n` steps of `dt`: the whole scene (contacts, events) if one is open, else the body. */
   private advance(dt: number, n: number): void {
-    if (this.scene) this.scene.step(dt, n);
+    if (this.session) this.session.scene.step(dt, n);
     else this.current.step(dt, n);
   }
 
@@ -311,46 +305,46 @@ export class App implements ToolContext {
 
   /** Open a scene file (with the mesh files it names); undoable. False if it could not be read. */
   openScene(name: string, text: string, files: Map<string, Uint8Array> = new Map()): boolean {
-    let scene: Scene;
+    let session: SceneSession;
     try {
-      scene = Scene.open(text, files);
+      session = SceneSession.open({ name, text, files });
     } catch (e) {
       this.message(`could not open ${name}: ${errorText(e).replace(/^scene: /, '')} — the current model is unchanged`, 'error');
       return false;
     }
     const before: Entry = { kind: 'before-scene', state: capture(this.current), settings: { ...this.settings } };
-    this.enterScene(scene, { name, text, files });
+    this.enterScene(session);
     this.history.push(`open ${name}`, before);
-    this.message(`opened scene ${name}: ${scene.bodies.length} ${scene.bodies.length === 1 ? 'body' : 'bodies'}, ${scene.duration} s of events — play to run it`);
+    const n = session.scene.bodies.length;
+    this.message(`opened scene ${name}: ${n} ${n === 1 ? 'body' : 'bodies'}, ${session.scene.duration} s of events — play to run it`);
     this.changed();
     this.autosave();
     return true;
   }
 
-  private enterScene(scene: Scene, source: SceneSource): void {
+  private enterScene(session: SceneSession): void {
     this.closeScene();
-    this.settings.dt = scene.dt;
-    this.settings.substeps = Math.max(1, Math.round(1 / 60 / scene.dt));
-    this.settings.model = source.name;
-    this.scene = scene;
-    this.sceneSource = source;
-    this.setBody(scene.bodies[0]);
-    this.viewport.extras.setBodies(scene.bodies.slice(1));
-    this.viewport.extras.setObstacles(scene.obstacles());
+    this.settings.dt = session.scene.dt;
+    this.settings.substeps = Math.max(1, Math.round(1 / 60 / session.scene.dt));
+    this.settings.model = session.source.name;
+    this.session = session;
+    this.setBody(session.active);
+    this.viewport.extras.setBodies(session.others);
+    this.viewport.extras.setObstacles(session.scene.obstacles());
   }
 
   /** Play the open scene again from its start (undoable like opening it). */
   restartScene(): void {
-    if (!this.sceneSource) { this.message('no scene is open (Files › Open scene…)', 'warn'); return; }
-    const s = this.sceneSource;
+    if (!this.session) { this.message('no scene is open (Files › Open scene…)', 'warn'); return; }
+    const s = this.session.source;
     this.openScene(s.name, s.text, s.files);
   }
 
   /** Download the open scene (or the body alone) as a scene file, the shapes as they are now. */
   saveScene(): void {
     try {
-      const bodies = this.scene ? this.scene.bodies : [this.current];
-      const text = Scene.save(bodies, this.settings.dt, this.scene?.duration ?? 10, this.scene);
+      const scene = this.session?.scene ?? null;
+      const text = Scene.save(scene ? scene.bodies : [this.current], this.settings.dt, scene?.duration ?? 10, scene);
       download(new Blob([text], { type: 'application/toml' }), `${baseName(this.settings.model)}.toml`);
       this.message('saved the scene: the shapes as they are now, opening at rest');
     } catch (e) {
@@ -358,27 +352,16 @@ export class App implements ToolContext {
     }
   }
 
-  get sceneInfo(): { name: string; time: number; duration: number; bodies: number } | null {
-    return this.scene && this.sceneSource ? { name: this.sceneSource.name, time: this.scene.time, duration: this.scene.duration, bodies: this.scene.bodies.length } : null;
-  }
+  get sceneInfo(): SceneSession['info'] | null { return this.session?.info ?? null; }
 
   /** Leave the scene: its other bodies go; the active body stays (until replaced). */
   private closeScene(): void {
-    if (!this.scene) return;
-    for (const b of this.scene.bodies.slice(1)) b.free();
-    this.scene.free();
-    this.scene = null;
-    this.sceneSource = null;
+    this.session?.close();
+    this.session = null;
     this.viewport.extras.clear();
   }
 
-  /** Give a scene's other bodies the active body's value of each world parameter in `names`. */
-  private shareWorld(names: ParamName[]): void {
-    if (!this.scene) return;
-    for (const name of names.filter((n) => WORLD_PARAMS.includes(n))) {
-      for (const b of this.scene.bodies) if (b !== this.current) b.set(name, this.current.get(name));
-    }
-  }
+  private shareWorld(names: ParamName[]): void { this.session?.shareWorld(this.current, names); }
 
   private blowUp(e: unknown): void {
     this.settings.playing = false;
@@ -489,7 +472,7 @@ export class App implements ToolContext {
       `${this.hud.fps.toFixed(0)} fps   sim ${this.simMs.toFixed(1)} ms/frame${this.slowMotion ? `   SLOW MOTION (${((done / substeps) * 100).toFixed(0)}% of real time)` : ''}${this.settings.playing ? '' : '   PAUSED'}`,
       `${body.vertexCount} vertices   ${body.springCount} springs   ${body.faceCount} faces   tool: ${this.tools.tool.label}`,
       `t ${s.time.toFixed(2)} s   V ${s.volume.toFixed(4)} m³   P ${s.pressure.toFixed(2)} Pa   max speed ${s.maxSpeed.toFixed(3)} m/s`,
-      ...(this.scene ? [`scene ${this.settings.model}: ${this.scene.bodies.length} ${this.scene.bodies.length === 1 ? 'body' : 'bodies'}   t ${this.scene.time.toFixed(2)} of ${this.scene.duration} s${this.scene.time >= this.scene.duration ? ' (events done)' : ''}`] : []),
+      ...(this.session ? [this.session.hudLine()] : []),
     ]);
     this.viewport.render();
   }
