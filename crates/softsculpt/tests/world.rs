@@ -124,7 +124,8 @@ fn self_collision_keeps_a_crushed_sphere_from_passing_through_itself() {
 /// vertex–face contact catches it up to one triangle radius deep and puts it back. Checked every
 /// 5 steps: the thrown one never comes out through the far side (its centre of mass stays
 /// behind the other's), and no vertex is ever more than 1 mm (a tenth of the thickness) inside
-/// the other balloon (measured: 3e-5 m). (A softer balloon, nRT = 20 J, is crushed flat by such
+/// the other balloon (measured: 3e-5 m with vertex–face contact alone, 8e-4 m with the
+/// edge–edge corrections on top). (A softer balloon, nRT = 20 J, is crushed flat by such
 /// a hit — its volume goes through zero, which the step reports as a collapse.)
 #[test]
 fn a_fast_body_does_not_pass_through_another() {
@@ -159,4 +160,58 @@ fn a_fast_body_does_not_pass_through_another() {
     assert!(deepest < 1e-3, "a vertex went {deepest} m into the other balloon");
     // The hit passed momentum on: the second balloon moves away.
     assert!(world.bodies[1].stats().momentum[0] > 5.0, "{:?}", world.bodies[1].stats().momentum);
+}
+
+/// Two cubes meeting edge to edge, crosswise: A's top edge runs along x, B's bottom edge along z,
+/// and no vertex of either is anywhere near a face of the other where they meet — vertex–face
+/// contact alone lets B's edge cut through A's (measured: 0.47 m deep). Edge–edge contact stops
+/// the crossing: B's edge never gets below A's — measured between the edges' midpoints, which
+/// sit a little off the contact point as the edges tilt, so within 1 mm (a tenth of the
+/// thickness; measured 0.17 mm) — and B is stopped (momentum −3 → −0.8 kg·m/s).
+#[test]
+fn edge_to_edge_crossing_is_stopped() {
+    use softsculpt::TriMesh;
+    let cube = |angle_axis: usize, center_y: f64| {
+        let mut positions = Vec::new();
+        for k in 0..8 {
+            let p = [if k & 1 == 0 { -0.5 } else { 0.5 }, if k & 2 == 0 { -0.5 } else { 0.5 }, if k & 4 == 0 { -0.5 } else { 0.5 }];
+            let (c, s) = (std::f64::consts::FRAC_PI_4.cos(), std::f64::consts::FRAC_PI_4.sin());
+            // 45° about x (A: an edge along x on top) or about z (B: an edge along z below).
+            let q = if angle_axis == 0 { [p[0], c * p[1] - s * p[2], s * p[1] + c * p[2]] } else { [c * p[0] - s * p[1], s * p[0] + c * p[1], p[2]] };
+            positions.extend_from_slice(&[q[0], q[1] + center_y, q[2]]);
+        }
+        let quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+        let triangles = quads.iter().flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]).collect();
+        let mut p = Params { stiffness: 2000.0, spring_damping: 0.5, ..bare() };
+        p.set_nrt(50.0);
+        softsculpt::SoftBody::new(&TriMesh { positions, triangles }, 1.0, p).unwrap()
+    };
+    // The top edge of A (the two vertices with the largest y) and the bottom edge of B.
+    let extreme = |b: &softsculpt::SoftBody, top: bool| {
+        let mut idx: Vec<usize> = (0..8).collect();
+        idx.sort_by(|&i, &j| b.positions()[3 * i + 1].total_cmp(&b.positions()[3 * j + 1]));
+        if top { [idx[7], idx[6]] } else { [idx[0], idx[1]] }
+    };
+    let run = |edges: bool| {
+        let (a, b) = (cube(0, 0.0), cube(2, 2.0 * 0.5f64.sqrt() + 0.1));
+        let (ea, eb) = (extreme(&a, true), extreme(&b, false));
+        let mut b = b;
+        b.set_uniform_velocity([0.0, -3.0, 0.0]).unwrap();
+        let mut world = World::new(vec![a, b], 0.01);
+        world.edge_contact = edges;
+        let mut lowest_gap = f64::INFINITY;
+        for _ in 0..400 {
+            world.step(5e-4).unwrap();
+            let (xa, xb) = (world.bodies[0].positions(), world.bodies[1].positions());
+            let y = |x: &[f64], e: [usize; 2]| 0.5 * (x[3 * e[0] + 1] + x[3 * e[1] + 1]);
+            lowest_gap = lowest_gap.min(y(xb, eb) - y(xa, ea));
+        }
+        (lowest_gap, world.bodies[1].stats().momentum[1])
+    };
+    let (without, _) = run(false);
+    let (with, momentum) = run(true);
+    eprintln!("lowest gap between the edges: without edge contact {without} m, with {with} m; B's momentum {momentum}");
+    assert!(without < -0.1, "vertex–face alone lets the edges cross: {without}");
+    assert!(with > -1e-3, "the edges crossed by {with} m");
+    assert!(momentum > -3.0 * 0.5, "B was stopped: momentum {momentum}");
 }

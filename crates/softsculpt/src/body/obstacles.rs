@@ -220,7 +220,7 @@ pub fn resolve(obstacles: &[Obstacle], inv_mass: &[f64], x_prev: &[f64], x: &mut
 
 /// Closest points of segments p0p1 and q0q1: parameters (s, t) ∈ [0, 1]² (Ericson, Real-Time
 /// Collision Detection, 5.1.9).
-fn closest_segments(p0: V3, p1: V3, q0: V3, q1: V3) -> (f64, f64) {
+pub(crate) fn closest_segments(p0: V3, p1: V3, q0: V3, q1: V3) -> (f64, f64) {
     let (d1, d2, r) = (sub(p1, p0), sub(q1, q0), sub(p0, q0));
     let (a, e, f) = (dot(d1, d1), dot(d2, d2), dot(d2, r));
     if a <= 1e-300 && e <= 1e-300 {

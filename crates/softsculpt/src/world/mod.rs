@@ -15,11 +15,15 @@
 //!    so momentum is conserved exactly; Coulomb friction removes up to μ J of relative tangential
 //!    velocity the same way. Corrections move the centre of mass of the pair not at all.
 //!
+//! 4. edges (`edges.rs`): edge against edge, for crossings no vertex is near a face to catch.
+//!
 //! Self-collision (a body's `params.self_collision`): a vertex is also tested against its own
 //! body's faces, except the faces near it on the surface — those whose closest point was nearer
 //! than their longest edge in the rest shape (the faces around the vertex and the next ring),
 //! which touch it by construction. A fold brings together parts that were far apart at rest, so
 //! they still collide. The response is the same impulse, within one body.
+
+mod edges;
 
 use crate::body::SoftBody;
 use crate::error::SimError;
@@ -32,14 +36,25 @@ pub struct World {
     pub thickness: f64,
     /// Coulomb friction between bodies (dimensionless).
     pub friction: f64,
+    /// Test edges against edges too (on by default; off only to see what it prevents).
+    pub edge_contact: bool,
     hash: SpatialHash,
     centroids: Vec<f64>,
     owners: Vec<(u32, u32)>,
     /// Each triangle's radius about its centroid (m): a cheap first test per candidate.
     radii: Vec<f64>,
     candidates: Vec<u32>,
-    /// Every body's positions at the start of the step (flat xyz, m), for self-contact sides.
+    /// Every body's positions at the start of the step (flat xyz, m): the side each contact
+    /// started on.
     prev: Vec<Vec<f64>>,
+    /// Edge–edge broad phase: edge midpoints, their (body, spring), and the hash over them.
+    edge_hash: SpatialHash,
+    mids: Vec<f64>,
+    edge_owner: Vec<(u32, u32)>,
+    /// The largest triangle radius this step (m): how deep a crossing is still caught.
+    reach_now: f64,
+    /// Per body and vertex: near another body's surface this step (edges there are tested).
+    near: Vec<Vec<bool>>,
 }
 
 /// Closest point on triangle (a, b, c) to p, as barycentric weights (Ericson, Real-Time
@@ -82,13 +97,13 @@ pub(crate) fn closest_barycentric(p: V3, a: V3, b: V3, c: V3) -> [f64; 3] {
 
 impl World {
     pub fn new(bodies: Vec<SoftBody>, thickness: f64) -> Self {
-        World { bodies, thickness, friction: 0.5, hash: SpatialHash::new(1.0), centroids: Vec::new(), owners: Vec::new(), radii: Vec::new(), candidates: Vec::new(), prev: Vec::new() }
+        World { bodies, thickness, friction: 0.5, edge_contact: true, hash: SpatialHash::new(1.0), centroids: Vec::new(), owners: Vec::new(), radii: Vec::new(), candidates: Vec::new(), prev: Vec::new(), edge_hash: SpatialHash::new(1.0), mids: Vec::new(), edge_owner: Vec::new(), reach_now: 0.0, near: Vec::new() }
     }
 
     /// Step every body by `dt` (s), then resolve contacts between bodies.
     pub fn step(&mut self, dt: f64) -> Result<(), SimError> {
         let selfish = self.bodies.iter().any(|b| b.params.self_collision);
-        if selfish {
+        if self.bodies.len() > 1 || selfish {
             self.prev.resize(self.bodies.len(), Vec::new());
             for (p, b) in self.prev.iter_mut().zip(&self.bodies) {
                 p.clear();
@@ -125,6 +140,12 @@ impl World {
             return;
         }
         let max_depth = reach;
+        self.reach_now = reach;
+        self.near.resize(self.bodies.len(), Vec::new());
+        for (n, b) in self.near.iter_mut().zip(&self.bodies) {
+            n.clear();
+            n.resize(b.vertex_count(), false);
+        }
 
         // Where each body can touch another: the overlaps of its bounding box with the others'
         // (both grown by the query radius). Only vertices and faces inside these zones take
@@ -203,7 +224,13 @@ impl World {
                     // distance from its crossing point to the rim (a crossing within one step).
                     let r = self.radii[c as usize] + self.thickness;
                     let d = sub(p, g);
-                    if dot(d, d) > r * r {
+                    let d2 = dot(d, d);
+                    // Near another body's surface (within a triangle radius more): its edges
+                    // take part in the edge–edge test.
+                    if ob != bi && d2 <= (r + reach) * (r + reach) {
+                        self.near[bi][vi] = true;
+                    }
+                    if d2 > r * r {
                         continue;
                     }
                     let other = &self.bodies[ob];
@@ -243,6 +270,7 @@ impl World {
                     }
                 }
                 if let Some((ob, f, w, n, s)) = best {
+                    self.near[bi][vi] = true;
                     // Velocities respond within the thickness; positions only where a vertex
                     // went behind the face (moving them further would inject energy).
                     // Within one body a steady load (its weight, a press) would otherwise close
@@ -252,6 +280,9 @@ impl World {
                     self.respond(bi, vi, ob, f, w, n, depth);
                 }
             }
+        }
+        if self.edge_contact {
+            self.collide_edges(&zones);
         }
     }
 

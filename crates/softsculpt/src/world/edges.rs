@@ -1,0 +1,155 @@
+//! Edge–edge contact between bodies (and within a self-colliding body).
+//!
+//! Vertex–face contact misses two edges crossing where no vertex is near a face: two coarse
+//! bodies meeting edge to edge, two thin tentacles crossing. Here every edge (spring) with an end
+//! near another body's surface or in contact (found by the vertex–face pass) is tested against the nearby
+//! edges of the other bodies — found by a spatial hash of edge midpoints — through the closest
+//! points of the two segments,
+//!     p_a = (1 − s) x_a0 + s x_a1,   p_b = (1 − t) x_b0 + t x_b1   (s, t ∈ (0, 1)).
+//! The side to keep them on is the one they were on at the start of the step, n = the unit
+//! vector from p_b to p_a then, and the gap is (p_a − p_b) · n: negative when the two edges
+//! crossed during the step. Only a crossing gets a response (touching without crossing is left
+//! to the vertex–face contact, which already holds resting bodies): the same as vertex–face's,
+//! with four vertices and weights g = (1 − s, s, 1 − t, t) — the gap is closed (to a thousandth
+//! of the thickness: edges left exactly touching would have no side next step; the work done is
+//! that force times 1e-3 thickness) and the approaching normal velocity removed by the impulse
+//! J = −v_rel · n / Σ g_k² w_k shared by inverse masses w (momentum conserved), with Coulomb
+//! friction.
+
+use super::World;
+use crate::body::obstacles::closest_segments;
+use crate::vec3::{add, dot, get, norm, scale, sub, V3};
+
+impl World {
+    pub(super) fn collide_edges(&mut self, zones: &[Vec<(V3, V3)>]) {
+        let inside = |zs: &[(V3, V3)], p: V3, grow: f64| zs.iter().any(|(lo, hi)| (0..3).all(|d| p[d] >= lo[d] - grow && p[d] <= hi[d] + grow));
+        self.mids.clear();
+        self.edge_owner.clear();
+        let mut longest: f64 = 0.0;
+        for (bi, b) in self.bodies.iter().enumerate() {
+            if zones[bi].is_empty() {
+                continue;
+            }
+            let (ei, ej) = b.spring_ends();
+            let x = b.positions();
+            for (e, (&i, &j)) in ei.iter().zip(ej).enumerate() {
+                // Edges near another body's surface or in contact (with itself too) only.
+                let near = &self.near[bi];
+                if !near[i as usize] && !near[j as usize] {
+                    continue;
+                }
+                let (p, q) = (get(x, i as usize), get(x, j as usize));
+                let m = scale(add(p, q), 0.5);
+                let half = 0.5 * norm(sub(q, p));
+                if inside(&zones[bi], m, half) {
+                    longest = longest.max(half);
+                    self.mids.extend_from_slice(&m);
+                    self.edge_owner.push((bi as u32, e as u32));
+                }
+            }
+        }
+        if self.edge_owner.len() < 2 {
+            return;
+        }
+        let radius = 2.0 * longest + self.thickness;
+        self.edge_hash.set_spacing(2.0 * radius);
+        self.edge_hash.build(&self.mids);
+        let mut found = Vec::new();
+        for k in 0..self.edge_owner.len() {
+            let (bi, e) = self.edge_owner[k];
+            self.edge_hash.query(get(&self.mids, k), radius, &mut found);
+            for &c in &found {
+                let (ob, f) = self.edge_owner[c as usize];
+                // Each pair once; within one body only if it collides with itself.
+                if (ob, f) <= (bi, e) || (ob == bi && !self.bodies[bi as usize].params.self_collision) {
+                    continue;
+                }
+                self.edge_pair(bi as usize, e as usize, ob as usize, f as usize);
+            }
+        }
+    }
+
+    fn edge_pair(&mut self, ba: usize, ea: usize, bb: usize, eb: usize) {
+        let ends = |w: &World, b: usize, e: usize| {
+            let (i, j) = w.bodies[b].spring_ends();
+            [i[e] as usize, j[e] as usize]
+        };
+        let (a, b) = (ends(self, ba, ea), ends(self, bb, eb));
+        if ba == bb && (a.iter().any(|v| b.contains(v)) || !far_apart_at_rest(self, ba, a, b)) {
+            return;
+        }
+        let (xa, xb) = (self.bodies[ba].positions(), self.bodies[bb].positions());
+        let (a0, a1, b0, b1) = (get(xa, a[0]), get(xa, a[1]), get(xb, b[0]), get(xb, b[1]));
+        // Cheap first: the two segments' boxes must overlap.
+        let r = self.thickness;
+        if (0..3).any(|d| a0[d].max(a1[d]) + r < b0[d].min(b1[d]) || b0[d].max(b1[d]) + r < a0[d].min(a1[d])) {
+            return;
+        }
+        let (s, t) = closest_segments(a0, a1, b0, b1);
+        if s <= 1e-6 || s >= 1.0 - 1e-6 || t <= 1e-6 || t >= 1.0 - 1e-6 {
+            return; // an end point: the vertex–face test's business
+        }
+        let pa = add(a0, scale(sub(a1, a0), s));
+        let pb = add(b0, scale(sub(b1, b0), t));
+        if norm(sub(pa, pb)) >= self.reach_now {
+            return;
+        }
+        // The side at the start of the step.
+        let (pra, prb) = (&self.prev[ba], &self.prev[bb]);
+        let (c0, c1, d0, d1) = (get(pra, a[0]), get(pra, a[1]), get(prb, b[0]), get(prb, b[1]));
+        let (s0, t0) = closest_segments(c0, c1, d0, d1);
+        let before = sub(add(c0, scale(sub(c1, c0), s0)), add(d0, scale(sub(d1, d0), t0)));
+        let len0 = norm(before);
+        let n = if len0 > 1e-12 {
+            scale(before, 1.0 / len0)
+        } else {
+            let now = sub(pa, pb);
+            let l = norm(now);
+            if l <= 1e-12 {
+                return;
+            }
+            scale(now, 1.0 / l)
+        };
+        let gap = dot(sub(pa, pb), n);
+        if gap >= 0.0 || gap < -self.reach_now {
+            return;
+        }
+        let w = |body: usize, v: usize| if self.bodies[body].is_pinned(v) { 0.0 } else { 1.0 / self.bodies[body].masses()[v] };
+        let g = [(ba, a[0], 1.0 - s, 1.0), (ba, a[1], s, 1.0), (bb, b[0], 1.0 - t, -1.0), (bb, b[1], t, -1.0)];
+        let wsum: f64 = g.iter().map(|&(body, v, gk, _)| gk * gk * w(body, v)).sum();
+        if wsum == 0.0 {
+            return;
+        }
+        let vel = |body: usize, v: usize| get(self.bodies[body].velocities(), v);
+        let va = add(scale(vel(ba, a[0]), 1.0 - s), scale(vel(ba, a[1]), s));
+        let vb = add(scale(vel(bb, b[0]), 1.0 - t), scale(vel(bb, b[1]), t));
+        let rel = sub(va, vb);
+        let vn = dot(rel, n);
+        let mut impulse = [0.0; 3];
+        if vn < 0.0 {
+            let j = -vn / wsum;
+            let tangent = sub(rel, scale(n, vn));
+            let vt = norm(tangent);
+            let jt = if vt > 0.0 { (self.friction * j).min(vt / wsum) } else { 0.0 };
+            impulse = sub(scale(n, j), if vt > 0.0 { scale(tangent, jt / vt) } else { [0.0; 3] });
+        }
+        // Closed to a hair's breadth (a thousandth of the thickness), not to zero: two edges left
+        // exactly touching would have no side at the next step.
+        let lambda = (-gap + 1e-3 * self.thickness) / wsum;
+        let ws: Vec<f64> = g.iter().map(|&(body, v, _, _)| w(body, v)).collect();
+        for (k, &(body, v, gk, sign)) in g.iter().enumerate() {
+            let f = sign * gk * ws[k];
+            self.bodies[body].nudge(v, scale(n, f * lambda), scale(impulse, f));
+        }
+    }
+}
+
+/// Whether two edges of one body were at least as far apart as the longer of them in the rest
+/// shape (so they are not neighbours on the surface).
+fn far_apart_at_rest(w: &World, b: usize, a: [usize; 2], c: [usize; 2]) -> bool {
+    let x = w.bodies[b].frozen_positions();
+    let (a0, a1, c0, c1) = (get(x, a[0]), get(x, a[1]), get(x, c[0]), get(x, c[1]));
+    let (s, t) = closest_segments(a0, a1, c0, c1);
+    let d = norm(sub(add(a0, scale(sub(a1, a0), s)), add(c0, scale(sub(c1, c0), t))));
+    d >= norm(sub(a1, a0)).max(norm(sub(c1, c0)))
+}
