@@ -51,13 +51,17 @@ impl World {
         if self.edge_owner.len() < 2 {
             return;
         }
-        let radius = 2.0 * longest + self.thickness;
-        self.edge_hash.set_spacing(2.0 * radius);
+        // Two segments within the thickness of each other have midpoints within the sum of their
+        // half lengths plus the thickness: each edge queries with its own half length.
+        self.edge_hash.set_spacing(2.0 * (2.0 * longest + self.thickness));
         self.edge_hash.build(&self.mids);
         let mut found = Vec::new();
         for k in 0..self.edge_owner.len() {
             let (bi, e) = self.edge_owner[k];
-            self.edge_hash.query(get(&self.mids, k), radius, &mut found);
+            let (i, j) = self.bodies[bi as usize].spring_ends();
+            let x = self.bodies[bi as usize].positions();
+            let half = 0.5 * norm(sub(get(x, j[e as usize] as usize), get(x, i[e as usize] as usize)));
+            self.edge_hash.query(get(&self.mids, k), half + longest + self.thickness, &mut found);
             for &c in &found {
                 let (ob, f) = self.edge_owner[c as usize];
                 // Each pair once; within one body only if it collides with itself.
