@@ -123,6 +123,26 @@ impl MeshShape {
         self.split(child + 1, mid, end);
     }
 
+    /// Depth-first over the hierarchy: into every node `enter` accepts, calling `leaf` on each
+    /// triangle of the leaves reached.
+    fn visit(&self, enter: impl Fn(&Node) -> bool, mut leaf: impl FnMut(u32)) {
+        let mut stack = vec![0usize];
+        while let Some(k) = stack.pop() {
+            let n = &self.nodes[k];
+            if !enter(n) {
+                continue;
+            }
+            if n.count == 0 {
+                stack.push(n.first as usize);
+                stack.push(n.first as usize + 1);
+                continue;
+            }
+            for &t in &self.order[n.first as usize..(n.first + n.count) as usize] {
+                leaf(t);
+            }
+        }
+    }
+
     fn box_distance2(n: &Node, p: V3) -> f64 {
         (0..3).map(|d| (n.lo[d] - p[d]).max(0.0).max(p[d] - n.hi[d])).map(|e| e * e).sum()
     }
@@ -132,19 +152,10 @@ impl MeshShape {
         // (distance², alignment of p − q with the face normal, q), and that face's normal.
         let mut best: Option<(f64, f64, V3)> = None;
         let mut best_n = [0.0; 3];
-        let mut best_d2 = reach * reach;
-        let mut stack = vec![0usize];
-        while let Some(k) = stack.pop() {
-            let n = self.nodes[k];
-            if Self::box_distance2(&n, p) > best_d2 * (1.0 + 1e-12) {
-                continue;
-            }
-            if n.count == 0 {
-                stack.push(n.first as usize);
-                stack.push(n.first as usize + 1);
-                continue;
-            }
-            for &t in &self.order[n.first as usize..(n.first + n.count) as usize] {
+        let best_d2 = std::cell::Cell::new(reach * reach);
+        self.visit(
+            |n| Self::box_distance2(n, p) <= best_d2.get() * (1.0 + 1e-12),
+            |t| {
                 let [a, b, c] = self.corners(t);
                 let w = crate::world::closest_barycentric(p, a, b, c);
                 let q = add(add(scale(a, w[0]), scale(b, w[1])), scale(c, w[2]));
@@ -153,18 +164,18 @@ impl MeshShape {
                 let normal = self.normals[t as usize];
                 let align = if d2 > 0.0 { dot(d, normal).abs() / d2.sqrt() } else { 1.0 };
                 let better = match best {
-                    None => d2 <= best_d2,
+                    None => d2 <= best_d2.get(),
                     // Equal distances (a shared edge or corner): the best-aligned face decides.
                     Some((bd2, balign, _)) if (d2 - bd2).abs() <= 1e-12 * (1.0 + bd2) => align > balign,
                     Some((bd2, _, _)) => d2 < bd2,
                 };
                 if better {
-                    best_d2 = d2;
+                    best_d2.set(d2);
                     best = Some((d2, align, q));
                     best_n = normal;
                 }
-            }
-        }
+            },
+        );
         let (d2, _, q) = best?;
         let s = dot(sub(p, q), best_n);
         let sign = if s < 0.0 { -1.0 } else { 1.0 };
@@ -176,20 +187,11 @@ impl MeshShape {
         let dir = sub(p1, p0);
         let (lo, hi) = ([p0[0].min(p1[0]), p0[1].min(p1[1]), p0[2].min(p1[2])], [p0[0].max(p1[0]), p0[1].max(p1[1]), p0[2].max(p1[2])]);
         let mut best: Option<f64> = None;
-        let mut stack = vec![0usize];
-        while let Some(k) = stack.pop() {
-            let n = self.nodes[k];
-            if (0..3).any(|d| n.hi[d] < lo[d] || n.lo[d] > hi[d]) {
-                continue;
-            }
-            if n.count == 0 {
-                stack.push(n.first as usize);
-                stack.push(n.first as usize + 1);
-                continue;
-            }
-            for &t in &self.order[n.first as usize..(n.first + n.count) as usize] {
+        self.visit(
+            |n| (0..3).all(|d| n.hi[d] >= lo[d] && n.lo[d] <= hi[d]),
+            |t| {
                 if dot(dir, self.normals[t as usize]) >= 0.0 {
-                    continue; // leaving or grazing: not an entry
+                    return; // leaving or grazing: not an entry
                 }
                 let [a, b, c] = self.corners(t);
                 // Möller–Trumbore: p0 + t dir = a + u (b − a) + v (c − a).
@@ -197,7 +199,7 @@ impl MeshShape {
                 let h = cross(dir, e2);
                 let det = dot(e1, h);
                 if det.abs() < 1e-300 {
-                    continue;
+                    return;
                 }
                 let inv = 1.0 / det;
                 let s = sub(p0, a);
@@ -206,14 +208,14 @@ impl MeshShape {
                 let v = inv * dot(dir, q);
                 let eps = 1e-12;
                 if u < -eps || v < -eps || u + v > 1.0 + eps {
-                    continue;
+                    return;
                 }
                 let tt = inv * dot(e2, q);
                 if (0.0..=1.0).contains(&tt) && best.map_or(true, |b| tt < b) {
                     best = Some(tt);
                 }
-            }
-        }
+            },
+        );
         best
     }
 }

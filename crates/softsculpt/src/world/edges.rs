@@ -127,16 +127,7 @@ impl World {
         let vel = |body: usize, v: usize| get(self.bodies[body].velocities(), v);
         let va = add(scale(vel(ba, a[0]), 1.0 - s), scale(vel(ba, a[1]), s));
         let vb = add(scale(vel(bb, b[0]), 1.0 - t), scale(vel(bb, b[1]), t));
-        let rel = sub(va, vb);
-        let vn = dot(rel, n);
-        let mut impulse = [0.0; 3];
-        if vn < 0.0 {
-            let j = -vn / wsum;
-            let tangent = sub(rel, scale(n, vn));
-            let vt = norm(tangent);
-            let jt = if vt > 0.0 { (self.friction * j).min(vt / wsum) } else { 0.0 };
-            impulse = sub(scale(n, j), if vt > 0.0 { scale(tangent, jt / vt) } else { [0.0; 3] });
-        }
+        let impulse = super::contact_impulse(sub(va, vb), n, wsum, self.friction);
         // Closed to a hair's breadth (a thousandth of the thickness), not to zero: two edges left
         // exactly touching would have no side at the next step.
         let lambda = (-gap + 1e-3 * self.thickness) / wsum;

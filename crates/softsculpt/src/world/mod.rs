@@ -303,21 +303,31 @@ impl World {
         let vp = get(self.bodies[bi].velocities(), vi);
         let vo = self.bodies[ob].velocities();
         let vq = (0..3).fold([0.0; 3], |acc, k| add(acc, scale(get(vo, t[k] as usize), w[k])));
-        let rel = sub(vp, vq);
-        let vn = dot(rel, n);
-        let mut impulse = [0.0; 3];
-        if vn < 0.0 {
-            let j = -vn / wsum;
-            let tangent = sub(rel, scale(n, vn));
-            let vt = norm(tangent);
-            let jt = if vt > 0.0 { (self.friction * j).min(vt / wsum) } else { 0.0 };
-            impulse = sub(scale(n, j), if vt > 0.0 { scale(tangent, jt / vt) } else { [0.0; 3] });
-        }
+        let impulse = contact_impulse(sub(vp, vq), n, wsum, self.friction);
         self.bodies[bi].nudge(vi, scale(n, lambda * ip), scale(impulse, ip));
         for k in 0..3 {
             self.bodies[ob].nudge(t[k] as usize, scale(n, -lambda * w[k] * it[k]), scale(impulse, -w[k] * it[k]));
         }
     }
+}
+
+/// The impulse (per unit of the weights' inverse mass) that removes the approaching normal part
+/// of the relative velocity `rel` along n (inelastic) and up to μ times that of its tangential
+/// part (Coulomb friction), for a contact whose effective inverse mass is `wsum`
+/// (Σ weight² / mass over the vertices involved): zero if they are separating.
+pub(crate) fn contact_impulse(rel: V3, n: V3, wsum: f64, friction: f64) -> V3 {
+    let vn = dot(rel, n);
+    if vn >= 0.0 {
+        return [0.0; 3];
+    }
+    let j = -vn / wsum;
+    let tangent = sub(rel, scale(n, vn));
+    let vt = norm(tangent);
+    if vt == 0.0 {
+        return scale(n, j);
+    }
+    let jt = (friction * j).min(vt / wsum);
+    sub(scale(n, j), scale(tangent, jt / vt))
 }
 
 /// +1 if vertex `v` was in front of face `t` (along its normal) in positions `x0`, else −1.
