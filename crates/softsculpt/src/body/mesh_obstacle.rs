@@ -125,16 +125,21 @@ impl MeshShape {
 
     /// Depth-first over the hierarchy: into every node `enter` accepts, calling `leaf` on each
     /// triangle of the leaves reached.
+    /// The stack lives on the call stack (no allocation per query: this runs for every vertex
+    /// every step); the median split keeps the depth under log2(faces) + 1 < 64.
     fn visit(&self, enter: impl Fn(&Node) -> bool, mut leaf: impl FnMut(u32)) {
-        let mut stack = vec![0usize];
-        while let Some(k) = stack.pop() {
-            let n = &self.nodes[k];
+        let mut stack = [0usize; 64];
+        let mut len = 1;
+        while len > 0 {
+            len -= 1;
+            let n = &self.nodes[stack[len]];
             if !enter(n) {
                 continue;
             }
             if n.count == 0 {
-                stack.push(n.first as usize);
-                stack.push(n.first as usize + 1);
+                stack[len] = n.first as usize;
+                stack[len + 1] = n.first as usize + 1;
+                len += 2;
                 continue;
             }
             for &t in &self.order[n.first as usize..(n.first + n.count) as usize] {

@@ -55,7 +55,7 @@ impl World {
         // half lengths plus the thickness: each edge queries with its own half length.
         self.edge_hash.set_spacing(2.0 * (2.0 * longest + self.thickness));
         self.edge_hash.build(&self.mids);
-        let mut found = Vec::new();
+        let mut found = std::mem::take(&mut self.found);
         for k in 0..self.edge_owner.len() {
             let (bi, e) = self.edge_owner[k];
             let (i, j) = self.bodies[bi as usize].spring_ends();
@@ -71,6 +71,7 @@ impl World {
                 self.edge_pair(bi as usize, e as usize, ob as usize, f as usize);
             }
         }
+        self.found = found;
     }
 
     fn edge_pair(&mut self, ba: usize, ea: usize, bb: usize, eb: usize) {
@@ -131,7 +132,7 @@ impl World {
         // Closed to a hair's breadth (a thousandth of the thickness), not to zero: two edges left
         // exactly touching would have no side at the next step.
         let lambda = (-gap + 1e-3 * self.thickness) / wsum;
-        let ws: Vec<f64> = g.iter().map(|&(body, v, _, _)| w(body, v)).collect();
+        let ws = g.map(|(body, v, _, _)| w(body, v));
         for (k, &(body, v, gk, sign)) in g.iter().enumerate() {
             let f = sign * gk * ws[k];
             self.bodies[body].nudge(v, scale(n, f * lambda), scale(impulse, f));

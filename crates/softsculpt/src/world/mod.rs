@@ -51,6 +51,7 @@ pub struct World {
     edge_hash: SpatialHash,
     mids: Vec<f64>,
     edge_owner: Vec<(u32, u32)>,
+    found: Vec<u32>,
     /// The largest triangle radius this step (m): how deep a crossing is still caught.
     reach_now: f64,
     /// Per body and vertex: near another body's surface this step (edges there are tested).
@@ -97,7 +98,7 @@ pub(crate) fn closest_barycentric(p: V3, a: V3, b: V3, c: V3) -> [f64; 3] {
 
 impl World {
     pub fn new(bodies: Vec<SoftBody>, thickness: f64) -> Self {
-        World { bodies, thickness, friction: 0.5, edge_contact: true, hash: SpatialHash::new(1.0), centroids: Vec::new(), owners: Vec::new(), radii: Vec::new(), candidates: Vec::new(), prev: Vec::new(), edge_hash: SpatialHash::new(1.0), mids: Vec::new(), edge_owner: Vec::new(), reach_now: 0.0, near: Vec::new() }
+        World { bodies, thickness, friction: 0.5, edge_contact: true, hash: SpatialHash::new(1.0), centroids: Vec::new(), owners: Vec::new(), radii: Vec::new(), candidates: Vec::new(), prev: Vec::new(), edge_hash: SpatialHash::new(1.0), mids: Vec::new(), edge_owner: Vec::new(), found: Vec::new(), reach_now: 0.0, near: Vec::new() }
     }
 
     /// Step every body by `dt` (s), then resolve contacts between bodies.
