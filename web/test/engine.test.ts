@@ -17,6 +17,21 @@ describe('engine binding', () => {
     expect(() => SoftBody.builtin('teapot')).toThrow(/unknown built-in model/);
   });
 
+  it('steps a self-colliding body (in its own one-body world) and keeps the switch', () => {
+    const b = SoftBody.builtin('sphere');
+    expect(b.get('selfCollision')).toBe(0);
+    b.set('selfCollision', 1);
+    expect(b.get('selfCollision')).toBe(1);
+    b.set('gasAmount', 0); // gasless and pressed: it folds onto itself
+    b.set('gravity', 9.81);
+    b.set('groundOn', 1);
+    b.set('groundHeight', -1);
+    b.step(1e-3, 500);
+    const s = b.stats();
+    expect(Number.isFinite(s.volume) && s.step === 500).toBe(true);
+    b.free();
+  });
+
   it('refuses bad parameters with the reason and keeps the old value', () => {
     const b = SoftBody.builtin('sphere');
     b.set('stiffness', 250);

@@ -273,3 +273,25 @@ fn the_documented_example_runs() {
     run_to(&mut s, 4.0);
     assert!(s.world.bodies[0].is_finite());
 }
+
+/// The modeler's changes to a running scene: a new time step keeps the clock continuous (events
+/// still fire at their times), and a body replaced by one of another size (subdivided) loses
+/// its pending events — only its own, only the pending ones.
+#[test]
+fn a_running_scene_takes_a_new_dt_and_a_replaced_body() {
+    let text = format!("{}\n[[body]]\nname = \"other\"\nmodel = \"sphere\"\nscale = 0.3\ntranslate = [3.0, 1.0, 0.0]\n[[event]]\ntime = 2.5\naction = \"freeze\"\nbody = \"other\"\n", text("fig2_mushroom_gas.toml"));
+    let mut s = load(&text);
+    run_to(&mut s, 0.5);
+    s.set_dt(5e-4);
+    run_to(&mut s, 1.0);
+    assert!((s.time() - 1.0).abs() < 1e-12, "{}", s.time());
+    // The mushroom's gas change (1.5 s) goes with its old mesh; the other body's two events stay
+    // until it too is replaced.
+    let n = s.world.bodies[0].vertex_count();
+    assert_eq!(s.pending_events(), 3, "the gas change for each body, the other's freeze");
+    assert_eq!(s.body_replaced(0, n, s.world.bodies[0].face_count()), 0, "same size: nothing dropped");
+    assert_eq!(s.body_replaced(0, 4 * n, 2 * s.world.bodies[0].face_count()), 1);
+    assert_eq!(s.pending_events(), 2);
+    assert_eq!(s.body_replaced(1, 1, 1), 2);
+    assert_eq!(s.pending_events(), 0);
+}

@@ -107,6 +107,11 @@ impl SceneRun {
         before - self.events.len()
     }
 
+    /// Events not fired yet (all bodies).
+    pub fn pending_events(&self) -> usize {
+        self.events.len() - self.next
+    }
+
     pub fn steps(&self) -> u64 {
         self.steps
     }
