@@ -15,7 +15,6 @@ use std::collections::HashMap;
 
 struct Slot {
     run: SceneRun,
-    spec: SceneSpec,
     handles: Vec<u32>,
     obstacles: Vec<f64>,
 }
@@ -102,10 +101,6 @@ pub unsafe extern "C" fn ss_scene_open(ptr: *const u8, len: usize) -> u32 {
             .cloned()
             .ok_or_else(|| format!("not given: open '{base}' together with the scene"))
     };
-    let spec = match scene::parse(&text) {
-        Ok(s) => s,
-        Err(e) => return table::fail(e.to_string()),
-    };
     let run = match SceneRun::load(&text, &mut resolve) {
         Ok(r) => r,
         Err(e) => return table::fail(e.to_string()),
@@ -115,7 +110,7 @@ pub unsafe extern "C" fn ss_scene_open(ptr: *const u8, len: usize) -> u32 {
     table::set_message("");
     SCENES.with(|v| {
         let mut v = v.borrow_mut();
-        v.push(Some(Slot { run, spec, handles, obstacles }));
+        v.push(Some(Slot { run, handles, obstacles }));
         v.len() as u32
     })
 }
@@ -246,7 +241,7 @@ pub unsafe extern "C" fn ss_scene_save(s: u32, hs: *const u32, n: u32, dt: f64, 
         table::set_message("no bodies to save");
         return 1;
     }
-    let template: Option<(SceneSpec, Vec<String>)> = if s == 0 { None } else { with_scene(s, None, |sl| Some((sl.spec.clone(), sl.run.names.clone()))) };
+    let template: Option<(SceneSpec, Vec<String>)> = if s == 0 { None } else { with_scene(s, None, |sl| Some((sl.run.spec.clone(), sl.run.names.clone()))) };
     let bodies: Option<Vec<softsculpt::SoftBody>> = with_table(|t| handles.iter().map(|&h| t.get(h).map(|e| e.body.clone())).collect());
     let Some(bodies) = bodies else {
         table::set_message("a body to save does not exist");

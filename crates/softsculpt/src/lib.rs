@@ -11,6 +11,7 @@
 
 pub mod body;
 pub mod error;
+pub mod geometry;
 pub mod hash;
 pub mod mesh;
 pub mod scene;

@@ -13,8 +13,9 @@
 //! least 1 mm): the sweep catches every entry, so the depth check only mops up rounding, and a
 //! body placed wholly behind an open mesh (under a terrain) is left alone.
 
+use crate::geometry::closest_on_triangle;
 use crate::mesh::TriMesh;
-use crate::vec3::{add, cross, dot, get, norm, scale, sub, V3};
+use crate::vec3::{cross, dot, get, norm, scale, sub, V3};
 
 #[derive(Clone, Copy)]
 struct Node {
@@ -162,8 +163,7 @@ impl MeshShape {
             |n| Self::box_distance2(n, p) <= best_d2.get() * (1.0 + 1e-12),
             |t| {
                 let [a, b, c] = self.corners(t);
-                let w = crate::world::closest_barycentric(p, a, b, c);
-                let q = add(add(scale(a, w[0]), scale(b, w[1])), scale(c, w[2]));
+                let (_, q) = closest_on_triangle(p, a, b, c);
                 let d = sub(p, q);
                 let d2 = dot(d, d);
                 let normal = self.normals[t as usize];
@@ -243,8 +243,7 @@ mod tests {
             let p = [(k as f64 * 0.37).sin() * 1.3, (k as f64 * 0.71).cos() * 1.3, (k as f64 * 0.13).sin()];
             let brute = m.triangles.iter().map(|t| {
                 let (a, b, c) = (get(&m.positions, t[0] as usize), get(&m.positions, t[1] as usize), get(&m.positions, t[2] as usize));
-                let w = crate::world::closest_barycentric(p, a, b, c);
-                norm(sub(p, add(add(scale(a, w[0]), scale(b, w[1])), scale(c, w[2]))))
+                norm(sub(p, closest_on_triangle(p, a, b, c).1))
             });
             let brute = brute.fold(f64::INFINITY, f64::min);
             let (d, _) = s.closest(p, 10.0).unwrap();

@@ -11,8 +11,9 @@
 //! otherwise pass between two vertices.
 
 use super::mesh_obstacle::MeshShape;
+use crate::geometry::{closest_segments, lerp, rotate};
 use crate::mesh::TriMesh;
-use crate::vec3::{add, cross, dot, norm, scale, sub, V3};
+use crate::vec3::{add, dot, norm, scale, sub, V3};
 use std::sync::Arc;
 
 /// The shape of an obstacle (metres).
@@ -52,8 +53,8 @@ impl Obstacle {
     pub fn rotated_box(center: V3, half: V3, axis: V3, angle: f64) -> Self {
         let (s, c) = angle.sin_cos();
         let k = crate::vec3::normalize(axis);
-        // Rodrigues: R e_i for the three basis vectors; the rows of `axes` are the rotated axes.
-        let rot = |v: V3| add(add(scale(v, c), scale(cross(k, v), s)), scale(k, dot(k, v) * (1.0 - c)));
+        // R e_i for the three basis vectors; the rows of `axes` are the rotated axes.
+        let rot = |v: V3| rotate(v, k, s, c);
         let axes = [rot([1.0, 0.0, 0.0]), rot([0.0, 1.0, 0.0]), rot([0.0, 0.0, 1.0])];
         Obstacle { shape: Shape::Box { center, half, axes }, friction: 0.5 }
     }
@@ -218,35 +219,6 @@ pub fn resolve(obstacles: &[Obstacle], inv_mass: &[f64], x_prev: &[f64], x: &mut
     }
 }
 
-/// Closest points of segments p0p1 and q0q1: parameters (s, t) ∈ [0, 1]² (Ericson, Real-Time
-/// Collision Detection, 5.1.9).
-pub(crate) fn closest_segments(p0: V3, p1: V3, q0: V3, q1: V3) -> (f64, f64) {
-    let (d1, d2, r) = (sub(p1, p0), sub(q1, q0), sub(p0, q0));
-    let (a, e, f) = (dot(d1, d1), dot(d2, d2), dot(d2, r));
-    if a <= 1e-300 && e <= 1e-300 {
-        return (0.0, 0.0);
-    }
-    if a <= 1e-300 {
-        return (0.0, (f / e).clamp(0.0, 1.0));
-    }
-    let c = dot(d1, r);
-    if e <= 1e-300 {
-        return ((-c / a).clamp(0.0, 1.0), 0.0);
-    }
-    let b = dot(d1, d2);
-    let denom = a * e - b * b;
-    let mut s = if denom > 0.0 { ((b * f - c * e) / denom).clamp(0.0, 1.0) } else { 0.0 };
-    let mut t = (b * s + f) / e;
-    if t < 0.0 {
-        t = 0.0;
-        s = (-c / a).clamp(0.0, 1.0);
-    } else if t > 1.0 {
-        t = 1.0;
-        s = ((b - c) / a).clamp(0.0, 1.0);
-    }
-    (s, t)
-}
-
 /// Stage "obstacle edges": keep the edges (springs) of the mesh out of spheres and capsules, so
 /// a bar or a ball thinner than the edges cannot slip between two vertices. For an edge from
 /// x_i to x_j whose closest point x_e = (1 − s) x_i + s x_j is inside the obstacle by depth d
@@ -282,14 +254,14 @@ pub fn resolve_edges(obstacles: &[Obstacle], inv_mass: &[f64], ei: &[u32], ej: &
                 }
                 Shape::Capsule { a: qa, b: qb, radius } => {
                     let (s, t) = closest_segments(a, b, *qa, *qb);
-                    (s, add(*qa, scale(sub(*qb, *qa), t)), *radius)
+                    (s, lerp(*qa, *qb, t), *radius)
                 }
                 _ => unreachable!(),
             };
             if s <= 1e-9 || s >= 1.0 - 1e-9 {
                 continue;
             }
-            let e = add(a, scale(sub(b, a), s));
+            let e = lerp(a, b, s);
             let off = sub(e, core);
             let dist = norm(off);
             if dist >= radius || dist == 0.0 {

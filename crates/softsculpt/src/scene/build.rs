@@ -6,9 +6,10 @@ use super::spec::{BodySpec, ObstacleSpec, RegionSpec, RotateSpec, SceneSpec};
 use super::{line_of, SceneError};
 use crate::body::obstacles::Obstacle;
 use crate::body::params::{Ground, DEFAULT_TEMPERATURE};
+use crate::geometry::rotate;
 use crate::body::{GasReference, Integrator, Params, SoftBody, VolumeMode, GAS_CONSTANT};
 use crate::mesh::{builtin, load_obj, LoadedMesh};
-use crate::vec3::{add, cross, dot, normalize, scale, V3};
+use crate::vec3::{add, dot, normalize, scale, V3};
 
 /// Reads a mesh file named in the scene (a path relative to the scene file) as bytes.
 pub type Resolver<'a> = &'a mut dyn FnMut(&str) -> Result<Vec<u8>, String>;
@@ -141,7 +142,7 @@ pub fn build(spec: &SceneSpec, text: &str, resolve: Resolver) -> Result<Built, S
             let b = &bodies[bi];
             let region = |cx: &Ctx| -> Result<Vec<usize>, SceneError> {
                 match &e.region {
-                    Some(r) => select(cx, "region", r, b),
+                    Some(r) => select_in(cx, "region", r, &b.body, &b.mesh),
                     None => Ok((0..b.body.vertex_count()).collect()),
                 }
             };
@@ -348,7 +349,7 @@ fn obstacle(cx: &Ctx, o: &ObstacleSpec, resolve: Resolver) -> Result<Obstacle, S
     Ok(ob)
 }
 
-/// Rotation by `degrees` about `axis` (Rodrigues' formula).
+/// Rotation by `degrees` about `axis`.
 fn rotation(cx: &Ctx, key: &str, r: &RotateSpec) -> Result<impl Fn(V3) -> V3, SceneError> {
     let axis = cx.vec(&format!("{key}.axis"), r.axis)?;
     if dot(axis, axis) == 0.0 {
@@ -356,7 +357,7 @@ fn rotation(cx: &Ctx, key: &str, r: &RotateSpec) -> Result<impl Fn(V3) -> V3, Sc
     }
     let k = normalize(axis);
     let (s, c) = cx.finite(&format!("{key}.degrees"), r.degrees)?.to_radians().sin_cos();
-    Ok(move |v: V3| add(add(scale(v, c), scale(cross(k, v), s)), scale(k, dot(k, v) * (1.0 - c))))
+    Ok(move |v: V3| rotate(v, k, s, c))
 }
 
 fn vertex_mask(n: usize, vertices: &[usize]) -> Vec<bool> {
@@ -365,10 +366,6 @@ fn vertex_mask(n: usize, vertices: &[usize]) -> Vec<bool> {
         m[v] = true;
     }
     m
-}
-
-fn select(cx: &Ctx, key: &str, r: &RegionSpec, b: &BuiltBody) -> Result<Vec<usize>, SceneError> {
-    select_in(cx, key, r, &b.body, &b.mesh)
 }
 
 /// The body's vertices in region `r` (positions at the start; `vertices` are indices into the

@@ -20,6 +20,8 @@ struct Load {
 }
 
 pub struct SceneRun {
+    /// The scene as parsed (what saving writes back its obstacles and events from).
+    pub spec: super::SceneSpec,
     pub world: World,
     /// Each body's name and loaded mesh, in the world's body order.
     pub names: Vec<String>,
@@ -56,6 +58,7 @@ impl SceneRun {
         let mut world = World::new(bodies, built.contact_thickness);
         world.friction = built.contact_friction;
         Ok(SceneRun {
+            spec,
             world,
             names,
             meshes,

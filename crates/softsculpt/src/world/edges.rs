@@ -17,12 +17,11 @@
 //! friction.
 
 use super::World;
-use crate::body::obstacles::closest_segments;
+use crate::geometry::{closest_segments, lerp};
 use crate::vec3::{add, dot, get, norm, scale, sub, V3};
 
 impl World {
     pub(super) fn collide_edges(&mut self, zones: &[Vec<(V3, V3)>]) {
-        let inside = |zs: &[(V3, V3)], p: V3, grow: f64| zs.iter().any(|(lo, hi)| (0..3).all(|d| p[d] >= lo[d] - grow && p[d] <= hi[d] + grow));
         self.mids.clear();
         self.edge_owner.clear();
         let mut longest: f64 = 0.0;
@@ -41,7 +40,7 @@ impl World {
                 let (p, q) = (get(x, i as usize), get(x, j as usize));
                 let m = scale(add(p, q), 0.5);
                 let half = 0.5 * norm(sub(q, p));
-                if inside(&zones[bi], m, half) {
+                if super::in_zones(&zones[bi], m, half) {
                     longest = longest.max(half);
                     self.mids.extend_from_slice(&m);
                     self.edge_owner.push((bi as u32, e as u32));
@@ -94,8 +93,7 @@ impl World {
         if s <= 1e-6 || s >= 1.0 - 1e-6 || t <= 1e-6 || t >= 1.0 - 1e-6 {
             return; // an end point: the vertex–face test's business
         }
-        let pa = add(a0, scale(sub(a1, a0), s));
-        let pb = add(b0, scale(sub(b1, b0), t));
+        let (pa, pb) = (lerp(a0, a1, s), lerp(b0, b1, t));
         if norm(sub(pa, pb)) >= self.reach_now {
             return;
         }
@@ -103,7 +101,7 @@ impl World {
         let (pra, prb) = (&self.prev[ba], &self.prev[bb]);
         let (c0, c1, d0, d1) = (get(pra, a[0]), get(pra, a[1]), get(prb, b[0]), get(prb, b[1]));
         let (s0, t0) = closest_segments(c0, c1, d0, d1);
-        let before = sub(add(c0, scale(sub(c1, c0), s0)), add(d0, scale(sub(d1, d0), t0)));
+        let before = sub(lerp(c0, c1, s0), lerp(d0, d1, t0));
         let len0 = norm(before);
         let n = if len0 > 1e-12 {
             scale(before, 1.0 / len0)
@@ -146,6 +144,6 @@ fn far_apart_at_rest(w: &World, b: usize, a: [usize; 2], c: [usize; 2]) -> bool 
     let x = w.bodies[b].frozen_positions();
     let (a0, a1, c0, c1) = (get(x, a[0]), get(x, a[1]), get(x, c[0]), get(x, c[1]));
     let (s, t) = closest_segments(a0, a1, c0, c1);
-    let d = norm(sub(add(a0, scale(sub(a1, a0), s)), add(c0, scale(sub(c1, c0), t))));
+    let d = norm(sub(lerp(a0, a1, s), lerp(c0, c1, t)));
     d >= norm(sub(a1, a0)).max(norm(sub(c1, c0)))
 }

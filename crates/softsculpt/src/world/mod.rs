@@ -26,6 +26,7 @@
 mod edges;
 
 use crate::body::SoftBody;
+use crate::geometry::closest_on_triangle;
 use crate::error::SimError;
 use crate::hash::SpatialHash;
 use crate::vec3::{add, cross, dot, get, norm, scale, sub, V3};
@@ -58,44 +59,6 @@ pub struct World {
     near: Vec<Vec<bool>>,
 }
 
-/// Closest point on triangle (a, b, c) to p, as barycentric weights (Ericson, Real-Time
-/// Collision Detection, 5.1.5).
-pub(crate) fn closest_barycentric(p: V3, a: V3, b: V3, c: V3) -> [f64; 3] {
-    let (ab, ac, ap) = (sub(b, a), sub(c, a), sub(p, a));
-    let (d1, d2) = (dot(ab, ap), dot(ac, ap));
-    if d1 <= 0.0 && d2 <= 0.0 {
-        return [1.0, 0.0, 0.0];
-    }
-    let bp = sub(p, b);
-    let (d3, d4) = (dot(ab, bp), dot(ac, bp));
-    if d3 >= 0.0 && d4 <= d3 {
-        return [0.0, 1.0, 0.0];
-    }
-    let vc = d1 * d4 - d3 * d2;
-    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
-        let v = d1 / (d1 - d3);
-        return [1.0 - v, v, 0.0];
-    }
-    let cp = sub(p, c);
-    let (d5, d6) = (dot(ab, cp), dot(ac, cp));
-    if d6 >= 0.0 && d5 <= d6 {
-        return [0.0, 0.0, 1.0];
-    }
-    let vb = d5 * d2 - d1 * d6;
-    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
-        let w = d2 / (d2 - d6);
-        return [1.0 - w, 0.0, w];
-    }
-    let va = d3 * d6 - d5 * d4;
-    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
-        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        return [0.0, 1.0 - w, w];
-    }
-    let denom = 1.0 / (va + vb + vc);
-    let (v, w) = (vb * denom, vc * denom);
-    [1.0 - v - w, v, w]
-}
-
 impl World {
     pub fn new(bodies: Vec<SoftBody>, thickness: f64) -> Self {
         World { bodies, thickness, friction: 0.5, edge_contact: true, hash: SpatialHash::new(1.0), centroids: Vec::new(), owners: Vec::new(), radii: Vec::new(), candidates: Vec::new(), prev: Vec::new(), edge_hash: SpatialHash::new(1.0), mids: Vec::new(), edge_owner: Vec::new(), found: Vec::new(), reach_now: 0.0, near: Vec::new() }
@@ -126,14 +89,22 @@ impl World {
     }
 
     fn collide(&mut self) {
-        // The largest triangle radius (about its centroid) sets the reach of the queries.
+        // Every triangle's centroid and radius (about the centroid); the largest radius sets
+        // the reach of the queries.
+        self.centroids.clear();
+        self.owners.clear();
+        self.radii.clear();
         let mut reach: f64 = 0.0;
-        for b in &self.bodies {
+        for (bi, b) in self.bodies.iter().enumerate() {
             let x = b.positions();
-            for t in b.triangles() {
+            for (f, t) in b.triangles().iter().enumerate() {
                 let (a, bb, c) = (get(x, t[0] as usize), get(x, t[1] as usize), get(x, t[2] as usize));
                 let g = scale(add(add(a, bb), c), 1.0 / 3.0);
-                reach = reach.max(norm(sub(a, g)).max(norm(sub(bb, g))).max(norm(sub(c, g))));
+                let r = norm(sub(a, g)).max(norm(sub(bb, g))).max(norm(sub(c, g)));
+                reach = reach.max(r);
+                self.radii.push(r);
+                self.centroids.extend_from_slice(&g);
+                self.owners.push((bi as u32, f as u32));
             }
         }
         let radius = reach + self.thickness;
@@ -174,29 +145,22 @@ impl World {
                     .collect()
             })
             .collect();
-        let inside = |zs: &[(V3, V3)], p: V3, grow: f64| zs.iter().any(|(lo, hi)| (0..3).all(|d| p[d] >= lo[d] - grow && p[d] <= hi[d] + grow));
 
-        // Broad phase over the centroids of the triangles in the zones.
-        self.centroids.clear();
-        self.owners.clear();
-        self.radii.clear();
-        for (bi, b) in self.bodies.iter().enumerate() {
-            if zones[bi].is_empty() {
-                continue;
-            }
-            let x = b.positions();
-            for (f, t) in b.triangles().iter().enumerate() {
-                let (a, bb, c) = (get(x, t[0] as usize), get(x, t[1] as usize), get(x, t[2] as usize));
-                let g = scale(add(add(a, bb), c), 1.0 / 3.0);
-                let r = norm(sub(a, g)).max(norm(sub(bb, g))).max(norm(sub(c, g)));
-                if !inside(&zones[bi], g, r) {
-                    continue;
-                }
-                self.radii.push(r);
-                self.centroids.extend_from_slice(&g);
-                self.owners.push((bi as u32, f as u32));
+        // Broad phase over the centroids of the triangles in the zones (the others dropped in
+        // place).
+        let mut kept = 0;
+        for k in 0..self.owners.len() {
+            let (g, r) = (get(&self.centroids, k), self.radii[k]);
+            if in_zones(&zones[self.owners[k].0 as usize], g, r) {
+                self.owners[kept] = self.owners[k];
+                self.radii[kept] = r;
+                self.centroids.copy_within(3 * k..3 * k + 3, 3 * kept);
+                kept += 1;
             }
         }
+        self.owners.truncate(kept);
+        self.radii.truncate(kept);
+        self.centroids.truncate(3 * kept);
         if self.owners.is_empty() {
             return;
         }
@@ -210,7 +174,7 @@ impl World {
             }
             for vi in 0..self.bodies[bi].vertex_count() {
                 let p = get(self.bodies[bi].positions(), vi);
-                if !inside(zones, p, 0.0) {
+                if !in_zones(zones, p, 0.0) {
                     continue;
                 }
                 self.hash.query(p, radius, &mut self.candidates);
@@ -247,8 +211,7 @@ impl World {
                         continue;
                     }
                     let mut n = scale(nf, 1.0 / len);
-                    let w = closest_barycentric(p, a, b, cc);
-                    let q = add(add(scale(a, w[0]), scale(b, w[1])), scale(cc, w[2]));
+                    let (w, q) = closest_on_triangle(p, a, b, cc);
                     let mut s = dot(sub(p, q), n);
                     let lateral = norm(sub(sub(p, q), scale(n, s)));
                     if lateral >= 1e-9 + 0.5 * self.thickness.max(1e-6) || s.abs() >= self.thickness.max(max_depth) {
@@ -334,8 +297,7 @@ pub(crate) fn contact_impulse(rel: V3, n: V3, wsum: f64, friction: f64) -> V3 {
 /// +1 if vertex `v` was in front of face `t` (along its normal) in positions `x0`, else −1.
 fn self_side(x0: &[f64], v: usize, t: [u32; 3]) -> f64 {
     let (p, a, b, c) = (get(x0, v), get(x0, t[0] as usize), get(x0, t[1] as usize), get(x0, t[2] as usize));
-    let w = closest_barycentric(p, a, b, c);
-    let q = add(add(scale(a, w[0]), scale(b, w[1])), scale(c, w[2]));
+    let (_, q) = closest_on_triangle(p, a, b, c);
     if dot(sub(p, q), cross(sub(b, a), sub(c, a))) >= 0.0 { 1.0 } else { -1.0 }
 }
 
@@ -347,10 +309,14 @@ fn far_at_rest(b: &SoftBody, v: usize, t: [u32; 3]) -> bool {
     }
     let x = b.frozen_positions();
     let (p, a, bb, c) = (get(x, v), get(x, t[0] as usize), get(x, t[1] as usize), get(x, t[2] as usize));
-    let w = closest_barycentric(p, a, bb, c);
-    let q = add(add(scale(a, w[0]), scale(bb, w[1])), scale(c, w[2]));
+    let (_, q) = closest_on_triangle(p, a, bb, c);
     let longest = norm(sub(bb, a)).max(norm(sub(c, bb))).max(norm(sub(a, c)));
     norm(sub(p, q)) >= longest
+}
+
+/// Whether p lies in one of the boxes `zones` (lo, hi), each grown by `grow` (m).
+fn in_zones(zones: &[(V3, V3)], p: V3, grow: f64) -> bool {
+    zones.iter().any(|(lo, hi)| (0..3).all(|d| p[d] >= lo[d] - grow && p[d] <= hi[d] + grow))
 }
 
 fn max3(a: V3, b: V3) -> V3 {
