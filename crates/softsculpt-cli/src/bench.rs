@@ -6,7 +6,7 @@
 use crate::args;
 use clap::Args;
 use serde_json::json;
-use softsculpt::workload::{self, DT};
+use softsculpt::workload;
 use std::time::Instant;
 
 #[derive(Args, Debug)]
@@ -42,15 +42,15 @@ pub fn run(a: BenchArgs) -> Result<(), String> {
         let mut volume = 0.0;
         let (mut nv, mut ns) = (0, 0);
         for _ in 0..a.reps {
-            let mut body = workload::body(level);
-            nv = body.vertex_count();
-            ns = body.spring_count();
+            let mut world = workload::world(level);
+            nv = world.bodies[0].vertex_count();
+            ns = world.bodies[0].spring_count();
             let t0 = Instant::now();
             for _ in 0..a.steps {
-                body.step(DT).map_err(|e| format!("bench level {level}: {e}"))?;
+                world.step().map_err(|e| format!("bench level {level}: {e}"))?;
             }
             best = best.min(t0.elapsed().as_secs_f64());
-            volume = body.exact_volume();
+            volume = world.bodies[0].exact_volume();
         }
         let ms = best * 1e3 / a.steps as f64;
         let ns_spring = best * 1e9 / (a.steps as f64 * ns as f64);

@@ -3,7 +3,8 @@
 use crate::{args, input, output};
 use clap::Args;
 use serde_json::json;
-use softsculpt::body::{Ground, Integrator, Params, SoftBody, VolumeMode};
+use softsculpt::body::{Material, SoftBody, VolumeMode};
+use softsculpt::world::{Ground, Integrator, World, WorldSettings};
 use std::io::IsTerminal;
 use std::path::PathBuf;
 
@@ -114,24 +115,30 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     let loaded = input::load(&a.input)?;
     input::warn(&a.input, &loaded);
 
-    let mut params = Params {
+    let mut material = Material {
         stiffness: a.stiffness,
         spring_damping: a.spring_damping,
         bending_stiffness: a.bending,
         damping: a.damping,
-        gravity: a.gravity,
         volume_mode: a.volume,
+        ..Material::default()
+    };
+    material.set_nrt(a.gas);
+    let settings = WorldSettings {
+        gravity: a.gravity,
         wind: a.wind.unwrap_or([0.0; 3]),
         wind_drag: a.wind_drag,
         ground: a.ground.map(|h| Ground { friction: a.friction, ..Ground::at(h) }),
         integrator: a.integrator,
-        ..Params::default()
+        dt: a.dt,
+        ..WorldSettings::default()
     };
-    params.set_nrt(a.gas);
-    let mut body = SoftBody::new(&loaded.mesh, a.mass, params).map_err(|e| format!("{}: {e}", a.input))?;
+    let mut body = SoftBody::new(&loaded.mesh, a.mass, material).map_err(|e| format!("{}: {e}", a.input))?;
     if let Some(v) = a.velocity {
         body.set_uniform_velocity(v).map_err(|e| format!("--velocity: {e}"))?;
     }
+    // A lone body is a one-body world.
+    let mut world = World::single(body, settings);
     if let Some(h) = a.ground {
         let (lo, _) = loaded.mesh.bounds();
         if lo[1] < h {
@@ -144,15 +151,15 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         Some(p) => Some(output::Staged::create(p).map_err(|e| format!("--stats {e}"))?),
         None => None,
     };
-    let mut emit = |body: &SoftBody| -> Result<(), String> {
+    let mut emit = |world: &World| -> Result<(), String> {
         if let Some(s) = stats.as_mut() {
-            let mut line = stats_line(&body.stats());
+            let mut line = stats_line(&world.stats(0));
             line.push('\n');
             s.write(line.as_bytes())?;
         }
         Ok(())
     };
-    emit(&body)?;
+    emit(&world)?;
 
     let bar = (std::io::stderr().is_terminal() && a.steps >= 1000).then(|| {
         let b = indicatif::ProgressBar::new(a.steps);
@@ -165,15 +172,15 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     let mut calm = 0u64;
     let mut stopped_at_rest = false;
     for step in 1..=a.steps {
-        body.step(a.dt).map_err(|e| format!("{}: {e}", a.input))?;
+        world.step().map_err(|e| format!("{}: {e}", a.input))?;
         if let Some(tol) = a.until_rest {
-            calm = if body.max_speed() < tol { calm + 1 } else { 0 };
+            calm = if world.bodies[0].max_speed() < tol { calm + 1 } else { 0 };
             if calm >= REST_WINDOW {
                 stopped_at_rest = true;
             }
         }
         if step % every == 0 || step == a.steps || stopped_at_rest {
-            emit(&body)?;
+            emit(&world)?;
         }
         if let Some(b) = &bar {
             if step % 64 == 0 {
@@ -187,11 +194,12 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     if let Some(b) = bar {
         b.finish_and_clear();
     }
+    let body = &world.bodies[0];
     if !body.is_finite() {
         return Err(format!(
             "{}: the simulation blew up (non-finite state at step {}); try a smaller --dt, more damping, or another --integrator",
             a.input,
-            body.steps()
+            world.steps()
         ));
     }
     if let Some(s) = stats {
@@ -200,7 +208,7 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     let header = format!(
         "SoftSculpt simulate {} — {} steps of {} s ({})",
         a.input,
-        body.steps(),
+        world.steps(),
         a.dt,
         a.integrator.name()
     );
@@ -209,8 +217,8 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     eprintln!(
         "wrote {} after {} steps, t = {:.4} s{rest}, volume {:.6} m^3",
         a.out.display(),
-        body.steps(),
-        body.time(),
+        world.steps(),
+        world.time(),
         body.volume()
     );
     Ok(())

@@ -13,8 +13,9 @@
 mod scene;
 mod table;
 
-use softsculpt::body::{GasReference, Ground, Integrator, Params, SoftBody, VolumeMode};
+use softsculpt::body::{GasReference, Material, SoftBody, VolumeMode};
 use softsculpt::mesh::{self, builtin, ObjData, TriMesh};
+use softsculpt::world::{Ground, Integrator, World, WorldSettings};
 use table::{with, with_table, Entry};
 
 /// Allocate `len` bytes in wasm memory for the page to fill (e.g. a file's bytes).
@@ -55,15 +56,11 @@ pub(crate) unsafe fn bytes<'a>(ptr: *const u8, len: usize) -> &'a [u8] {
     }
 }
 
-fn default_params() -> Params {
-    Params { stiffness: 100.0, spring_damping: 0.1, damping: 0.5, ..Params::default() }
-}
-
 fn create(mesh: &TriMesh, mass: f64, warnings: &[String]) -> u32 {
-    match SoftBody::new(mesh, mass, default_params()) {
+    match SoftBody::new(mesh, mass, Material::default()) {
         Ok(body) => {
             table::set_message(&warnings.join("\n"));
-            with_table(|t| t.insert(Entry::new(body)))
+            with_table(|t| t.insert(Entry::new(World::single(body, WorldSettings::default()))))
         }
         Err(e) => table::fail(e.to_string()),
     }
@@ -131,7 +128,7 @@ pub extern "C" fn ss_create_workload(level: u32) -> u32 {
     if level > 8 {
         return table::fail(format!("level {level} is too large (at most 8)"));
     }
-    with_table(|t| t.insert(Entry::new(softsculpt::workload::body(level))))
+    with_table(|t| t.insert(Entry::new(softsculpt::workload::world(level))))
 }
 
 #[no_mangle]
@@ -143,15 +140,15 @@ pub extern "C" fn ss_free(h: u32) {
 
 #[no_mangle]
 pub extern "C" fn ss_vertex_count(h: u32) -> u32 {
-    with(h, 0, |e| e.body.vertex_count() as u32)
+    with(h, 0, |e| e.world.bodies[0].vertex_count() as u32)
 }
 #[no_mangle]
 pub extern "C" fn ss_face_count(h: u32) -> u32 {
-    with(h, 0, |e| e.body.face_count() as u32)
+    with(h, 0, |e| e.world.bodies[0].face_count() as u32)
 }
 #[no_mangle]
 pub extern "C" fn ss_spring_count(h: u32) -> u32 {
-    with(h, 0, |e| e.body.spring_count() as u32)
+    with(h, 0, |e| e.world.bodies[0].spring_count() as u32)
 }
 /// Copy positions into the f32 render array and return its pointer.
 #[no_mangle]
@@ -177,32 +174,32 @@ pub extern "C" fn ss_springs(h: u32) -> *const u32 {
 }
 #[no_mangle]
 pub extern "C" fn ss_positions(h: u32) -> *const f64 {
-    with(h, std::ptr::null(), |e| e.body.positions().as_ptr())
+    with(h, std::ptr::null(), |e| e.world.bodies[0].positions().as_ptr())
 }
 #[no_mangle]
 pub extern "C" fn ss_velocities(h: u32) -> *const f64 {
-    with(h, std::ptr::null(), |e| e.body.velocities().as_ptr())
+    with(h, std::ptr::null(), |e| e.world.bodies[0].velocities().as_ptr())
 }
 #[no_mangle]
 pub extern "C" fn ss_masses(h: u32) -> *const f64 {
-    with(h, std::ptr::null(), |e| e.body.masses().as_ptr())
+    with(h, std::ptr::null(), |e| e.world.bodies[0].masses().as_ptr())
 }
 #[no_mangle]
 pub extern "C" fn ss_rest_lengths(h: u32) -> *const f64 {
-    with(h, std::ptr::null(), |e| e.body.rest_lengths().as_ptr())
+    with(h, std::ptr::null(), |e| e.world.bodies[0].rest_lengths().as_ptr())
 }
 /// Bending springs: count and rest lengths (m), now and frozen.
 #[no_mangle]
 pub extern "C" fn ss_bending_count(h: u32) -> u32 {
-    with(h, 0, |e| e.body.bending_rest_lengths().len() as u32)
+    with(h, 0, |e| e.world.bodies[0].bending_rest_lengths().len() as u32)
 }
 #[no_mangle]
 pub extern "C" fn ss_bending_rest_lengths(h: u32) -> *const f64 {
-    with(h, std::ptr::null(), |e| e.body.bending_rest_lengths().as_ptr())
+    with(h, std::ptr::null(), |e| e.world.bodies[0].bending_rest_lengths().as_ptr())
 }
 #[no_mangle]
 pub extern "C" fn ss_frozen_bending_rest_lengths(h: u32) -> *const f64 {
-    with(h, std::ptr::null(), |e| e.body.frozen_bending_rest_lengths().as_ptr())
+    with(h, std::ptr::null(), |e| e.world.bodies[0].frozen_bending_rest_lengths().as_ptr())
 }
 /// Set the bending rest lengths now and frozen (`ss_bending_count` f64 each).
 ///
@@ -211,19 +208,19 @@ pub extern "C" fn ss_frozen_bending_rest_lengths(h: u32) -> *const f64 {
 #[no_mangle]
 pub unsafe extern "C" fn ss_set_bending_rest(h: u32, now: *const f64, frozen: *const f64) -> u32 {
     table::status(h, |e| {
-        let n = e.body.bending_rest_lengths().len();
+        let n = e.world.bodies[0].bending_rest_lengths().len();
         let a = std::slice::from_raw_parts(now, n).to_vec();
         let b = std::slice::from_raw_parts(frozen, n).to_vec();
-        e.body.set_bending_rest_lengths(&a, &b).map_err(|e| e.to_string())
+        e.world.bodies[0].set_bending_rest_lengths(&a, &b).map_err(|e| e.to_string())
     })
 }
 #[no_mangle]
 pub extern "C" fn ss_frozen_positions(h: u32) -> *const f64 {
-    with(h, std::ptr::null(), |e| e.body.frozen_positions().as_ptr())
+    with(h, std::ptr::null(), |e| e.world.bodies[0].frozen_positions().as_ptr())
 }
 #[no_mangle]
 pub extern "C" fn ss_frozen_rest_lengths(h: u32) -> *const f64 {
-    with(h, std::ptr::null(), |e| e.body.frozen_rest_lengths().as_ptr())
+    with(h, std::ptr::null(), |e| e.world.bodies[0].frozen_rest_lengths().as_ptr())
 }
 /// 1 per pinned vertex, 0 otherwise (kept up to date by `ss_set_pinned`).
 #[no_mangle]
@@ -281,32 +278,34 @@ pub mod param {
 const INTEGRATORS: [Integrator; 4] = [Integrator::Euler, Integrator::Midpoint, Integrator::Rk4, Integrator::Symplectic];
 const MODES: [VolumeMode; 3] = [VolumeMode::Exact, VolumeMode::Box, VolumeMode::Sphere];
 
+/// Body parameters read the body's material (or masses, or gas reference); world parameters
+/// read the entry's one-body world.
 #[no_mangle]
 pub extern "C" fn ss_get(h: u32, id: u32) -> f64 {
     with(h, f64::NAN, |e| {
-        let p = &e.body.params;
-        let g = p.ground;
+        let (b, w) = (&e.world.bodies[0], &e.world.settings);
+        let p = &b.material;
         match id {
             param::STIFFNESS => p.stiffness,
             param::SPRING_DAMPING => p.spring_damping,
             param::DAMPING => p.damping,
-            param::GRAVITY => p.gravity,
+            param::GRAVITY => w.gravity,
             param::GAS_AMOUNT => p.gas_amount,
             param::TEMPERATURE => p.temperature,
             param::VOLUME_MODE => MODES.iter().position(|&m| m == p.volume_mode).unwrap_or(0) as f64,
-            param::WIND_X => p.wind[0],
-            param::WIND_Y => p.wind[1],
-            param::WIND_Z => p.wind[2],
-            param::WIND_DRAG => p.wind_drag,
-            param::GROUND_ON => g.is_some() as u8 as f64,
+            param::WIND_X => w.wind[0],
+            param::WIND_Y => w.wind[1],
+            param::WIND_Z => w.wind[2],
+            param::WIND_DRAG => w.wind_drag,
+            param::GROUND_ON => w.ground.is_some() as u8 as f64,
             param::GROUND_HEIGHT => e.ground.height,
             param::FRICTION => e.ground.friction,
-            param::INTEGRATOR => INTEGRATORS.iter().position(|&m| m == p.integrator).unwrap_or(3) as f64,
-            param::TOTAL_MASS => e.body.masses().iter().sum(),
-            param::AMBIENT_PRESSURE => e.body.gas_reference().ambient_pressure,
-            param::REFERENCE_VOLUME => e.body.gas_reference().reference_volume,
-            param::FROZEN_AMBIENT_PRESSURE => e.body.frozen_gas_reference().ambient_pressure,
-            param::FROZEN_REFERENCE_VOLUME => e.body.frozen_gas_reference().reference_volume,
+            param::INTEGRATOR => INTEGRATORS.iter().position(|&m| m == w.integrator).unwrap_or(3) as f64,
+            param::TOTAL_MASS => b.masses().iter().sum(),
+            param::AMBIENT_PRESSURE => b.gas_reference().ambient_pressure,
+            param::REFERENCE_VOLUME => b.gas_reference().reference_volume,
+            param::FROZEN_AMBIENT_PRESSURE => b.frozen_gas_reference().ambient_pressure,
+            param::FROZEN_REFERENCE_VOLUME => b.frozen_gas_reference().reference_volume,
             param::BENDING_STIFFNESS => p.bending_stiffness,
             param::SELF_COLLISION => p.self_collision as u8 as f64,
             _ => f64::NAN,
@@ -314,78 +313,70 @@ pub extern "C" fn ss_get(h: u32, id: u32) -> f64 {
     })
 }
 
-/// Set a parameter; refused (status 1, with a message) if the value is invalid.
+/// Set a parameter; refused (status 1, with a message) if the value is invalid. Body
+/// parameters go to the body's material, world parameters to the entry's world.
 #[no_mangle]
 pub extern "C" fn ss_set(h: u32, id: u32, value: f64) -> u32 {
     table::status(h, |e| {
-        let mut p = e.body.params.clone();
+        let mut p = e.world.bodies[0].material.clone();
+        let mut w = e.world.settings.clone();
         let index = |n: usize| if value.is_finite() && value >= 0.0 && (value as usize) < n { Ok(value as usize) } else { Err(format!("no choice {value}")) };
+        let body = &mut e.world.bodies[0];
         match id {
             param::STIFFNESS => p.stiffness = value,
             param::SPRING_DAMPING => p.spring_damping = value,
             param::BENDING_STIFFNESS => p.bending_stiffness = value,
             param::SELF_COLLISION => p.self_collision = value != 0.0,
             param::DAMPING => p.damping = value,
-            param::GRAVITY => p.gravity = value,
-            param::GAS_AMOUNT => return e.body.set_gas(value, p.temperature).map_err(|e| e.to_string()),
-            param::TEMPERATURE => return e.body.set_gas(p.gas_amount, value).map_err(|e| e.to_string()),
+            param::GRAVITY => w.gravity = value,
+            param::GAS_AMOUNT => return body.set_gas(value, p.temperature).map_err(|e| e.to_string()),
+            param::TEMPERATURE => return body.set_gas(p.gas_amount, value).map_err(|e| e.to_string()),
             param::VOLUME_MODE => p.volume_mode = MODES[index(3)?],
-            param::WIND_X => p.wind[0] = value,
-            param::WIND_Y => p.wind[1] = value,
-            param::WIND_Z => p.wind[2] = value,
-            param::WIND_DRAG => p.wind_drag = value,
-            param::GROUND_ON => p.ground = (value != 0.0).then_some(e.ground),
+            param::WIND_X => w.wind[0] = value,
+            param::WIND_Y => w.wind[1] = value,
+            param::WIND_Z => w.wind[2] = value,
+            param::WIND_DRAG => w.wind_drag = value,
+            param::GROUND_ON => w.ground = (value != 0.0).then_some(e.ground),
             param::GROUND_HEIGHT => {
                 e.ground.height = value;
-                p.ground = p.ground.map(|_| e.ground);
+                w.ground = w.ground.map(|_| e.ground);
             }
             param::FRICTION => {
                 e.ground.friction = value;
-                p.ground = p.ground.map(|_| e.ground);
+                w.ground = w.ground.map(|_| e.ground);
             }
-            param::INTEGRATOR => p.integrator = INTEGRATORS[index(4)?],
-            param::TOTAL_MASS => return e.body.set_total_mass(value).map_err(|e| e.to_string()),
+            param::INTEGRATOR => w.integrator = INTEGRATORS[index(4)?],
+            param::TOTAL_MASS => return body.set_total_mass(value).map_err(|e| e.to_string()),
             param::AMBIENT_PRESSURE => {
-                let g = GasReference { ambient_pressure: value, ..e.body.gas_reference() };
-                return e.body.set_gas_reference(g).map_err(|e| e.to_string());
+                let g = GasReference { ambient_pressure: value, ..body.gas_reference() };
+                return body.set_gas_reference(g).map_err(|e| e.to_string());
             }
             param::REFERENCE_VOLUME => {
-                let g = GasReference { reference_volume: value, ..e.body.gas_reference() };
-                return e.body.set_gas_reference(g).map_err(|e| e.to_string());
+                let g = GasReference { reference_volume: value, ..body.gas_reference() };
+                return body.set_gas_reference(g).map_err(|e| e.to_string());
             }
             _ => return Err(format!("unknown parameter id {id}")),
         }
         p.validate().map_err(|e| e.to_string())?;
-        if let Some(g) = p.ground {
+        w.validate().map_err(|e| e.to_string())?;
+        if let Some(g) = w.ground {
             if !(g.height.is_finite() && g.friction.is_finite() && g.friction >= 0.0) {
                 return Err("ground: height and friction must be finite, friction ≥ 0".into());
             }
         }
-        e.body.params = p;
+        e.world.bodies[0].material = p;
+        e.world.settings = w;
         Ok(())
     })
 }
 
 // ----- stepping ------------------------------------------------------------------------------
 
-/// `substeps` steps of `dt` s. On failure the body is rolled back to its last checkpoint
-/// (`ss_checkpoint`, taken automatically before each call) and the message says why.
+/// `substeps` steps of `dt` s. On failure the body's whole world (state, clock) is rolled back
+/// to where it was before the call and the message says why.
 #[no_mangle]
 pub extern "C" fn ss_step(h: u32, dt: f64, substeps: u32) -> u32 {
-    table::status(h, |e| {
-        e.checkpoint();
-        for _ in 0..substeps {
-            if let Err(err) = e.step(dt) {
-                e.rollback();
-                return Err(format!("{err} — rolled back to the last good state"));
-            }
-        }
-        if !e.body.is_finite() {
-            e.rollback();
-            return Err("the simulation blew up (non-finite state); try a smaller dt — rolled back to the last good state".into());
-        }
-        Ok(())
-    })
+    table::status(h, |e| e.step(dt, substeps))
 }
 
 /// 16 statistics: step, time, volume, pressure, kinetic, elastic, gas, gravity, total energy,
@@ -393,7 +384,7 @@ pub extern "C" fn ss_step(h: u32, dt: f64, substeps: u32) -> u32 {
 #[no_mangle]
 pub extern "C" fn ss_stats(h: u32) -> *const f64 {
     with(h, std::ptr::null(), |e| {
-        let s = e.body.stats();
+        let s = e.world.stats(0);
         e.stats = [
             s.step as f64, s.time, s.volume, s.pressure, s.kinetic_energy, s.elastic_energy, s.gas_energy, s.gravity_energy,
             s.total_energy, s.momentum[0], s.momentum[1], s.momentum[2], s.center_of_mass[0], s.center_of_mass[1],
@@ -408,7 +399,7 @@ pub extern "C" fn ss_stats(h: u32) -> *const f64 {
 #[no_mangle]
 pub extern "C" fn ss_freeze(h: u32) -> u32 {
     table::status(h, |e| {
-        e.body.freeze();
+        e.world.bodies[0].freeze();
         Ok(())
     })
 }
@@ -416,18 +407,18 @@ pub extern "C" fn ss_freeze(h: u32) -> u32 {
 #[no_mangle]
 pub extern "C" fn ss_freeze_under_load(h: u32) -> u32 {
     table::status(h, |e| {
-        e.body.freeze_under_load();
+        e.world.bodies[0].freeze_under_load();
         Ok(())
     })
 }
 /// The kept load (N, 3 f64 per vertex), now and in the frozen state.
 #[no_mangle]
 pub extern "C" fn ss_prestress(h: u32) -> *const f64 {
-    with(h, std::ptr::null(), |e| e.body.prestress().as_ptr())
+    with(h, std::ptr::null(), |e| e.world.bodies[0].prestress().as_ptr())
 }
 #[no_mangle]
 pub extern "C" fn ss_frozen_prestress(h: u32) -> *const f64 {
-    with(h, std::ptr::null(), |e| e.body.frozen_prestress().as_ptr())
+    with(h, std::ptr::null(), |e| e.world.bodies[0].frozen_prestress().as_ptr())
 }
 /// Set the kept load now (`now`) and in the frozen state (`frozen`), 3 f64 per vertex each.
 ///
@@ -436,16 +427,16 @@ pub extern "C" fn ss_frozen_prestress(h: u32) -> *const f64 {
 #[no_mangle]
 pub unsafe extern "C" fn ss_set_prestress(h: u32, now: *const f64, frozen: *const f64) -> u32 {
     table::status(h, |e| {
-        let n = 3 * e.body.vertex_count();
+        let n = 3 * e.world.bodies[0].vertex_count();
         let a = std::slice::from_raw_parts(now, n).to_vec();
         let b = std::slice::from_raw_parts(frozen, n).to_vec();
-        e.body.set_prestress(&a, &b).map_err(|e| e.to_string())
+        e.world.bodies[0].set_prestress(&a, &b).map_err(|e| e.to_string())
     })
 }
 #[no_mangle]
 pub extern "C" fn ss_reset(h: u32) -> u32 {
     table::status(h, |e| {
-        e.body.reset();
+        e.world.bodies[0].reset();
         Ok(())
     })
 }
@@ -453,9 +444,9 @@ pub extern "C" fn ss_reset(h: u32) -> u32 {
 #[no_mangle]
 pub extern "C" fn ss_subdivide(h: u32) -> u32 {
     table::status(h, |e| {
-        let body = e.body.subdivided().map_err(|e| e.to_string())?;
+        let body = e.world.bodies[0].subdivided().map_err(|e| e.to_string())?;
         let ground = e.ground;
-        *e = Entry::new(body);
+        *e = Entry::new(World::single(body, e.world.settings.clone()));
         e.ground = ground;
         Ok(())
     })
@@ -463,12 +454,12 @@ pub extern "C" fn ss_subdivide(h: u32) -> u32 {
 /// Multiply every rest length by `factor`.
 #[no_mangle]
 pub extern "C" fn ss_scale_rest(h: u32, factor: f64) -> u32 {
-    table::status(h, |e| e.body.scale_rest_lengths(factor).map_err(|e| e.to_string()))
+    table::status(h, |e| e.world.bodies[0].scale_rest_lengths(factor).map_err(|e| e.to_string()))
 }
 /// Multiply rest lengths by the per-vertex factors in the vertex scratch array.
 #[no_mangle]
 pub extern "C" fn ss_scale_rest_by_vertex(h: u32) -> u32 {
-    table::status(h, |e| e.body.scale_rest_lengths_by_vertex(&e.scratch).map_err(|e| e.to_string()))
+    table::status(h, |e| e.world.bodies[0].scale_rest_lengths_by_vertex(&e.scratch).map_err(|e| e.to_string()))
 }
 /// Set every rest length from an array of `spring_count` f64 at `ptr`.
 ///
@@ -477,19 +468,19 @@ pub extern "C" fn ss_scale_rest_by_vertex(h: u32) -> u32 {
 #[no_mangle]
 pub unsafe extern "C" fn ss_set_rest_lengths(h: u32, ptr: *const f64) -> u32 {
     table::status(h, |e| {
-        let rest = std::slice::from_raw_parts(ptr, e.body.spring_count()).to_vec();
-        e.body.set_rest_lengths(&rest).map_err(|e| e.to_string())
+        let rest = std::slice::from_raw_parts(ptr, e.world.bodies[0].spring_count()).to_vec();
+        e.world.bodies[0].set_rest_lengths(&rest).map_err(|e| e.to_string())
     })
 }
 /// Set every vertex mass from the vertex scratch array (kg).
 #[no_mangle]
 pub extern "C" fn ss_set_masses(h: u32) -> u32 {
-    table::status(h, |e| e.body.set_masses(&e.scratch).map_err(|e| e.to_string()))
+    table::status(h, |e| e.world.bodies[0].set_masses(&e.scratch).map_err(|e| e.to_string()))
 }
 #[no_mangle]
 pub extern "C" fn ss_set_pinned(h: u32, vertex: u32, pinned: u32) -> u32 {
     table::status(h, |e| {
-        e.body.set_pinned(vertex as usize, pinned != 0).map_err(|e| e.to_string())?;
+        e.world.bodies[0].set_pinned(vertex as usize, pinned != 0).map_err(|e| e.to_string())?;
         e.pinned[vertex as usize] = (pinned != 0) as u8;
         Ok(())
     })
@@ -497,12 +488,12 @@ pub extern "C" fn ss_set_pinned(h: u32, vertex: u32, pinned: u32) -> u32 {
 /// Apply the user forces staged in `ss_user_forces`.
 #[no_mangle]
 pub extern "C" fn ss_apply_user_forces(h: u32) -> u32 {
-    table::status(h, |e| e.body.set_user_forces(&e.user_forces).map_err(|e| e.to_string()))
+    table::status(h, |e| e.world.bodies[0].set_user_forces(&e.user_forces).map_err(|e| e.to_string()))
 }
 /// Apply the face pressures staged in `ss_face_pressures`.
 #[no_mangle]
 pub extern "C" fn ss_apply_face_pressures(h: u32) -> u32 {
-    table::status(h, |e| e.body.set_face_pressures(&e.face_pressures).map_err(|e| e.to_string()))
+    table::status(h, |e| e.world.bodies[0].set_face_pressures(&e.face_pressures).map_err(|e| e.to_string()))
 }
 /// Set positions from `ptr` (3 f64 per vertex) and velocities from the vector scratch array.
 ///
@@ -511,8 +502,8 @@ pub extern "C" fn ss_apply_face_pressures(h: u32) -> u32 {
 #[no_mangle]
 pub unsafe extern "C" fn ss_set_state(h: u32, ptr: *const f64) -> u32 {
     table::status(h, |e| {
-        let x = std::slice::from_raw_parts(ptr, 3 * e.body.vertex_count()).to_vec();
-        e.body.set_state(&x, &e.vectors).map_err(|e| e.to_string())
+        let x = std::slice::from_raw_parts(ptr, 3 * e.world.bodies[0].vertex_count()).to_vec();
+        e.world.bodies[0].set_state(&x, &e.vectors).map_err(|e| e.to_string())
     })
 }
 /// Set the frozen state (for reset) from positions at `pos` and rest lengths at `rest`, with the
@@ -523,9 +514,9 @@ pub unsafe extern "C" fn ss_set_state(h: u32, ptr: *const f64) -> u32 {
 #[no_mangle]
 pub unsafe extern "C" fn ss_set_frozen(h: u32, pos: *const f64, rest: *const f64, ambient: f64, volume: f64) -> u32 {
     table::status(h, |e| {
-        let x = std::slice::from_raw_parts(pos, 3 * e.body.vertex_count()).to_vec();
-        let r = std::slice::from_raw_parts(rest, e.body.spring_count()).to_vec();
-        e.body.set_frozen(&x, &r, GasReference { ambient_pressure: ambient, reference_volume: volume }).map_err(|e| e.to_string())
+        let x = std::slice::from_raw_parts(pos, 3 * e.world.bodies[0].vertex_count()).to_vec();
+        let r = std::slice::from_raw_parts(rest, e.world.bodies[0].spring_count()).to_vec();
+        e.world.bodies[0].set_frozen(&x, &r, GasReference { ambient_pressure: ambient, reference_volume: volume }).map_err(|e| e.to_string())
     })
 }
 

@@ -1,15 +1,18 @@
 //! Scenes in the page: open a scene file, step it (contacts and timed events), save bodies back
 //! to a scene file.
 //!
-//! Each body of an open scene is also an ordinary body handle, so every body call (views, tools,
-//! parameters, freeze…) works on it. The scene's world keeps a stand-in for each body; a scene
-//! step swaps the page's bodies into the world, steps, and swaps them back (moves, no copies).
-//! Mesh files a scene names are given beforehand with `ss_scene_add_file`.
+//! Each body of an open scene is also an ordinary body handle (a one-body world), so every body
+//! call (views, tools, parameters, freeze…) works on it. The scene's world keeps a stand-in for
+//! each body; a scene step swaps the page's bodies into the world, steps, and swaps them back
+//! (moves, no copies). The world parameters the page sets (gravity, wind, ground, integrator)
+//! go in from the first body's handle before a step, and come back out to every handle after it
+//! (an event may have changed the wind), with the scene's clock. Mesh files a scene names are
+//! given beforehand with `ss_scene_add_file`.
 
 use crate::table::{self, with_table, Entry};
 use crate::bytes;
-use softsculpt::body::obstacles::Shape;
 use softsculpt::scene::{self, SceneRun, SceneSpec};
+use softsculpt::world::{Shape, World, WorldSettings};
 use std::cell::RefCell;
 use std::collections::HashMap;
 
@@ -51,7 +54,7 @@ pub unsafe extern "C" fn ss_scene_add_file(name: *const u8, name_len: usize, ptr
 /// Encode obstacles for drawing: per obstacle `[kind, friction, …]` — sphere (0): centre, radius;
 /// box (1): centre, half extents, 3 axes; capsule (2): a, b, radius; mesh (3): vertex count,
 /// triangle count, positions, indices.
-fn encode(obstacles: &[softsculpt::body::Obstacle]) -> Vec<f64> {
+fn encode(obstacles: &[softsculpt::world::Obstacle]) -> Vec<f64> {
     let mut out = Vec::new();
     for o in obstacles {
         match &o.shape {
@@ -105,8 +108,8 @@ pub unsafe extern "C" fn ss_scene_open(ptr: *const u8, len: usize) -> u32 {
         Ok(r) => r,
         Err(e) => return table::fail(e.to_string()),
     };
-    let handles = run.world.bodies.iter().map(|b| with_table(|t| t.insert(Entry::new(b.clone())))).collect();
-    let obstacles = encode(run.world.bodies.first().map_or(&[][..], |b| &b.params.obstacles));
+    let handles = run.world.bodies.iter().map(|b| with_table(|t| t.insert(Entry::new(World::single(b.clone(), run.world.settings.clone()))))).collect();
+    let obstacles = encode(&run.world.settings.obstacles);
     table::set_message("");
     SCENES.with(|v| {
         let mut v = v.borrow_mut();
@@ -149,7 +152,7 @@ pub extern "C" fn ss_scene_names(s: u32) -> u32 {
 /// count changed, its pending events are dropped (the message says how many).
 #[no_mangle]
 pub extern "C" fn ss_scene_set_body(s: u32, i: u32, h: u32) -> u32 {
-    let counts = table::with(h, None, |e| Some((e.body.vertex_count(), e.body.face_count())));
+    let counts = table::with(h, None, |e| Some((e.body().vertex_count(), e.body().face_count())));
     let Some((nv, nf)) = counts else { return 1 };
     with_scene(s, 1, |sl| {
         let i = i as usize;
@@ -164,8 +167,18 @@ pub extern "C" fn ss_scene_set_body(s: u32, i: u32, h: u32) -> u32 {
     })
 }
 
-/// `substeps` steps of `dt` (s), contacts and events included. On failure every body is rolled
-/// back to where it was before the call and the message says why.
+/// The world parameters the page sets on a body handle (`ss_set`).
+fn share(from: &WorldSettings, to: &mut WorldSettings) {
+    to.gravity = from.gravity;
+    to.wind = from.wind;
+    to.wind_drag = from.wind_drag;
+    to.ground = from.ground;
+    to.integrator = from.integrator;
+}
+
+/// `substeps` steps of `dt` (s), contacts and events included. On failure the whole scene
+/// (bodies, clock, fired events and their effects) is rolled back to where it was before the
+/// call and the message says why.
 #[no_mangle]
 pub extern "C" fn ss_scene_step(s: u32, dt: f64, substeps: u32) -> u32 {
     with_scene(s, 1, |sl| {
@@ -174,30 +187,31 @@ pub extern "C" fn ss_scene_step(s: u32, dt: f64, substeps: u32) -> u32 {
             with_table(|t| {
                 for (k, &h) in sl.handles.iter().enumerate() {
                     if let Some(e) = t.get(h) {
-                        std::mem::swap(&mut e.body, &mut sl.run.world.bodies[k]);
+                        std::mem::swap(&mut e.world.bodies[0], &mut sl.run.world.bodies[k]);
                     }
                 }
             })
         };
-        with_table(|t| sl.handles.iter().for_each(|&h| t.get(h).map_or((), |e| e.checkpoint())));
-        swap(sl);
-        let mut result = Ok(());
-        for _ in 0..substeps {
-            if let Err(e) = sl.run.step() {
-                result = Err(e.to_string());
-                break;
+        with_table(|t| {
+            if let Some(e) = sl.handles.first().and_then(|&h| t.get(h)) {
+                share(&e.world.settings, &mut sl.run.world.settings);
             }
-            if !sl.run.world.bodies.iter().all(|b| b.is_finite()) {
-                result = Err("the simulation blew up (non-finite state); try a smaller dt".into());
-                break;
-            }
-        }
+        });
         swap(sl);
+        let result = sl.run.world.step_n(substeps as u64);
+        swap(sl);
+        with_table(|t| {
+            for &h in &sl.handles {
+                if let Some(e) = t.get(h) {
+                    share(&sl.run.world.settings, &mut e.world.settings);
+                    e.world.set_clock(sl.run.world.clock());
+                }
+            }
+        });
         match result {
             Ok(()) => 0,
-            Err(m) => {
-                with_table(|t| sl.handles.iter().for_each(|&h| t.get(h).map_or((), |e| e.rollback())));
-                table::set_message(&format!("{m} — rolled back to the last good state"));
+            Err(e) => {
+                table::set_message(&e.to_string());
                 1
             }
         }
@@ -215,7 +229,7 @@ pub extern "C" fn ss_scene_duration(s: u32) -> f64 {
 }
 #[no_mangle]
 pub extern "C" fn ss_scene_dt(s: u32) -> f64 {
-    with_scene(s, f64::NAN, |sl| sl.run.dt)
+    with_scene(s, f64::NAN, |sl| sl.run.dt())
 }
 
 /// The obstacles, encoded (see `encode`); `ss_scene_obstacles_len` f64 values.
@@ -241,17 +255,23 @@ pub unsafe extern "C" fn ss_scene_save(s: u32, hs: *const u32, n: u32, dt: f64, 
         table::set_message("no bodies to save");
         return 1;
     }
-    let template: Option<(SceneSpec, Vec<String>)> = if s == 0 { None } else { with_scene(s, None, |sl| Some((sl.run.spec.clone(), sl.run.names.clone()))) };
-    let bodies: Option<Vec<softsculpt::SoftBody>> = with_table(|t| handles.iter().map(|&h| t.get(h).map(|e| e.body.clone())).collect());
-    let Some(bodies) = bodies else {
+    let template: Option<(SceneSpec, Vec<String>, WorldSettings)> =
+        if s == 0 { None } else { with_scene(s, None, |sl| Some((sl.run.spec.clone(), sl.run.names.clone(), sl.run.world.settings.clone()))) };
+    let bodies: Option<Vec<softsculpt::SoftBody>> = with_table(|t| handles.iter().map(|&h| t.get(h).map(|e| e.body().clone())).collect());
+    let settings: Option<WorldSettings> = with_table(|t| t.get(handles[0]).map(|e| e.world.settings.clone()));
+    let (Some(bodies), Some(mut settings)) = (bodies, settings) else {
         table::set_message("a body to save does not exist");
         return 1;
     };
+    // The page's world parameters (on the first body), the scene's contact settings (or the
+    // defaults), the time step asked for.
+    settings.contact = template.as_ref().map(|t| t.2.contact).unwrap_or_default();
+    settings.dt = dt;
     let names: Vec<String> = (0..bodies.len())
         .map(|k| template.as_ref().and_then(|t| t.1.get(k).cloned()).unwrap_or_else(|| format!("body{}", k + 1)))
         .collect();
     let pairs: Vec<(&str, &softsculpt::SoftBody)> = names.iter().map(String::as_str).zip(bodies.iter()).collect();
-    let spec = scene::save::scene_of(&pairs, dt, duration, template.as_ref().map(|t| &t.0));
+    let spec = scene::save::scene_of(&settings, &pairs, duration, template.as_ref().map(|t| &t.0));
     match scene::to_toml(&spec) {
         Ok(text) => {
             table::set_message(&text);

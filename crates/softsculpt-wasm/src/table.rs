@@ -1,11 +1,13 @@
 //! The table of live bodies and the last message. Single-threaded (wasm32 without threads).
 
-use softsculpt::body::{Ground, SoftBody};
+use softsculpt::body::SoftBody;
+use softsculpt::world::{Ground, World};
 use std::cell::RefCell;
 
-/// A body and the arrays the page views.
+/// A body in its one-body world, and the arrays the page views.
 pub struct Entry {
-    pub body: SoftBody,
+    /// One body; its world parameters (`ss_get`/`ss_set`) are this world's settings.
+    pub world: World,
     pub render: Vec<f32>,
     pub triangles: Vec<u32>,
     pub springs: Vec<u32>,
@@ -17,15 +19,11 @@ pub struct Entry {
     pub stats: [f64; 16],
     /// Ground settings kept while the ground is off.
     pub ground: Ground,
-    backup_x: Vec<f64>,
-    backup_v: Vec<f64>,
-    /// A one-body world for self-collision, made when first needed (it holds a stand-in body
-    /// between steps; the real one is swapped in to step).
-    world: Option<softsculpt::world::World>,
 }
 
 impl Entry {
-    pub fn new(body: SoftBody) -> Self {
+    pub fn new(world: World) -> Self {
+        let body = &world.bodies[0];
         let n = body.vertex_count();
         let (si, sj) = body.spring_ends();
         let springs = si.iter().zip(sj).flat_map(|(&a, &b)| [a, b]).collect();
@@ -39,43 +37,29 @@ impl Entry {
             scratch: vec![0.0; n],
             vectors: vec![0.0; 3 * n],
             stats: [0.0; 16],
-            ground: body.params.ground.unwrap_or(crate::default_ground()),
-            backup_x: body.positions().to_vec(),
-            backup_v: body.velocities().to_vec(),
-            world: None,
-            body,
+            ground: world.settings.ground.unwrap_or(crate::default_ground()),
+            world,
         };
         e.sync();
         e
     }
+    pub fn body(&self) -> &SoftBody {
+        &self.world.bodies[0]
+    }
     pub fn sync(&mut self) {
-        for (r, &x) in self.render.iter_mut().zip(self.body.positions()) {
+        for (r, &x) in self.render.iter_mut().zip(self.world.bodies[0].positions()) {
             *r = x as f32;
         }
     }
-    pub fn checkpoint(&mut self) {
-        self.backup_x.copy_from_slice(self.body.positions());
-        self.backup_v.copy_from_slice(self.body.velocities());
-    }
-    /// One step of `dt` s: alone, or in a one-body world when the body collides with itself.
-    /// The contact thickness there is a fifth of the mean rest edge length.
-    pub fn step(&mut self, dt: f64) -> Result<(), softsculpt::SimError> {
-        if !self.body.params.self_collision {
-            return self.body.step(dt);
+    /// `substeps` steps of `dt` s, or none (the world rolls back on failure). With
+    /// self-collision the contact thickness is a fifth of the mean rest edge length.
+    pub fn step(&mut self, dt: f64, substeps: u32) -> Result<(), String> {
+        self.world.settings.dt = dt;
+        if self.body().material.self_collision {
+            let rest = self.body().rest_lengths();
+            self.world.settings.contact.thickness = 0.2 * rest.iter().sum::<f64>() / rest.len().max(1) as f64;
         }
-        let rest = self.body.rest_lengths();
-        let thickness = 0.2 * rest.iter().sum::<f64>() / rest.len().max(1) as f64;
-        let world = self.world.get_or_insert_with(|| softsculpt::world::World::new(vec![self.body.clone()], thickness));
-        world.thickness = thickness;
-        std::mem::swap(&mut self.body, &mut world.bodies[0]);
-        let r = world.step(dt);
-        std::mem::swap(&mut self.body, &mut world.bodies[0]);
-        r
-    }
-
-    pub fn rollback(&mut self) {
-        // The backup was finite when taken, so this cannot fail.
-        let _ = self.body.set_state(&self.backup_x, &self.backup_v);
+        self.world.step_n(substeps as u64).map_err(|e| e.to_string())
     }
 }
 

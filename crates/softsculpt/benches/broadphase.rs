@@ -48,7 +48,8 @@ fn broadphase(c: &mut Criterion) {
 /// k gas-filled balloons (icospheres of radius 1, 2,562 vertices) in a grid, 1.99 m apart so
 /// that neighbours touch within the contact thickness.
 fn balloons(k: usize) -> softsculpt::world::World {
-    use softsculpt::body::{Params, SoftBody};
+    use softsculpt::body::{Material, SoftBody};
+    use softsculpt::world::{ContactSettings, World, WorldSettings};
     let side = (k as f64).sqrt().ceil() as usize;
     let (ball, _) = reorder::by_locality(&icosphere(4, 1.0));
     let bodies = (0..k)
@@ -59,12 +60,13 @@ fn balloons(k: usize) -> softsculpt::world::World {
                 p[0] += ox;
                 p[2] += oz;
             }
-            let mut p = Params { stiffness: 100.0, spring_damping: 0.05, gravity: 0.0, ..Params::default() };
+            let mut p = Material { stiffness: 100.0, spring_damping: 0.05, ..Material::default() };
             p.set_nrt(20.0);
             SoftBody::new(&mesh, 1.0, p).expect("a valid balloon")
         })
         .collect();
-    softsculpt::world::World::new(bodies, 0.02)
+    let contact = ContactSettings { thickness: 0.02, ..ContactSettings::default() };
+    World::new(bodies, WorldSettings { gravity: 0.0, dt: 2e-4, contact, ..WorldSettings::default() })
 }
 
 fn world_step(c: &mut Criterion) {
@@ -74,12 +76,15 @@ fn world_step(c: &mut Criterion) {
         let mut w = balloons(k);
         let n: usize = w.bodies.iter().map(|b| b.vertex_count()).sum();
         g.throughput(Throughput::Elements(n as u64));
-        g.bench_with_input(BenchmarkId::new("with_contacts", n), &n, |b, _| b.iter(|| w.step(2e-4).expect("steps")));
-        let mut w = balloons(k);
+        g.bench_with_input(BenchmarkId::new("with_contacts", n), &n, |b, _| b.iter(|| w.step().expect("steps")));
+        // The same bodies each alone in its own one-body world: no contacts.
+        let w = balloons(k);
+        let settings = w.settings.clone();
+        let mut alone: Vec<softsculpt::World> = w.bodies.into_iter().map(|b| softsculpt::World::single(b, settings.clone())).collect();
         g.bench_with_input(BenchmarkId::new("bodies_only", n), &n, |b, _| {
             b.iter(|| {
-                for body in &mut w.bodies {
-                    body.step(2e-4).expect("steps");
+                for w in &mut alone {
+                    w.step().expect("steps");
                 }
             })
         });

@@ -6,19 +6,24 @@
 //! forces and a ground plane act from outside.
 //!
 //! Layout: [`mesh`] parses, checks and builds meshes (bytes in, bytes out: no file-system access);
-//! [`body`] holds the simulation state as flat arrays and steps it as a list of named stages.
-//! The crate has no I/O and no binding code.
+//! [`body`] holds a body's material and state as flat arrays, with its force and integration
+//! stage; [`world`] is the unit of simulation (settings, clock, the step's stages, contacts,
+//! events); [`scene`] turns a scene file into a world; [`params`] is the table of every
+//! parameter; [`snapshot`] is the binary snapshot format. The crate has no I/O and no binding
+//! code.
 
 pub mod body;
 pub mod error;
 pub mod geometry;
 pub mod hash;
 pub mod mesh;
+pub mod params;
 pub mod scene;
 pub mod vec3;
 pub mod workload;
 pub mod world;
 
-pub use body::{Integrator, Params, SoftBody, Stats, VolumeMode, GAS_CONSTANT};
+pub use body::{Material, SoftBody, Stats, VolumeMode, GAS_CONSTANT};
+pub use world::{Ground, Integrator, StepError, World, WorldSettings};
 pub use error::{MeshError, SimError};
 pub use mesh::{prepare, LoadedMesh, MeshReport, TriMesh};

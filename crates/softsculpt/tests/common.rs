@@ -1,20 +1,31 @@
 //! Helpers shared by the physics tests.
 #![allow(dead_code)]
 
-use softsculpt::body::{Integrator, Params, SoftBody};
+use softsculpt::body::{Material, SoftBody};
 use softsculpt::mesh::builtin::{builtin, icosphere};
+use softsculpt::world::{Integrator, World, WorldSettings};
 
-/// Parameters with no gravity, no damping, no gas: add what a test needs.
-pub fn bare() -> Params {
-    Params { stiffness: 100.0, spring_damping: 0.0, damping: 0.0, gravity: 0.0, integrator: Integrator::Symplectic, ..Params::default() }
+/// A material with no damping and no gas: add what a test needs.
+pub fn bare() -> Material {
+    Material { stiffness: 100.0, spring_damping: 0.0, damping: 0.0, ..Material::default() }
 }
 
-pub fn sphere_body(level: u32, mass: f64, params: Params) -> SoftBody {
-    SoftBody::new(&icosphere(level, 1.0), mass, params).unwrap()
+/// A world with no gravity, symplectic Euler, nothing else: add what a test needs.
+pub fn still() -> WorldSettings {
+    WorldSettings { gravity: 0.0, integrator: Integrator::Symplectic, ..WorldSettings::default() }
 }
 
-pub fn model_body(name: &str, mass: f64, params: Params) -> SoftBody {
-    SoftBody::new(&builtin(name).unwrap(), mass, params).unwrap()
+pub fn sphere_body(level: u32, mass: f64, material: Material) -> SoftBody {
+    SoftBody::new(&icosphere(level, 1.0), mass, material).unwrap()
+}
+
+pub fn model_body(name: &str, mass: f64, material: Material) -> SoftBody {
+    SoftBody::new(&builtin(name).unwrap(), mass, material).unwrap()
+}
+
+/// A lone body in a world with `settings`.
+pub fn alone(body: SoftBody, settings: WorldSettings) -> World {
+    World::single(body, settings)
 }
 
 /// A smooth, deterministic, non-uniform velocity field (m/s) that excites many modes.
@@ -33,9 +44,11 @@ pub fn swirl(body: &mut SoftBody, amplitude: f64) {
     body.set_state(&x, &v).unwrap();
 }
 
-pub fn run(body: &mut SoftBody, dt: f64, steps: usize) {
+/// `steps` steps of `dt` seconds.
+pub fn run(world: &mut World, dt: f64, steps: usize) {
+    world.settings.dt = dt;
     for _ in 0..steps {
-        body.step(dt).unwrap();
+        world.step().unwrap();
     }
 }
 

@@ -2,21 +2,23 @@
 
 mod common;
 use common::*;
-use softsculpt::body::{Integrator, Params, SoftBody};
+use softsculpt::body::Material;
+use softsculpt::world::{Integrator, World, WorldSettings};
 
 const T: f64 = 0.04;
 
-fn body(integrator: Integrator) -> SoftBody {
-    let mut p = Params { stiffness: 50.0, spring_damping: 0.5, gravity: 9.81, integrator, ..bare() };
+fn world(integrator: Integrator) -> World {
+    let mut p = Material { stiffness: 50.0, spring_damping: 0.5, ..bare() };
     p.set_nrt(1.0);
     let mut b = sphere_body(1, 1.0, p);
     swirl(&mut b, 1.0);
-    b
+    alone(b, WorldSettings { gravity: 9.81, integrator, ..still() })
 }
 
 fn solve(integrator: Integrator, steps: usize) -> Vec<f64> {
-    let mut b = body(integrator);
-    run(&mut b, T / steps as f64, steps);
+    let mut w = world(integrator);
+    run(&mut w, T / steps as f64, steps);
+    let b = &w.bodies[0];
     b.positions().iter().chain(b.velocities()).copied().collect()
 }
 

@@ -2,7 +2,8 @@
 
 mod common;
 use common::*;
-use softsculpt::body::{Params, SoftBody, VolumeMode};
+use softsculpt::body::{Material, SoftBody, VolumeMode};
+use softsculpt::world::WorldSettings;
 use softsculpt::error::MeshError;
 use softsculpt::mesh::{builtin::icosphere, load_obj};
 use std::f64::consts::PI;
@@ -45,11 +46,12 @@ fn welding_heals_a_seamed_sphere_so_it_holds_gas() {
     // The faces were wound inward in the file; loading turned them outward.
     assert!(loaded.mesh.volume() > 0.0);
     // It now holds gas: inflating it keeps it closed and finite.
-    let mut p = Params { spring_damping: 0.5, damping: 1.0, ..bare() };
+    let mut p = Material { spring_damping: 0.5, damping: 1.0, ..bare() };
     p.set_nrt(2.0);
-    let mut body = SoftBody::new(&loaded.mesh, 1.0, p).unwrap();
-    let v0 = body.exact_volume();
-    run(&mut body, 1e-4, 5000);
+    let mut w = alone(SoftBody::new(&loaded.mesh, 1.0, p).unwrap(), still());
+    let v0 = w.bodies[0].exact_volume();
+    run(&mut w, 1e-4, 5000);
+    let body = &w.bodies[0];
     assert!(body.is_finite() && body.exact_volume() > v0);
     // Written back in the source's layout: same vertex count and polygons.
     let text = loaded.write_obj(body.positions(), "test");
@@ -109,25 +111,27 @@ fn box_and_sphere_modes_report_the_bounding_volumes() {
     let mesh = icosphere(3, 1.0);
     let (lo, hi) = mesh.bounds();
     let boxed = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
-    let mut body = SoftBody::new(&mesh, 1.0, Params { volume_mode: VolumeMode::Box, ..bare() }).unwrap();
-    assert_eq!(body.volume(), boxed);
-    assert_eq!(body.stats().volume, boxed);
-    body.params.volume_mode = VolumeMode::Sphere;
+    let mut w = alone(SoftBody::new(&mesh, 1.0, Material { volume_mode: VolumeMode::Box, ..bare() }).unwrap(), still());
+    assert_eq!(w.bodies[0].volume(), boxed);
+    assert_eq!(w.stats(0).volume, boxed);
+    let body = &mut w.bodies[0];
+    body.material.volume_mode = VolumeMode::Sphere;
     // Every vertex is at distance 1 from the centroid (0 up to rounding): 4/3 π.
     assert!((body.volume() - 4.0 / 3.0 * PI).abs() < 1e-12);
-    body.params.volume_mode = VolumeMode::Exact;
+    body.material.volume_mode = VolumeMode::Exact;
     assert!(body.volume() < 4.0 / 3.0 * PI && body.volume() > 0.98 * 4.0 / 3.0 * PI);
 }
 
 #[test]
 fn an_explosion_is_reported_with_its_step() {
-    let mut p = Params { stiffness: 1e6, ..bare() };
+    let mut p = Material { stiffness: 1e6, ..bare() };
     p.set_nrt(2.0);
     let mut body = sphere_body(2, 1.0, p);
     swirl(&mut body, 1.0);
+    let mut w = alone(body, WorldSettings { dt: 1e-2, ..still() });
     let mut err = None;
     for _ in 0..10000 {
-        if let Err(e) = body.step(1e-2) {
+        if let Err(e) = w.step() {
             err = Some(e);
             break;
         }
@@ -138,15 +142,19 @@ fn an_explosion_is_reported_with_its_step() {
 
 #[test]
 fn bad_parameters_are_refused_by_name() {
-    let mut body = sphere_body(1, 1.0, bare());
-    assert!(body.step(0.0).unwrap_err().to_string().starts_with("dt:"));
-    assert!(body.step(f64::NAN).is_err());
-    body.params.stiffness = f64::NAN;
-    assert!(body.step(1e-3).unwrap_err().to_string().starts_with("stiffness:"));
-    body.params.stiffness = 1.0;
-    body.params.gas_amount = -1.0;
-    assert!(body.step(1e-3).unwrap_err().to_string().starts_with("gas:"));
+    let mut w = alone(sphere_body(1, 1.0, bare()), still());
+    w.settings.dt = 0.0;
+    assert!(w.step().unwrap_err().to_string().starts_with("dt:"));
+    w.settings.dt = f64::NAN;
+    assert!(w.step().is_err());
+    w.settings.dt = 1e-3;
+    w.bodies[0].material.stiffness = f64::NAN;
+    assert!(w.step().unwrap_err().to_string().starts_with("stiffness:"));
+    w.bodies[0].material.stiffness = 1.0;
+    w.bodies[0].material.gas_amount = -1.0;
+    assert!(w.step().unwrap_err().to_string().starts_with("gas:"));
     assert!(SoftBody::new(&icosphere(1, 1.0), 0.0, bare()).is_err());
+    let body = &mut w.bodies[0];
     assert!(body.set_vertex_mass(10_000, 1.0).is_err());
     assert!(body.set_user_forces(&[1.0]).is_err());
 }

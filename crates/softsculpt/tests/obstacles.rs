@@ -2,12 +2,14 @@
 
 mod common;
 use common::*;
-use softsculpt::body::{Ground, Obstacle, Params};
+use softsculpt::body::Material;
+use softsculpt::world::{Ground, Obstacle, World, WorldSettings};
 
-fn balloon(p: Params) -> softsculpt::SoftBody {
-    let mut p = Params { spring_damping: 0.2, ..p };
+/// A balloon (nRT = 20 J) in a world with `settings`.
+fn balloon(settings: WorldSettings) -> World {
+    let mut p = Material { spring_damping: 0.2, ..bare() };
     p.set_nrt(20.0);
-    sphere_body(2, 1.0, p)
+    alone(sphere_body(2, 1.0, p), settings)
 }
 
 fn shifted(body: &mut softsculpt::SoftBody, by: [f64; 3], v: [f64; 3]) {
@@ -27,17 +29,17 @@ fn a_fast_body_does_not_pass_through_a_thin_wall() {
 /// Throw a balloon at 60 m/s along +x at `wall`, whose near face is the plane x = `face`: no
 /// vertex ever passes it (1e-9 m), the balloon reaches it, and it is stopped.
 fn throw_at_wall(wall: Obstacle, face: f64) {
-    let mut body = balloon(Params { gravity: 0.0, obstacles: vec![wall], ..bare() });
-    shifted(&mut body, [0.0; 3], [60.0, 0.0, 0.0]);
+    let mut w = balloon(WorldSettings { gravity: 0.0, obstacles: vec![wall], dt: 1e-3, ..still() });
+    shifted(&mut w.bodies[0], [0.0; 3], [60.0, 0.0, 0.0]);
     let mut touched = false;
     for _ in 0..300 {
-        body.step(1e-3).unwrap();
-        let far = body.positions().chunks_exact(3).map(|p| p[0]).fold(f64::NEG_INFINITY, f64::max);
+        w.step().unwrap();
+        let far = w.bodies[0].positions().chunks_exact(3).map(|p| p[0]).fold(f64::NEG_INFINITY, f64::max);
         assert!(far <= face + 1e-9, "a vertex passed the wall's near face: x = {far}");
         touched |= far > face - 0.01;
     }
     assert!(touched, "the body reached the wall");
-    assert!(body.stats().momentum[0] < 60.0 * 0.5, "the wall stopped it");
+    assert!(w.stats(0).momentum[0] < 60.0 * 0.5, "the wall stopped it");
 }
 
 /// The same throw against a rotated box and a capsule: nothing ends up inside either.
@@ -48,11 +50,11 @@ fn nothing_ends_inside_a_rotated_box_or_a_capsule() {
         Obstacle::capsule([-3.0, -2.0, 0.0], [-3.0, 2.0, 0.0], 0.05),
     ];
     for (dir, o) in [(1.0, &obstacles[0]), (-1.0, &obstacles[1])] {
-        let mut body = balloon(Params { gravity: 0.0, obstacles: vec![o.clone()], ..bare() });
-        shifted(&mut body, [0.0; 3], [40.0 * dir, 0.0, 0.0]);
+        let mut w = balloon(WorldSettings { gravity: 0.0, obstacles: vec![o.clone()], dt: 1e-3, ..still() });
+        shifted(&mut w.bodies[0], [0.0; 3], [40.0 * dir, 0.0, 0.0]);
         for _ in 0..300 {
-            body.step(1e-3).unwrap();
-            for p in body.positions().chunks_exact(3) {
+            w.step().unwrap();
+            for p in w.bodies[0].positions().chunks_exact(3) {
                 let (d, _) = o.shape.distance([p[0], p[1], p[2]]);
                 assert!(d > -1e-9, "a vertex is {d} m inside {:?}", o.shape);
             }
@@ -70,10 +72,12 @@ fn a_balloon_comes_to_rest_in_a_cradle() {
         Obstacle::capsule([0.8, -1.6, -3.0], [0.8, -1.6, 3.0], 0.4),
         Obstacle::sphere([2.6, -0.5, 0.0], 0.6),
     ];
-    let mut body = balloon(Params { gravity: 9.81, damping: 1.0, obstacles: obstacles.clone(), ground: Some(Ground::at(-5.0)), ..bare() });
-    shifted(&mut body, [0.05, 0.0, 0.0], [0.0; 3]);
-    run(&mut body, 5e-4, 20000);
-    let s = body.stats();
+    let mut w = balloon(WorldSettings { gravity: 9.81, obstacles: obstacles.clone(), ground: Some(Ground::at(-5.0)), ..still() });
+    w.bodies[0].material.damping = 1.0;
+    shifted(&mut w.bodies[0], [0.05, 0.0, 0.0], [0.0; 3]);
+    run(&mut w, 5e-4, 20000);
+    let s = w.stats(0);
+    let body = &w.bodies[0];
     assert!(s.max_speed < 0.05, "resting: {}", s.max_speed);
     assert!(s.center_of_mass[1] > -1.6 && s.center_of_mass[0].abs() < 0.3, "in the cradle: {:?}", s.center_of_mass);
     for o in &obstacles {
@@ -94,17 +98,18 @@ fn a_balloon_comes_to_rest_in_a_cradle() {
 fn a_bar_thinner_than_the_edges_does_not_pass_between_vertices() {
     let (a, b, r) = ([0.0, -1.3, -3.0], [0.0, -1.3, 3.0], 0.03);
     let bar = Obstacle::capsule(a, b, r);
-    let mut body = balloon(Params { gravity: 9.81, damping: 1.0, obstacles: vec![bar.clone()], ..bare() });
-    shifted(&mut body, [0.0, 0.0, 0.0], [0.0; 3]);
-    let (ei, ej) = { let (i, j) = body.spring_ends(); (i.to_vec(), j.to_vec()) };
+    let mut w = balloon(WorldSettings { gravity: 9.81, obstacles: vec![bar.clone()], dt: 5e-4, ..still() });
+    w.bodies[0].material.damping = 1.0;
+    shifted(&mut w.bodies[0], [0.0, 0.0, 0.0], [0.0; 3]);
+    let (ei, ej) = { let (i, j) = w.bodies[0].spring_ends(); (i.to_vec(), j.to_vec()) };
     let mut closest = f64::INFINITY;
-    let e0 = body.stats().total_energy;
+    let e0 = w.stats(0).total_energy;
     let mut worst = f64::NEG_INFINITY;
     for step in 0..8000 {
-        body.step(5e-4).unwrap();
-        worst = worst.max(body.stats().total_energy - e0);
+        w.step().unwrap();
+        worst = worst.max(w.stats(0).total_energy - e0);
         if step % 20 == 0 {
-            let x = body.positions();
+            let x = w.bodies[0].positions();
             for (&i, &j) in ei.iter().zip(&ej) {
                 let (p, q) = ([x[3 * i as usize], x[3 * i as usize + 1], x[3 * i as usize + 2]], [x[3 * j as usize], x[3 * j as usize + 1], x[3 * j as usize + 2]]);
                 // Distance from the edge to the bar's axis (the axis is along z: compare in x, y).
@@ -122,7 +127,7 @@ fn a_bar_thinner_than_the_edges_does_not_pass_between_vertices() {
     // dt is < 1e-3 J, as in contacts_do_not_inject_energy).
     eprintln!("energy rise at worst: {worst} J");
     assert!(worst < 1e-3, "energy rose by {worst} J");
-    let com = body.stats().center_of_mass;
+    let com = w.stats(0).center_of_mass;
     assert!(com[0].abs() > 1.0, "the balloon rolled off sideways, not through the bar: {com:?}");
 }
 
@@ -132,22 +137,22 @@ fn a_bar_thinner_than_the_edges_does_not_pass_between_vertices() {
 #[test]
 fn contacts_do_not_inject_energy() {
     let ramp = Obstacle::rotated_box([0.0, -2.0, 0.0], [2.0, 0.2, 2.0], [0.0, 0.0, 1.0], 0.3);
-    let mut body = balloon(Params { gravity: 9.81, obstacles: vec![ramp], ground: Some(Ground::at(-4.0)), ..bare() });
-    let e0 = body.stats().total_energy;
+    let mut w = balloon(WorldSettings { gravity: 9.81, obstacles: vec![ramp], ground: Some(Ground::at(-4.0)), dt: 5e-4, ..still() });
+    let e0 = w.stats(0).total_energy;
     let mut worst = f64::NEG_INFINITY;
     for _ in 0..6000 {
-        body.step(5e-4).unwrap();
-        worst = worst.max(body.stats().total_energy - e0);
+        w.step().unwrap();
+        worst = worst.max(w.stats(0).total_energy - e0);
     }
     assert!(worst < 1e-3, "energy rose by {worst} J");
-    assert!(body.stats().total_energy < e0 - 0.1, "the contacts dissipated energy");
+    assert!(w.stats(0).total_energy < e0 - 0.1, "the contacts dissipated energy");
 }
 
 #[test]
 fn bad_obstacles_are_refused() {
-    let mut body = balloon(bare());
-    body.params.obstacles = vec![Obstacle::sphere([0.0; 3], -1.0)];
-    let e = body.step(1e-3).unwrap_err().to_string();
+    let mut w = balloon(still());
+    w.settings.obstacles = vec![Obstacle::sphere([0.0; 3], -1.0)];
+    let e = w.step().unwrap_err().to_string();
     assert!(e.starts_with("obstacle:") && e.contains("obstacle 1"), "{e}");
 }
 
@@ -169,21 +174,22 @@ fn a_fast_body_does_not_pass_through_a_triangle_mesh_wall() {
 #[test]
 fn a_body_rests_on_a_closed_mesh_obstacle() {
     let rock = softsculpt::mesh::builtin::icosphere(3, 1.0);
-    let shape = softsculpt::body::mesh_obstacle::MeshShape::new(&rock).unwrap();
+    let shape = softsculpt::world::mesh_obstacle::MeshShape::new(&rock).unwrap();
     let obstacle = Obstacle::triangle_mesh(&rock).unwrap();
-    let mut body = balloon(Params { gravity: 9.81, damping: 2.0, obstacles: vec![obstacle], ground: Some(Ground::at(-1.0)), ..bare() });
-    shifted(&mut body, [0.3, 2.5, 0.0], [0.0; 3]);
+    let mut w = balloon(WorldSettings { gravity: 9.81, obstacles: vec![obstacle], ground: Some(Ground::at(-1.0)), dt: 5e-4, ..still() });
+    w.bodies[0].material.damping = 2.0;
+    shifted(&mut w.bodies[0], [0.3, 2.5, 0.0], [0.0; 3]);
     for step in 0..16000 {
-        body.step(5e-4).unwrap();
+        w.step().unwrap();
         if step % 50 == 0 {
-            for p in body.positions().chunks_exact(3) {
+            for p in w.bodies[0].positions().chunks_exact(3) {
                 if let Some((d, _)) = shape.closest([p[0], p[1], p[2]], 0.5) {
                     assert!(d > -1e-9, "step {step}: a vertex is {d} m inside the rock");
                 }
             }
         }
     }
-    let com = body.stats().center_of_mass;
-    assert!(body.max_speed() < 0.05, "at rest: {}", body.max_speed());
+    let com = w.stats(0).center_of_mass;
+    assert!(w.bodies[0].max_speed() < 0.05, "at rest: {}", w.bodies[0].max_speed());
     assert!(com[0].hypot(com[2]) > 1.0, "beside the rock, not through it: {com:?}");
 }

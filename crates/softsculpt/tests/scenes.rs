@@ -21,7 +21,7 @@ fn load(text: &str) -> SceneRun {
 
 /// Step until the scene's clock reaches `t` (s).
 fn run_to(s: &mut SceneRun, t: f64) {
-    while s.time() < t - 0.5 * s.dt && !s.finished() {
+    while s.time() < t - 0.5 * s.dt() && !s.finished() {
         s.step().unwrap();
     }
 }
@@ -83,7 +83,7 @@ fn fig3_the_dropped_sphere_rests_flattened_by_gravity_and_gas() {
     let b = &s.world.bodies[0];
     let (lo, _) = extent(b, 1);
     let flat = height(b) / width(b);
-    let ke = b.stats().kinetic_energy;
+    let ke = s.world.stats(0).kinetic_energy;
     // Twice the gas: stiffer, less flattened.
     let mut s2 = load(&t.replace("gas = { nrt = 60.0 }", "gas = { nrt = 120.0 }"));
     run_to(&mut s2, 6.0);
@@ -170,13 +170,13 @@ fn fig6_less_gas_shrinks_the_octopus_head() {
     run_to(&mut s, 4.0);
     let b = &s.world.bodies[0];
     let (v1, h1, top1) = (b.exact_volume(), head_width(b, &head), extent(b, 1).1);
-    eprintln!("fig6: V {v0} -> {v1}, head width {h0} -> {h1}, top {top0} -> {top1}, KE {}", b.stats().kinetic_energy);
+    eprintln!("fig6: V {v0} -> {v1}, head width {h0} -> {h1}, top {top0} -> {top1}, KE {}", s.world.stats(0).kinetic_energy);
     // A tenth of the gas: the volume drops (measured −10 %) and the head sinks (measured
     // 0.21 m) and narrows; the body has settled.
     assert!(v1 < 0.95 * v0, "volume {v0} -> {v1}");
     assert!(top0 - top1 > 0.1, "head top {top0} -> {top1}");
     assert!(h1 < h0, "head width {h0} -> {h1}");
-    assert!(b.stats().kinetic_energy < 0.01);
+    assert!(s.world.stats(0).kinetic_energy < 0.01);
 }
 
 fn head_width(b: &SoftBody, v: &[usize]) -> f64 {
@@ -231,10 +231,10 @@ fn a_saved_scene_opens_as_the_same_bodies_at_rest() {
     {
         let b = &mut s.world.bodies[0];
         b.set_pinned(3, true).unwrap();
-        b.params.self_collision = true;
+        b.material.self_collision = true;
     }
     let b = &s.world.bodies[0];
-    let spec = softsculpt::scene::save::scene_of(&[("octopus", b)], s.dt, 0.5, None);
+    let spec = softsculpt::scene::save::scene_of(&s.world.settings, &[("octopus", b)], 0.5, None);
     let toml_text = softsculpt::scene::to_toml(&spec).unwrap();
     let mut again = load(&toml_text);
     let c = &again.world.bodies[0];
@@ -251,8 +251,8 @@ fn a_saved_scene_opens_as_the_same_bodies_at_rest() {
     let light = |b: &SoftBody| b.masses().iter().filter(|&&m| m == 0.0005).count();
     assert_eq!(light(c), light(b));
     assert_eq!((0..c.vertex_count()).filter(|&i| c.is_pinned(i)).count(), 1);
-    assert!(c.params.self_collision);
-    assert_eq!(c.params.stiffness, b.params.stiffness);
+    assert!(c.material.self_collision);
+    assert_eq!(c.material.stiffness, b.material.stiffness);
     assert!((c.pressure() - b.pressure()).abs() < 1e-9 * b.pressure());
     for _ in 0..200 {
         again.step().unwrap();

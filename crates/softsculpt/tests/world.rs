@@ -2,13 +2,18 @@
 
 mod common;
 use common::*;
-use softsculpt::body::{Ground, Params};
-use softsculpt::body::mesh_obstacle::MeshShape;
-use softsculpt::world::World;
+use softsculpt::body::Material;
+use softsculpt::world::mesh_obstacle::MeshShape;
+use softsculpt::world::{ContactSettings, Ground, World, WorldSettings};
 use softsculpt::TriMesh;
 
+/// A world of `bodies` with contact thickness `thickness` (m), stepping by `dt` (s).
+fn world(bodies: Vec<softsculpt::SoftBody>, settings: WorldSettings, thickness: f64, dt: f64) -> World {
+    World::new(bodies, WorldSettings { contact: ContactSettings { thickness, ..ContactSettings::default() }, dt, ..settings })
+}
+
 fn balloon(dy: f64, v: f64) -> softsculpt::SoftBody {
-    let mut p = Params { gravity: 9.81, spring_damping: 0.2, damping: 1.0, ground: Some(Ground::at(-1.2)), ..bare() };
+    let mut p = Material { spring_damping: 0.2, damping: 1.0, ..bare() };
     p.set_nrt(20.0);
     let mut b = sphere_body(2, 1.0, p);
     let x: Vec<f64> = b.positions().chunks_exact(3).flat_map(|q| [q[0] + 0.1 * dy.signum(), q[1] + dy, q[2]]).collect();
@@ -37,11 +42,11 @@ fn winding(p: [f64; 3], x: &[f64], tris: &[[u32; 3]]) -> f64 {
 /// vertex of one ends inside the other.
 #[test]
 fn two_balloons_dropped_on_each_other_rest_without_interpenetrating() {
-    let mut world = World::new(vec![balloon(0.0, 0.0), balloon(2.4, -2.0)], 0.1);
+    let mut world = world(vec![balloon(0.0, 0.0), balloon(2.4, -2.0)], WorldSettings { gravity: 9.81, ground: Some(Ground::at(-1.2)), ..still() }, 0.1, 5e-4);
     let e0 = world.total_energy();
     let mut worst = f64::NEG_INFINITY;
     for step in 0..32000 {
-        world.step(5e-4).unwrap();
+        world.step().unwrap();
         if step % 20 == 0 {
             worst = worst.max(world.total_energy() - e0);
         }
@@ -65,7 +70,7 @@ fn two_balloons_dropped_on_each_other_rest_without_interpenetrating() {
 #[test]
 fn a_collision_between_bodies_conserves_momentum() {
     let make = |dx: f64, vx: f64| {
-        let mut p = Params { spring_damping: 0.2, ..bare() };
+        let mut p = Material { spring_damping: 0.2, ..bare() };
         p.set_nrt(20.0);
         let mut b = sphere_body(2, 1.0, p);
         let x: Vec<f64> = b.positions().chunks_exact(3).flat_map(|q| [q[0] + dx, q[1] + 0.3 * dx.signum(), q[2]]).collect();
@@ -73,15 +78,15 @@ fn a_collision_between_bodies_conserves_momentum() {
         b.set_state(&x, &v).unwrap();
         b
     };
-    let mut world = World::new(vec![make(-1.3, 2.0), make(1.3, -1.0)], 0.01);
-    let total = |w: &World| w.bodies.iter().fold([0.0; 3], |acc, b| { let m = b.stats().momentum; [acc[0] + m[0], acc[1] + m[1], acc[2] + m[2]] });
+    let mut world = world(vec![make(-1.3, 2.0), make(1.3, -1.0)], still(), 0.01, 5e-4);
+    let total = |w: &World| (0..w.bodies.len()).fold([0.0; 3], |acc, b| { let m = w.stats(b).momentum; [acc[0] + m[0], acc[1] + m[1], acc[2] + m[2]] });
     let p0 = total(&world);
     for _ in 0..3000 {
-        world.step(5e-4).unwrap();
+        world.step().unwrap();
     }
     let p1 = total(&world);
     // They met (the first one slowed down) and the total is unchanged up to rounding.
-    assert!(world.bodies[0].stats().momentum[0] < 1.5, "{:?}", world.bodies[0].stats().momentum);
+    assert!(world.stats(0).momentum[0] < 1.5, "{:?}", world.stats(0).momentum);
     for d in 0..3 {
         assert!((p1[d] - p0[d]).abs() < 1e-9, "{p0:?} -> {p1:?}");
     }
@@ -95,7 +100,7 @@ fn a_collision_between_bodies_conserves_momentum() {
 #[test]
 fn self_collision_keeps_a_crushed_sphere_from_passing_through_itself() {
     let run = |self_collision: bool| {
-        let p = Params { gravity: 9.81, spring_damping: 0.05, damping: 2.0, ground: Some(Ground::at(-1.0)), self_collision, ..bare() };
+        let p = Material { spring_damping: 0.05, damping: 2.0, self_collision, ..bare() };
         let mut b = sphere_body(3, 1.0, p);
         let top: Vec<usize> = (0..b.vertex_count()).filter(|&i| b.positions()[3 * i + 1] > 0.7).collect();
         let mut f = vec![0.0; 3 * b.vertex_count()];
@@ -103,9 +108,9 @@ fn self_collision_keeps_a_crushed_sphere_from_passing_through_itself() {
             f[3 * i + 1] = -40.0 / top.len() as f64;
         }
         b.set_user_forces(&f).unwrap();
-        let mut world = World::new(vec![b], 0.03);
+        let mut world = world(vec![b], WorldSettings { gravity: 9.81, ground: Some(Ground::at(-1.0)), ..still() }, 0.03, 5e-4);
         for _ in 0..2000 {
-            world.step(5e-4).unwrap();
+            world.step().unwrap();
         }
         let x = world.bodies[0].positions();
         let pole = (0..x.len() / 3).max_by(|&a, &b| world.bodies[0].frozen_positions()[3 * a + 1].total_cmp(&world.bodies[0].frozen_positions()[3 * b + 1])).unwrap();
@@ -130,7 +135,7 @@ fn self_collision_keeps_a_crushed_sphere_from_passing_through_itself() {
 #[test]
 fn a_fast_body_does_not_pass_through_another() {
     let make = |dx: f64, vx: f64| {
-        let mut p = Params { spring_damping: 0.2, damping: 0.5, ..bare() };
+        let mut p = Material { spring_damping: 0.2, damping: 0.5, ..bare() };
         p.set_nrt(100.0);
         let mut b = sphere_body(2, 1.0, p);
         let x: Vec<f64> = b.positions().chunks_exact(3).flat_map(|q| [q[0] + dx, q[1], q[2]]).collect();
@@ -138,13 +143,13 @@ fn a_fast_body_does_not_pass_through_another() {
         b.set_state(&x, &v).unwrap();
         b
     };
-    let mut world = World::new(vec![make(-2.5, 20.0), make(0.0, 0.0)], 0.01);
+    let mut world = world(vec![make(-2.5, 20.0), make(0.0, 0.0)], still(), 0.01, 1e-3);
     let mut deepest: f64 = 0.0;
     for step in 0..600 {
-        world.step(1e-3).unwrap();
+        world.step().unwrap();
         if step % 5 == 0 {
             let (a, b) = (&world.bodies[0], &world.bodies[1]);
-            assert!(a.stats().center_of_mass[0] < b.stats().center_of_mass[0], "passed through at step {step}");
+            assert!(world.stats(0).center_of_mass[0] < world.stats(1).center_of_mass[0], "passed through at step {step}");
             for (p, q) in [(a, b), (b, a)] {
                 let surface = MeshShape::new(&TriMesh { positions: q.positions().to_vec(), triangles: q.triangles().to_vec() }).unwrap();
                 for v in p.positions().chunks_exact(3) {
@@ -159,7 +164,7 @@ fn a_fast_body_does_not_pass_through_another() {
     eprintln!("deepest vertex inside the other balloon: {deepest} m");
     assert!(deepest < 1e-3, "a vertex went {deepest} m into the other balloon");
     // The hit passed momentum on: the second balloon moves away.
-    assert!(world.bodies[1].stats().momentum[0] > 5.0, "{:?}", world.bodies[1].stats().momentum);
+    assert!(world.stats(1).momentum[0] > 5.0, "{:?}", world.stats(1).momentum);
 }
 
 /// Two cubes meeting edge to edge, crosswise: A's top edge runs along x, B's bottom edge along z,
@@ -182,7 +187,7 @@ fn edge_to_edge_crossing_is_stopped() {
         }
         let quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
         let triangles = quads.iter().flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]).collect();
-        let mut p = Params { stiffness: 2000.0, spring_damping: 0.5, ..bare() };
+        let mut p = Material { stiffness: 2000.0, spring_damping: 0.5, ..bare() };
         p.set_nrt(50.0);
         softsculpt::SoftBody::new(&TriMesh { positions, triangles }, 1.0, p).unwrap()
     };
@@ -197,16 +202,16 @@ fn edge_to_edge_crossing_is_stopped() {
         let (ea, eb) = (extreme(&a, true), extreme(&b, false));
         let mut b = b;
         b.set_uniform_velocity([0.0, -3.0, 0.0]).unwrap();
-        let mut world = World::new(vec![a, b], 0.01);
-        world.edge_contact = edges;
+        let mut world = world(vec![a, b], still(), 0.01, 5e-4);
+        world.settings.contact.edge_contact = edges;
         let mut lowest_gap = f64::INFINITY;
         for _ in 0..400 {
-            world.step(5e-4).unwrap();
+            world.step().unwrap();
             let (xa, xb) = (world.bodies[0].positions(), world.bodies[1].positions());
             let y = |x: &[f64], e: [usize; 2]| 0.5 * (x[3 * e[0] + 1] + x[3 * e[1] + 1]);
             lowest_gap = lowest_gap.min(y(xb, eb) - y(xa, ea));
         }
-        (lowest_gap, world.bodies[1].stats().momentum[1])
+        (lowest_gap, world.stats(1).momentum[1])
     };
     let (without, _) = run(false);
     let (with, momentum) = run(true);

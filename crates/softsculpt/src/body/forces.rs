@@ -1,6 +1,7 @@
 //! The force stages: everything that turns a state (x, v) into accelerations.
 
-use super::{external, gas, Model, Params};
+use super::{external, gas, Material, Model};
+use crate::world::WorldSettings;
 use crate::error::SimError;
 
 /// A failure inside a step, before the step number is known.
@@ -37,7 +38,7 @@ pub(crate) struct Gathered {
 const SCALE_MIN: f64 = 1e-200;
 
 /// Stages faces, gas, springs and external: fill `f` (zero on entry) with force / scale.
-pub(crate) fn gather(p: &Params, m: &Model, x: &[f64], v: &[f64], f: &mut [f64]) -> Result<Gathered, Fault> {
+pub(crate) fn gather(p: &Material, w: &WorldSettings, m: &Model, x: &[f64], v: &[f64], f: &mut [f64]) -> Result<Gathered, Fault> {
     let nrt = p.nrt();
     let gas_active = nrt != 0.0 || m.gas.ambient_pressure != 0.0;
 
@@ -71,8 +72,8 @@ pub(crate) fn gather(p: &Params, m: &Model, x: &[f64], v: &[f64], f: &mut [f64])
     }
 
     // Stage external: wind and user face pressures.
-    if p.wind_drag > 0.0 && p.wind != [0.0; 3] {
-        external::wind(m.faces.triangles(), x, v, p.wind, p.wind_drag * inv, f);
+    if w.wind_drag > 0.0 && w.wind != [0.0; 3] {
+        external::wind(m.faces.triangles(), x, v, w.wind, w.wind_drag * inv, f);
     }
     if m.face_pressure_active {
         external::face_pressures(m.faces.triangles(), x, &m.face_pressure, inv, f);
@@ -108,9 +109,9 @@ fn accel<const USER: bool, const UNIFORM: bool>(
 
 /// Which per-vertex terms are present: chosen once per stage, not per vertex.
 macro_rules! dispatch {
-    ($m:expr, $p:expr, $fun:ident ( $($arg:expr),* )) => {{
+    ($m:expr, $p:expr, $w:expr, $fun:ident ( $($arg:expr),* )) => {{
         let user = $m.external_active;
-        let uniform = $p.gravity != 0.0 || $p.damping != 0.0;
+        let uniform = $w.gravity != 0.0 || $p.damping != 0.0;
         match (user, uniform) {
             (false, false) => $fun::<false, false>($($arg),*),
             (false, true) => $fun::<false, true>($($arg),*),
@@ -121,12 +122,13 @@ macro_rules! dispatch {
 }
 
 /// Stage vertices (generic): write accelerations into `a` and clear the accumulators.
-pub(crate) fn accelerations(p: &Params, m: &Model, gathered: Gathered, v: &[f64], f: &mut [f64], a: &mut [f64]) {
-    dispatch!(m, p, accelerations_impl(p, m, gathered.scale, v, f, a))
+pub(crate) fn accelerations(p: &Material, w: &WorldSettings, m: &Model, gathered: Gathered, v: &[f64], f: &mut [f64], a: &mut [f64]) {
+    dispatch!(m, p, w, accelerations_impl(p, w.gravity, m, gathered.scale, v, f, a))
 }
 
 fn accelerations_impl<const USER: bool, const UNIFORM: bool>(
-    p: &Params,
+    p: &Material,
+    gravity: f64,
     m: &Model,
     scale: f64,
     v: &[f64],
@@ -135,7 +137,7 @@ fn accelerations_impl<const USER: bool, const UNIFORM: bool>(
 ) {
     let n = m.inv_mass.len();
     let (v, f, a, user) = (&v[..3 * n], &mut f[..3 * n], &mut a[..3 * n], &m.external[..3 * n]);
-    let grav = [0.0, -p.gravity, 0.0];
+    let grav = [0.0, -gravity, 0.0];
     for i in 0..n {
         let im = m.inv_mass[i];
         for d in 0..3 {
@@ -147,12 +149,15 @@ fn accelerations_impl<const USER: bool, const UNIFORM: bool>(
 }
 
 /// Stage vertices fused with symplectic Euler: v += dt a; x += dt v; clear the accumulators.
-pub(crate) fn symplectic_update(p: &Params, m: &Model, gathered: Gathered, dt: f64, x: &mut [f64], v: &mut [f64], f: &mut [f64]) {
-    dispatch!(m, p, symplectic_impl(p, m, gathered.scale, dt, x, v, f))
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn symplectic_update(p: &Material, w: &WorldSettings, m: &Model, gathered: Gathered, dt: f64, x: &mut [f64], v: &mut [f64], f: &mut [f64]) {
+    dispatch!(m, p, w, symplectic_impl(p, w.gravity, m, gathered.scale, dt, x, v, f))
 }
 
+#[allow(clippy::too_many_arguments)]
 fn symplectic_impl<const USER: bool, const UNIFORM: bool>(
-    p: &Params,
+    p: &Material,
+    gravity: f64,
     m: &Model,
     scale: f64,
     dt: f64,
@@ -162,7 +167,7 @@ fn symplectic_impl<const USER: bool, const UNIFORM: bool>(
 ) {
     let n = m.inv_mass.len();
     let (x, v, f, user) = (&mut x[..3 * n], &mut v[..3 * n], &mut f[..3 * n], &m.external[..3 * n]);
-    let grav = [0.0, -p.gravity, 0.0];
+    let grav = [0.0, -gravity, 0.0];
     for i in 0..n {
         let im = m.inv_mass[i];
         for d in 0..3 {

@@ -12,7 +12,7 @@
 //! whose gradient −(nRT/V − P_ref) ∂V/∂x is the force above (exact volume mode). Before any
 //! freeze P_ref = 0 and this is the textbook −nRT ln(V/V0).
 
-use super::params::VolumeMode;
+use super::material::VolumeMode;
 use std::f64::consts::PI;
 
 /// State of the gas that is not a user parameter.

@@ -1,12 +1,13 @@
 //! The integrators, on the state (x, v) with a(x, v) from the force stages.
 
 use super::forces::{accelerations, gather, symplectic_update, Fault};
-use super::{ground, obstacles, Integrator, Model, Params, State, Work};
+use super::{Material, Model, State, Work};
+use crate::world::{Integrator, WorldSettings};
 
 /// a(x, v) into `a` (m/s²).
-fn eval(p: &Params, m: &Model, x: &[f64], v: &[f64], f: &mut [f64], a: &mut [f64]) -> Result<(), Fault> {
-    let gathered = gather(p, m, x, v, f).inspect_err(|_| f.fill(0.0))?;
-    accelerations(p, m, gathered, v, f, a);
+fn eval(p: &Material, w: &WorldSettings, m: &Model, x: &[f64], v: &[f64], f: &mut [f64], a: &mut [f64]) -> Result<(), Fault> {
+    let gathered = gather(p, w, m, x, v, f).inspect_err(|_| f.fill(0.0))?;
+    accelerations(p, w, m, gathered, v, f, a);
     Ok(())
 }
 
@@ -17,23 +18,20 @@ fn ensure(buf: &mut Vec<f64>, n: usize) {
 }
 
 /// One step of `dt` (s). The state is left untouched if a force evaluation fails.
-pub(crate) fn step(p: &Params, m: &Model, s: &mut State, w: &mut Work, dt: f64) -> Result<(), Fault> {
+pub(crate) fn step(p: &Material, world: &WorldSettings, m: &Model, s: &mut State, w: &mut Work, dt: f64) -> Result<(), Fault> {
     let n = s.x.len();
-    let Work { f, xs, vs, a, x_prev } = w;
-    if !p.obstacles.is_empty() {
-        ensure(x_prev, n);
-        x_prev.copy_from_slice(&s.x);
-    }
-    match p.integrator {
+    let Work { f, xs, vs, a } = w;
+    let w = world;
+    match w.integrator {
         Integrator::Symplectic => {
             // v' = v + dt a(x, v); x' = x + dt v'
-            let gathered = gather(p, m, &s.x, &s.v, f).inspect_err(|_| f.fill(0.0))?;
-            symplectic_update(p, m, gathered, dt, &mut s.x, &mut s.v, f);
+            let gathered = gather(p, w, m, &s.x, &s.v, f).inspect_err(|_| f.fill(0.0))?;
+            symplectic_update(p, w, m, gathered, dt, &mut s.x, &mut s.v, f);
         }
         Integrator::Euler => {
             // x' = x + dt v; v' = v + dt a(x, v)
             ensure(&mut a[0], n);
-            eval(p, m, &s.x, &s.v, f, &mut a[0])?;
+            eval(p, w, m, &s.x, &s.v, f, &mut a[0])?;
             for k in 0..n {
                 s.x[k] += dt * s.v[k];
                 s.v[k] += dt * a[0][k];
@@ -46,13 +44,13 @@ pub(crate) fn step(p: &Params, m: &Model, s: &mut State, w: &mut Work, dt: f64) 
             ensure(&mut a[1], n);
             ensure(xs, n);
             ensure(vs, n);
-            eval(p, m, &s.x, &s.v, f, &mut a[0])?;
+            eval(p, w, m, &s.x, &s.v, f, &mut a[0])?;
             let h = 0.5 * dt;
             for k in 0..n {
                 xs[k] = s.x[k] + h * s.v[k];
                 vs[k] = s.v[k] + h * a[0][k];
             }
-            eval(p, m, xs, vs, f, &mut a[1])?;
+            eval(p, w, m, xs, vs, f, &mut a[1])?;
             for k in 0..n {
                 s.x[k] += dt * vs[k];
                 s.v[k] += dt * a[1][k];
@@ -69,36 +67,29 @@ pub(crate) fn step(p: &Params, m: &Model, s: &mut State, w: &mut Work, dt: f64) 
             ensure(xs, n);
             ensure(vs, n);
             let h = dt;
-            eval(p, m, &s.x, &s.v, f, &mut a[0])?;
+            eval(p, w, m, &s.x, &s.v, f, &mut a[0])?;
             for k in 0..n {
                 xs[k] = s.x[k] + 0.5 * h * s.v[k];
                 vs[k] = s.v[k] + 0.5 * h * a[0][k];
             }
-            eval(p, m, xs, vs, f, &mut a[1])?;
+            eval(p, w, m, xs, vs, f, &mut a[1])?;
             for k in 0..n {
                 // x3 = x + h/2 (v + h/2 a1)
                 xs[k] = s.x[k] + 0.5 * h * (s.v[k] + 0.5 * h * a[0][k]);
                 vs[k] = s.v[k] + 0.5 * h * a[1][k];
             }
-            eval(p, m, xs, vs, f, &mut a[2])?;
+            eval(p, w, m, xs, vs, f, &mut a[2])?;
             for k in 0..n {
                 // x4 = x + h (v + h/2 a2)
                 xs[k] = s.x[k] + h * (s.v[k] + 0.5 * h * a[1][k]);
                 vs[k] = s.v[k] + h * a[2][k];
             }
-            eval(p, m, xs, vs, f, &mut a[3])?;
+            eval(p, w, m, xs, vs, f, &mut a[3])?;
             for k in 0..n {
                 s.x[k] += h * s.v[k] + h * h / 6.0 * (a[0][k] + a[1][k] + a[2][k]);
                 s.v[k] += h / 6.0 * (a[0][k] + 2.0 * a[1][k] + 2.0 * a[2][k] + a[3][k]);
             }
         }
-    }
-    if let Some(ground) = p.ground {
-        ground::project(&ground, &m.inv_mass, &mut s.x, &mut s.v);
-    }
-    if !p.obstacles.is_empty() {
-        obstacles::resolve(&p.obstacles, &m.inv_mass, x_prev, &mut s.x, &mut s.v);
-        obstacles::resolve_edges(&p.obstacles, &m.inv_mass, &m.springs.i, &m.springs.j, &mut s.x, &mut s.v);
     }
     Ok(())
 }

@@ -1,6 +1,8 @@
-//! A soft body: state in flat arrays, stepped as a list of named stages.
+//! A soft body: its material, masses, pins, prestress, frozen state, gas reference and state, in
+//! flat arrays. A body does not step on its own: a [`crate::world::World`] steps it (a lone body
+//! is a one-body world), handing it the world's settings.
 //!
-//! One step (see [`SoftBody::step`]):
+//! The body's own stage of a world step ([`SoftBody::integrate`]):
 //! 1. **faces**    – exact volume and Σ face normals per vertex, in one pass over faces.
 //! 2. **gas**      – the pressure P = nRT / V from the selected volume, minus the surroundings'.
 //! 3. **springs**  – Hooke + spring damping on every edge (and on the bending springs, if any).
@@ -9,47 +11,38 @@
 //!    symplectic Euler); the force accumulator is cleared on the way.
 //!
 //! Stages 1–4 add into one force accumulator; `forces.rs` explains how the gas force shares it.
-//! 6. **ground**   – project vertices that ended below the ground plane back onto it.
-//! 7. **obstacles** – stop vertices whose path entered a rigid obstacle, push out any inside;
-//!    then keep edges out of spheres and capsules thinner than them.
-//!
-//! Contact between bodies and self-collision need the other bodies: `crate::world::World` runs
-//! them after every body's step.
+//! The ground, obstacles and contacts are the world's stages that follow (`crate::world`).
 //!
 //! All arrays are `xyz` interleaved per vertex (`[x0, y0, z0, x1, …]`), so a renderer can read
 //! positions without copying and a spring touches one cache line per end.
 
-mod contact;
 mod external;
 mod faces;
 mod forces;
 mod gas;
-mod ground;
 mod integrate;
-pub mod mesh_obstacle;
+pub mod material;
 mod modeling;
-pub mod obstacles;
-pub mod params;
 mod persist;
 mod springs;
 mod stats;
 
 pub use faces::Faces;
-pub use obstacles::{Obstacle, Shape};
 pub use gas::GasReference;
-pub use params::{check_dt, Ground, Integrator, Params, VolumeMode, DEFAULT_TEMPERATURE, GAS_CONSTANT};
+pub use material::{Material, VolumeMode, DEFAULT_TEMPERATURE, GAS_CONSTANT};
 pub use springs::Springs;
 pub use stats::Stats;
 
 use crate::error::{MeshError, SimError};
 use crate::mesh::{topology, TriMesh};
+use crate::world::WorldSettings;
 
 /// Per-vertex and per-face data that the force stages read.
 #[derive(Debug, Clone)]
 pub(crate) struct Model {
     pub faces: Faces,
     pub springs: Springs,
-    /// Bending springs across every interior edge (stiffness `Params::bending_stiffness`).
+    /// Bending springs across every interior edge (stiffness `Material::bending_stiffness`).
     pub bending: Springs,
     /// Every edge shared by exactly two faces.
     pub closed: bool,
@@ -78,16 +71,37 @@ pub(crate) struct State {
 }
 
 /// Scratch arrays, allocated once (the Runge–Kutta ones on first use), never inside a step.
-#[derive(Debug, Clone, Default)]
+/// Nothing in them carries over from one step to the next (the accumulator is zero between
+/// steps), so a clone starts from fresh buffers and a restored body rebuilds them.
+#[derive(Debug, Default)]
 pub(crate) struct Work {
     /// Force accumulator (N, divided by the gas scale, see `forces.rs`), zero between steps.
     pub f: Vec<f64>,
     /// Intermediate state and stage accelerations of the explicit Runge–Kutta methods.
     pub xs: Vec<f64>,
     pub vs: Vec<f64>,
-    /// Positions at the start of the step (for the obstacles' continuous check).
-    pub x_prev: Vec<f64>,
     pub a: [Vec<f64>; 4],
+}
+
+impl Work {
+    pub fn new(n3: usize) -> Self {
+        Work { f: vec![0.0; n3], ..Default::default() }
+    }
+}
+
+impl Clone for Work {
+    fn clone(&self) -> Self {
+        Work::new(self.f.len())
+    }
+}
+
+/// Inverse masses (1/kg, 0 for pinned vertices), spring ends, positions and velocities.
+pub(crate) struct RigidView<'a> {
+    pub inv_mass: &'a [f64],
+    pub ei: &'a [u32],
+    pub ej: &'a [u32],
+    pub x: &'a mut [f64],
+    pub v: &'a mut [f64],
 }
 
 /// The last frozen shape, for [`SoftBody::reset`].
@@ -100,26 +114,24 @@ pub(crate) struct Frozen {
     pub prestress: Vec<f64>,
 }
 
-/// A soft body. See the module documentation for the step.
+/// A soft body. See the module documentation.
 #[derive(Debug, Clone)]
 pub struct SoftBody {
-    /// Parameters; change them freely between steps (they are validated by each step).
-    pub params: Params,
+    /// Material; change it freely between steps (each step validates it).
+    pub material: Material,
     pub(crate) model: Model,
     pub(crate) state: State,
     pub(crate) work: Work,
     pub(crate) frozen: Frozen,
-    steps: u64,
-    time: f64,
 }
 
 impl SoftBody {
     /// A body on `mesh` at rest (rest lengths = edge lengths), of total mass `mass` (kg) split
-    /// equally over the vertices. Fails if the parameters are invalid or if there is gas and the
+    /// equally over the vertices. Fails if the material is invalid or if there is gas and the
     /// mesh is not closed.
-    pub fn new(mesh: &TriMesh, total_mass: f64, params: Params) -> Result<Self, BodyError> {
-        params.validate()?;
-        params::check_positive("mass", total_mass)?;
+    pub fn new(mesh: &TriMesh, total_mass: f64, material: Material) -> Result<Self, BodyError> {
+        material.validate()?;
+        material::check_positive("mass", total_mass)?;
         let n = mesh.vertex_count();
         if n == 0 || mesh.triangles.is_empty() {
             return Err(MeshError::Empty("the mesh has no faces".into()).into());
@@ -132,7 +144,7 @@ impl SoftBody {
         }
         let counts = topology::count_edges(&mesh.triangles);
         let closed = counts.boundary == 0 && counts.non_manifold == 0;
-        if params.nrt() > 0.0 && !closed {
+        if material.nrt() > 0.0 && !closed {
             return Err(MeshError::NotClosed { boundary_edges: counts.boundary, non_manifold_edges: counts.non_manifold }.into());
         }
         let x = mesh.positions.clone();
@@ -157,11 +169,9 @@ impl SoftBody {
                 gas: GasReference { ambient_pressure: 0.0, reference_volume: 1.0 },
             },
             state: State { v: vec![0.0; 3 * n], x },
-            work: Work { f: vec![0.0; 3 * n], ..Default::default() },
+            work: Work::new(3 * n),
             frozen: Frozen { x: Vec::new(), rest: Vec::new(), bending_rest: Vec::new(), gas: GasReference { ambient_pressure: 0.0, reference_volume: 1.0 }, prestress: vec![0.0; 3 * n] },
-            params,
-            steps: 0,
-            time: 0.0,
+            material,
         };
         let v0 = body.volume();
         body.model.gas.reference_volume = if v0 > 0.0 { v0 } else { 1.0 };
@@ -169,24 +179,24 @@ impl SoftBody {
         Ok(body)
     }
 
-    /// Advance by one step of `dt` seconds with the selected integrator.
-    ///
-    /// On error the step count names the failing step; the state is then the one that failed to
-    /// evaluate (callers that must recover keep their own copy, see [`SoftBody::snapshot`]).
-    pub fn step(&mut self, dt: f64) -> Result<(), SimError> {
-        check_dt(dt)?;
-        self.params.validate()?;
-        if self.params.nrt() > 0.0 && !self.model.closed {
+    /// The body's stage of a world step: forces and integration over `dt` seconds with the
+    /// world's settings (gravity, wind, integrator); no contact of any kind. `step` is the
+    /// world's step number, for the error. The state is left as it failed on error (the world
+    /// rolls back).
+    pub(crate) fn integrate(&mut self, world: &WorldSettings, dt: f64, step: u64) -> Result<(), SimError> {
+        self.material.validate()?;
+        if self.material.nrt() > 0.0 && !self.model.closed {
             return Err(SimError::BadParameter {
                 name: "gas",
                 message: "gas pressure needs a closed surface; this mesh is open or non-manifold".into(),
             });
         }
-        let step = self.steps + 1;
-        integrate::step(&self.params, &self.model, &mut self.state, &mut self.work, dt).map_err(|e| e.at(step))?;
-        self.steps = step;
-        self.time += dt;
-        Ok(())
+        integrate::step(&self.material, world, &self.model, &mut self.state, &mut self.work, dt).map_err(|e| e.at(step))
+    }
+
+    /// What the world's ground and obstacle stages read and write.
+    pub(crate) fn rigid_view(&mut self) -> RigidView<'_> {
+        RigidView { inv_mass: &self.model.inv_mass, ei: &self.model.springs.i, ej: &self.model.springs.j, x: &mut self.state.x, v: &mut self.state.v }
     }
 
     // ----- read access -------------------------------------------------------------------
@@ -240,20 +250,13 @@ impl SoftBody {
     pub fn gas_reference(&self) -> GasReference {
         self.model.gas
     }
-    /// Steps taken and simulated time (s).
-    pub fn steps(&self) -> u64 {
-        self.steps
-    }
-    pub fn time(&self) -> f64 {
-        self.time
-    }
     /// Every position and velocity is finite.
     pub fn is_finite(&self) -> bool {
         self.state.x.iter().chain(&self.state.v).all(|a| a.is_finite())
     }
     /// The volume the gas uses (m³), in the selected mode.
     pub fn volume(&self) -> f64 {
-        gas::measure(self.params.volume_mode, self.model.faces.volume6(&self.state.x), &self.state.x)
+        gas::measure(self.material.volume_mode, self.model.faces.volume6(&self.state.x), &self.state.x)
     }
     /// The exact enclosed volume (m³).
     pub fn exact_volume(&self) -> f64 {
@@ -261,12 +264,12 @@ impl SoftBody {
     }
     /// Gas pressure P = nRT / V (Pa).
     pub fn pressure(&self) -> f64 {
-        gas::pressure(self.params.nrt(), self.volume())
+        gas::pressure(self.material.nrt(), self.volume())
     }
     /// Σ k (l − L) l over all springs, bending ones included (J): 3 nRT at inflated equilibrium
     /// without other forces.
     pub fn spring_virial(&self) -> f64 {
-        self.model.springs.virial(self.params.stiffness, &self.state.x) + self.model.bending.virial(self.params.bending_stiffness, &self.state.x)
+        self.model.springs.virial(self.material.stiffness, &self.state.x) + self.model.bending.virial(self.material.bending_stiffness, &self.state.x)
     }
     /// Largest vertex speed (m/s).
     pub fn max_speed(&self) -> f64 {

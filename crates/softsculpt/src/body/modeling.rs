@@ -1,6 +1,6 @@
 //! Modeling operations: freeze, reset, inflate/deflate, masses, pins, user forces.
 
-use super::params::{check_non_negative, check_positive};
+use super::material::{check_non_negative, check_positive};
 use super::{gas, Frozen, SoftBody};
 use crate::error::SimError;
 
@@ -31,7 +31,7 @@ impl SoftBody {
         self.model.bending.rest_to_current(&self.state.x);
         self.state.v.fill(0.0);
         let volume = self.volume();
-        self.model.gas.ambient_pressure = gas::pressure(self.params.nrt(), volume);
+        self.model.gas.ambient_pressure = gas::pressure(self.material.nrt(), volume);
         self.model.gas.reference_volume = volume;
         self.model.prestress.fill(0.0);
         self.update_external();
@@ -51,12 +51,12 @@ impl SoftBody {
     pub fn freeze_under_load(&mut self) {
         let n = self.state.x.len();
         let mut f = vec![0.0; n];
-        self.model.springs.accumulate(self.params.stiffness, 0.0, &self.state.x, &self.state.v, &mut f);
-        self.model.bending.accumulate(self.params.bending_stiffness, 0.0, &self.state.x, &self.state.v, &mut f);
+        self.model.springs.accumulate(self.material.stiffness, 0.0, &self.state.x, &self.state.v, &mut f);
+        self.model.bending.accumulate(self.material.bending_stiffness, 0.0, &self.state.x, &self.state.v, &mut f);
         let mut g = vec![0.0; n];
         let six_v = self.model.faces.volume6_and_normals(&self.state.x, &mut g);
-        let volume = gas::measure(self.params.volume_mode, six_v, &self.state.x);
-        let s = (gas::pressure(self.params.nrt(), volume) - self.model.gas.ambient_pressure) / 6.0;
+        let volume = gas::measure(self.material.volume_mode, six_v, &self.state.x);
+        let s = (gas::pressure(self.material.nrt(), volume) - self.model.gas.ambient_pressure) / 6.0;
         let mut prestress: Vec<f64> = (0..n).map(|k| f[k] + s * g[k] + self.model.prestress[k]).collect();
         if prestress.iter().any(|p| !p.is_finite()) {
             prestress.fill(0.0);
@@ -242,8 +242,8 @@ impl SoftBody {
                 message: "gas pressure needs a closed surface; this mesh is open or non-manifold".into(),
             });
         }
-        self.params.gas_amount = amount;
-        self.params.temperature = temperature;
+        self.material.gas_amount = amount;
+        self.material.temperature = temperature;
         Ok(())
     }
 

@@ -65,7 +65,7 @@ impl SoftBody {
         let (mesh, parents) = subdivide::loop_subdivide(&self.to_mesh());
         let (mesh, old_to_new) = crate::mesh::reorder::by_locality(&mesh);
         let total: f64 = self.model.mass.iter().sum();
-        let mut body = SoftBody::new(&mesh, total, self.params.clone()).map_err(|e| SimError::BadParameter { name: "subdivide", message: e.to_string() })?;
+        let mut body = SoftBody::new(&mesh, total, self.material.clone()).map_err(|e| SimError::BadParameter { name: "subdivide", message: e.to_string() })?;
         let mut masses = vec![0.0; mesh.vertex_count()];
         let mut pinned = vec![false; mesh.vertex_count()];
         for (k, pa) in parents.iter().enumerate() {

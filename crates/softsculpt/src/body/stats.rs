@@ -32,10 +32,12 @@ pub struct Stats {
 }
 
 impl SoftBody {
-    pub fn stats(&self) -> Stats {
+    /// The statistics of the body under `gravity` (m/s² along −y), at world step `step` and time
+    /// `time` (s): see `World::stats`.
+    pub(crate) fn stats_at(&self, gravity: f64, step: u64, time: f64) -> Stats {
         let (x, v, m) = (&self.state.x, &self.state.v, &self.model.mass);
         let volume = self.volume();
-        let nrt = self.params.nrt();
+        let nrt = self.material.nrt();
         let mut ke = 0.0;
         let mut pe_g = 0.0;
         let mut p = [0.0; 3];
@@ -47,7 +49,7 @@ impl SoftBody {
             let v2 = vi[0] * vi[0] + vi[1] * vi[1] + vi[2] * vi[2];
             ke += 0.5 * m[i] * v2;
             vmax2 = vmax2.max(v2);
-            pe_g += m[i] * self.params.gravity * xi[1];
+            pe_g += m[i] * gravity * xi[1];
             for d in 0..3 {
                 p[d] += m[i] * vi[d];
                 com[d] += m[i] * xi[d];
@@ -55,7 +57,7 @@ impl SoftBody {
             total_mass += m[i];
         }
         // The kept load of a freeze under load is a constant force f_p: potential −f_p · (x − x_frozen).
-        let mut elastic = self.model.springs.energy(self.params.stiffness, x) + self.model.bending.energy(self.params.bending_stiffness, x);
+        let mut elastic = self.model.springs.energy(self.material.stiffness, x) + self.model.bending.energy(self.material.bending_stiffness, x);
         if self.model.prestress.iter().any(|&p| p != 0.0) {
             for k in 0..x.len() {
                 elastic -= self.model.prestress[k] * (x[k] - self.frozen.x[k]);
@@ -63,8 +65,8 @@ impl SoftBody {
         }
         let gas_energy = gas::energy(nrt, volume, &self.model.gas);
         Stats {
-            step: self.steps(),
-            time: self.time(),
+            step,
+            time,
             volume,
             pressure: gas::pressure(nrt, volume),
             kinetic_energy: ke,

@@ -4,10 +4,9 @@
 use super::events::{check_keys, Action, Event};
 use super::spec::{BodySpec, ObstacleSpec, RegionSpec, RotateSpec, SceneSpec};
 use super::{line_of, SceneError};
-use crate::body::obstacles::Obstacle;
-use crate::body::params::{Ground, DEFAULT_TEMPERATURE};
+use crate::body::{GasReference, Material, SoftBody, VolumeMode, DEFAULT_TEMPERATURE, GAS_CONSTANT};
 use crate::geometry::rotate;
-use crate::body::{GasReference, Integrator, Params, SoftBody, VolumeMode, GAS_CONSTANT};
+use crate::world::{ContactSettings, Ground, Integrator, Obstacle, WorldSettings};
 use crate::mesh::{builtin, load_obj, LoadedMesh};
 use crate::vec3::{add, dot, normalize, scale, V3};
 
@@ -25,10 +24,10 @@ pub struct BuiltBody {
 pub struct Built {
     pub bodies: Vec<BuiltBody>,
     pub events: Vec<Event>,
-    pub dt: f64,
+    /// The world's settings: `[world]` and the obstacles.
+    pub settings: WorldSettings,
+    /// Length of the run (s).
     pub duration: f64,
-    pub contact_thickness: f64,
-    pub contact_friction: f64,
 }
 
 struct Ctx {
@@ -92,19 +91,21 @@ pub fn build(spec: &SceneSpec, text: &str, resolve: Resolver) -> Result<Built, S
         obstacles.push(obstacle(&cx, o.get_ref(), resolve)?);
     }
 
+    let settings = WorldSettings {
+        gravity: w.gravity,
+        wind: w.wind,
+        wind_drag: w.wind_drag,
+        ground,
+        obstacles,
+        integrator,
+        dt: w.dt,
+        contact: ContactSettings { thickness: w.contact_thickness, friction: w.contact_friction, ..ContactSettings::default() },
+    };
+
     let mut bodies: Vec<BuiltBody> = Vec::new();
     for (k, b) in spec.bodies.iter().enumerate() {
         let cx = Ctx { line: line_of(text, b.span().start), table: format!("body[{k}]") };
-        let params = Params {
-            gravity: w.gravity,
-            wind: w.wind,
-            wind_drag: w.wind_drag,
-            ground,
-            obstacles: obstacles.clone(),
-            integrator,
-            ..Params::default()
-        };
-        let built = body(&cx, b.get_ref(), params, k, resolve)?;
+        let built = body(&cx, b.get_ref(), ground, k, resolve)?;
         if bodies.iter().any(|o| o.name == built.name) {
             return Err(cx.err("name", format!("two bodies are named '{}'", built.name)));
         }
@@ -197,10 +198,11 @@ pub fn build(spec: &SceneSpec, text: &str, resolve: Resolver) -> Result<Built, S
             events.push(Event { time: e.time, body: bi, action, line: cx.line });
         }
     }
-    Ok(Built { bodies, events, dt: w.dt, duration: w.duration, contact_thickness: w.contact_thickness, contact_friction: w.contact_friction })
+    Ok(Built { bodies, events, settings, duration: w.duration })
 }
 
-fn body(cx: &Ctx, b: &BodySpec, mut params: Params, index: usize, resolve: Resolver) -> Result<BuiltBody, SceneError> {
+fn body(cx: &Ctx, b: &BodySpec, ground: Option<Ground>, index: usize, resolve: Resolver) -> Result<BuiltBody, SceneError> {
+    let mut material = Material::default();
     let name = b.name.clone().unwrap_or_else(|| format!("body{}", index + 1));
     if name.is_empty() || !name.chars().all(|c| c.is_alphanumeric() || c == '_' || c == '-') {
         return Err(cx.err("name", format!("'{name}' must be letters, digits, '_' or '-' (it names output files)")));
@@ -228,7 +230,7 @@ fn body(cx: &Ctx, b: &BodySpec, mut params: Params, index: usize, resolve: Resol
         }
     }
     if b.on_ground {
-        let Some(g) = params.ground else {
+        let Some(g) = ground else {
             return Err(cx.err("on_ground", "needs a ground: add [world.ground]"));
         };
         let lowest = mesh.mesh.positions.chunks_exact(3).map(|c| c[1]).fold(f64::INFINITY, f64::min);
@@ -238,26 +240,26 @@ fn body(cx: &Ctx, b: &BodySpec, mut params: Params, index: usize, resolve: Resol
             }
         }
     }
-    params.stiffness = cx.non_negative("stiffness", b.stiffness)?;
-    params.spring_damping = cx.non_negative("spring_damping", b.spring_damping)?;
-    params.bending_stiffness = cx.non_negative("bending", b.bending)?;
-    params.damping = cx.non_negative("damping", b.damping)?;
-    params.self_collision = b.self_collision;
+    material.stiffness = cx.non_negative("stiffness", b.stiffness)?;
+    material.spring_damping = cx.non_negative("spring_damping", b.spring_damping)?;
+    material.bending_stiffness = cx.non_negative("bending", b.bending)?;
+    material.damping = cx.non_negative("damping", b.damping)?;
+    material.self_collision = b.self_collision;
     if let Some(g) = &b.gas {
-        params.temperature = cx.positive("gas.temperature", g.temperature.unwrap_or(DEFAULT_TEMPERATURE))?;
-        params.gas_amount = match (g.amount, g.nrt) {
+        material.temperature = cx.positive("gas.temperature", g.temperature.unwrap_or(DEFAULT_TEMPERATURE))?;
+        material.gas_amount = match (g.amount, g.nrt) {
             (Some(_), Some(_)) => return Err(cx.err("gas", "give `amount` (mol) or `nrt` (J), not both")),
             (Some(a), None) => cx.non_negative("gas.amount", a)?,
-            (None, Some(n)) => cx.non_negative("gas.nrt", n)? / (GAS_CONSTANT * params.temperature),
+            (None, Some(n)) => cx.non_negative("gas.nrt", n)? / (GAS_CONSTANT * material.temperature),
             (None, None) => return Err(cx.err("gas", "needs `amount` (mol) or `nrt` (J)")),
         };
         if let Some(v) = &g.volume {
-            params.volume_mode = VolumeMode::from_name(v)
+            material.volume_mode = VolumeMode::from_name(v)
                 .ok_or_else(|| cx.err("gas.volume", format!("unknown volume mode '{v}' (exact, box, sphere)")))?;
         }
     }
     let mass = cx.positive("mass", b.mass)?;
-    let mut body = SoftBody::new(&mesh.mesh, mass, params).map_err(|e| cx.err(if b.gas.is_some() { "gas" } else { "" }, e.to_string()))?;
+    let mut body = SoftBody::new(&mesh.mesh, mass, material).map_err(|e| cx.err(if b.gas.is_some() { "gas" } else { "" }, e.to_string()))?;
     if let Some(ambient) = b.gas.as_ref().and_then(|g| g.ambient) {
         let gas = GasReference { ambient_pressure: cx.non_negative("gas.ambient", ambient)?, reference_volume: body.gas_reference().reference_volume };
         let (x, rest) = (body.positions().to_vec(), body.rest_lengths().to_vec());

@@ -1,10 +1,12 @@
-//! Timed events: what each action takes, and how it acts on a body.
+//! Timed events in a scene file: what each action takes. The resolved events ([`Action`],
+//! [`Event`]) and how they act are the world's (`crate::world::events`).
 //!
 //! Regions select vertices (and, for pressures, the faces whose three vertices are all selected)
 //! by where they are when the scene starts, after placement: an event always acts on the same
 //! material points, however the body has moved since.
 
 use super::spec::EventSpec;
+pub use crate::world::{Action, Event};
 
 /// Every action, with the keys it requires and the keys it may take (besides `time`, `action`
 /// and `body`, which every event may have).
@@ -20,39 +22,6 @@ pub const ACTIONS: &[(&str, &[&str], &[&str])] = &[
     ("inflate", &["factor"], &["region"]),
     ("set_mass", &["region", "mass"], &[]),
 ];
-
-/// A resolved action on one body (indices are the body's vertices and faces).
-#[derive(Debug, Clone, PartialEq)]
-pub enum Action {
-    /// Rest shape := current shape; `under_load` keeps the current loads balanced (see
-    /// `SoftBody::freeze_under_load`).
-    Freeze { under_load: bool },
-    /// Back to the last frozen state.
-    Reset,
-    /// Gas amount n (mol) and temperature T (K); `None` keeps the current value.
-    SetGas { amount: Option<f64>, temperature: Option<f64>, nrt: Option<f64> },
-    /// Wind velocity (m/s).
-    SetWind([f64; 3]),
-    /// Force (N) on each listed vertex, from now until `until` (s).
-    Force { vertices: Vec<usize>, per_vertex: [f64; 3], until: f64 },
-    /// Pressure (Pa, inward) on each listed face until `until` (s).
-    Pressure { faces: Vec<usize>, pressure: f64, until: f64 },
-    Pin(Vec<usize>),
-    Unpin(Vec<usize>),
-    /// Rest-length factor per vertex (1 outside the region).
-    Inflate(Vec<f64>),
-    SetMass { vertices: Vec<usize>, mass: f64 },
-}
-
-/// An action due at `time` (s) on body `body`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Event {
-    pub time: f64,
-    pub body: usize,
-    pub action: Action,
-    /// 1-based line of the event in the scene file, for run-time errors.
-    pub line: usize,
-}
 
 /// Keys of `e` that are set, besides `time`, `action` and `body`.
 pub fn present_keys(e: &EventSpec) -> Vec<&'static str> {

@@ -3,29 +3,29 @@
 //! Each body is written as it is now, as inline OBJ text: that shape becomes its rest shape
 //! when the scene is opened, and the gas's surroundings pressure is set to the current pressure
 //! (`gas.ambient`), so the body opens in equilibrium — like a freeze. Masses, pins, material and
-//! gas are kept; velocities, inflation and kept loads are not (a project file keeps those).
-//! World settings come from the first body; obstacles, events and the contact settings from the
-//! scene the bodies came from, if any.
+//! gas are kept; velocities, inflation and kept loads are not (a snapshot keeps those).
+//! World settings (contacts included) come from the world's settings; obstacles and events from
+//! the scene the bodies came from, if any (as written in its file).
 
 use super::spec::{BodySpec, GasSpec, GroundSpec, MassSpec, RegionSpec, SceneSpec, WorldSpec};
 use crate::body::SoftBody;
+use crate::world::WorldSettings;
 use toml::Spanned;
 
-/// A scene of `bodies` (name, body), stepping by `dt` (s) for `duration` (s), keeping the
-/// obstacles, events and contact settings of `template`.
-pub fn scene_of(bodies: &[(&str, &SoftBody)], dt: f64, duration: f64, template: Option<&SceneSpec>) -> SceneSpec {
-    let first = &bodies[0].1.params;
-    let t = template.map(|t| &t.world);
+/// A scene of `bodies` (name, body) in a world with `settings` (its dt included), running for
+/// `duration` (s), keeping the obstacles and events of `template`.
+pub fn scene_of(settings: &WorldSettings, bodies: &[(&str, &SoftBody)], duration: f64, template: Option<&SceneSpec>) -> SceneSpec {
+    let w = settings;
     let world = WorldSpec {
-        dt,
+        dt: w.dt,
         duration,
-        integrator: first.integrator.name().to_string(),
-        gravity: first.gravity,
-        wind: first.wind,
-        wind_drag: first.wind_drag,
-        ground: first.ground.map(|g| GroundSpec { height: g.height, friction: g.friction, restitution: g.restitution }),
-        contact_thickness: t.map_or(WorldSpec::default().contact_thickness, |w| w.contact_thickness),
-        contact_friction: t.map_or(WorldSpec::default().contact_friction, |w| w.contact_friction),
+        integrator: w.integrator.name().to_string(),
+        gravity: w.gravity,
+        wind: w.wind,
+        wind_drag: w.wind_drag,
+        ground: w.ground.map(|g| GroundSpec { height: g.height, friction: g.friction, restitution: g.restitution }),
+        contact_thickness: w.contact.thickness,
+        contact_friction: w.contact.friction,
     };
     let bodies = bodies.iter().map(|(name, b)| Spanned::new(0..0, body_spec(name, b))).collect();
     SceneSpec {
@@ -37,7 +37,7 @@ pub fn scene_of(bodies: &[(&str, &SoftBody)], dt: f64, duration: f64, template: 
 }
 
 fn body_spec(name: &str, b: &SoftBody) -> BodySpec {
-    let p = &b.params;
+    let p = &b.material;
     let m = b.masses();
     let total: f64 = m.iter().sum();
     // Vertices grouped by mass (exact values, in order of first appearance); one group = uniform.

@@ -5,6 +5,7 @@
 //! default. Bodies, obstacles and events keep their source span, so checks done after parsing
 //! can name the line.
 
+use crate::params as table;
 use serde::{Deserialize, Serialize};
 use toml::Spanned;
 
@@ -53,15 +54,15 @@ pub struct WorldSpec {
 impl Default for WorldSpec {
     fn default() -> Self {
         WorldSpec {
-            dt: 1e-3,
-            duration: 1.0,
-            integrator: "symplectic".into(),
-            gravity: 9.81,
-            wind: [0.0; 3],
-            wind_drag: 1.0,
+            dt: table::DT.number(),
+            duration: table::DURATION.number(),
+            integrator: table::INTEGRATOR.choice().into(),
+            gravity: table::GRAVITY.number(),
+            wind: table::WIND.vector(),
+            wind_drag: table::WIND_DRAG.number(),
             ground: None,
-            contact_thickness: 0.005,
-            contact_friction: 0.5,
+            contact_thickness: table::CONTACT_THICKNESS.number(),
+            contact_friction: table::CONTACT_FRICTION.number(),
         }
     }
 }
@@ -80,7 +81,7 @@ pub struct GroundSpec {
 
 impl Default for GroundSpec {
     fn default() -> Self {
-        GroundSpec { height: 0.0, friction: 0.5, restitution: 0.0 }
+        GroundSpec { height: table::GROUND_HEIGHT.number(), friction: table::GROUND_FRICTION.number(), restitution: table::GROUND_RESTITUTION.number() }
     }
 }
 
@@ -145,14 +146,14 @@ impl Default for BodySpec {
             rotate: None,
             translate: [0.0; 3],
             on_ground: false,
-            mass: 1.0,
-            stiffness: 100.0,
-            spring_damping: 0.1,
-            bending: 0.0,
-            damping: 0.0,
+            mass: table::MASS.number(),
+            stiffness: table::STIFFNESS.number(),
+            spring_damping: table::SPRING_DAMPING.number(),
+            bending: table::BENDING.number(),
+            damping: table::DAMPING.number(),
             gas: None,
             velocity: [0.0; 3],
-            self_collision: false,
+            self_collision: table::SELF_COLLISION.flag(),
             pins: Vec::new(),
             masses: Vec::new(),
         }

@@ -22,8 +22,8 @@ use crate::vec3::{add, dot, get, norm, scale, sub, V3};
 
 impl World {
     pub(super) fn collide_edges(&mut self, zones: &[Vec<(V3, V3)>]) {
-        self.mids.clear();
-        self.edge_owner.clear();
+        self.cx.mids.clear();
+        self.cx.edge_owner.clear();
         let mut longest: f64 = 0.0;
         for (bi, b) in self.bodies.iter().enumerate() {
             if zones[bi].is_empty() {
@@ -33,44 +33,44 @@ impl World {
             let x = b.positions();
             for (e, (&i, &j)) in ei.iter().zip(ej).enumerate() {
                 // Edges near another body's surface or in contact (with itself too) only.
-                let near = &self.near[bi];
+                let near = &self.cx.near[bi];
                 if !near[i as usize] && !near[j as usize] {
                     continue;
                 }
                 let (p, q) = (get(x, i as usize), get(x, j as usize));
                 let m = scale(add(p, q), 0.5);
                 let half = 0.5 * norm(sub(q, p));
-                if super::in_zones(&zones[bi], m, half) {
+                if super::contacts::in_zones(&zones[bi], m, half) {
                     longest = longest.max(half);
-                    self.mids.extend_from_slice(&m);
-                    self.edge_owner.push((bi as u32, e as u32));
+                    self.cx.mids.extend_from_slice(&m);
+                    self.cx.edge_owner.push((bi as u32, e as u32));
                 }
             }
         }
-        if self.edge_owner.len() < 2 {
+        if self.cx.edge_owner.len() < 2 {
             return;
         }
         // Two segments within the thickness of each other have midpoints within the sum of their
         // half lengths plus the thickness: each edge queries with its own half length.
-        self.edge_hash.set_spacing(2.0 * (2.0 * longest + self.thickness));
-        self.edge_hash.build(&self.mids);
-        let mut found = std::mem::take(&mut self.found);
-        for k in 0..self.edge_owner.len() {
-            let (bi, e) = self.edge_owner[k];
+        self.cx.edge_hash.set_spacing(2.0 * (2.0 * longest + self.settings.contact.thickness));
+        self.cx.edge_hash.build(&self.cx.mids);
+        let mut found = std::mem::take(&mut self.cx.found);
+        for k in 0..self.cx.edge_owner.len() {
+            let (bi, e) = self.cx.edge_owner[k];
             let (i, j) = self.bodies[bi as usize].spring_ends();
             let x = self.bodies[bi as usize].positions();
             let half = 0.5 * norm(sub(get(x, j[e as usize] as usize), get(x, i[e as usize] as usize)));
-            self.edge_hash.query(get(&self.mids, k), half + longest + self.thickness, &mut found);
+            self.cx.edge_hash.query(get(&self.cx.mids, k), half + longest + self.settings.contact.thickness, &mut found);
             for &c in &found {
-                let (ob, f) = self.edge_owner[c as usize];
+                let (ob, f) = self.cx.edge_owner[c as usize];
                 // Each pair once; within one body only if it collides with itself.
-                if (ob, f) <= (bi, e) || (ob == bi && !self.bodies[bi as usize].params.self_collision) {
+                if (ob, f) <= (bi, e) || (ob == bi && !self.bodies[bi as usize].material.self_collision) {
                     continue;
                 }
                 self.edge_pair(bi as usize, e as usize, ob as usize, f as usize);
             }
         }
-        self.found = found;
+        self.cx.found = found;
     }
 
     fn edge_pair(&mut self, ba: usize, ea: usize, bb: usize, eb: usize) {
@@ -85,7 +85,7 @@ impl World {
         let (xa, xb) = (self.bodies[ba].positions(), self.bodies[bb].positions());
         let (a0, a1, b0, b1) = (get(xa, a[0]), get(xa, a[1]), get(xb, b[0]), get(xb, b[1]));
         // Cheap first: the two segments' boxes must overlap.
-        let r = self.thickness;
+        let r = self.settings.contact.thickness;
         if (0..3).any(|d| a0[d].max(a1[d]) + r < b0[d].min(b1[d]) || b0[d].max(b1[d]) + r < a0[d].min(a1[d])) {
             return;
         }
@@ -94,7 +94,7 @@ impl World {
             return; // an end point: the vertex–face test's business
         }
         let (pa, pb) = (lerp(a0, a1, s), lerp(b0, b1, t));
-        if norm(sub(pa, pb)) >= self.reach_now {
+        if norm(sub(pa, pb)) >= self.cx.reach_now {
             return;
         }
         // The side at the start of the step.
@@ -114,7 +114,7 @@ impl World {
             scale(now, 1.0 / l)
         };
         let gap = dot(sub(pa, pb), n);
-        if gap >= 0.0 || gap < -self.reach_now {
+        if gap >= 0.0 || gap < -self.cx.reach_now {
             return;
         }
         let w = |body: usize, v: usize| if self.bodies[body].is_pinned(v) { 0.0 } else { 1.0 / self.bodies[body].masses()[v] };
@@ -126,10 +126,10 @@ impl World {
         let vel = |body: usize, v: usize| get(self.bodies[body].velocities(), v);
         let va = add(scale(vel(ba, a[0]), 1.0 - s), scale(vel(ba, a[1]), s));
         let vb = add(scale(vel(bb, b[0]), 1.0 - t), scale(vel(bb, b[1]), t));
-        let impulse = super::contact_impulse(sub(va, vb), n, wsum, self.friction);
+        let impulse = super::contacts::contact_impulse(sub(va, vb), n, wsum, self.settings.contact.friction);
         // Closed to a hair's breadth (a thousandth of the thickness), not to zero: two edges left
         // exactly touching would have no side at the next step.
-        let lambda = (-gap + 1e-3 * self.thickness) / wsum;
+        let lambda = (-gap + 1e-3 * self.settings.contact.thickness) / wsum;
         let ws = g.map(|(body, v, _, _)| w(body, v));
         for (k, &(body, v, gk, sign)) in g.iter().enumerate() {
             let f = sign * gk * ws[k];

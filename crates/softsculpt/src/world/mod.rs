@@ -1,331 +1,215 @@
-//! A world of several soft bodies that collide with each other.
+//! The world: the only unit of simulation. It owns its soft bodies, the settings every body
+//! shares (gravity, wind, ground, obstacles, integrator, dt, contacts: `settings.rs`), the clock
+//! (`clock.rs`), and an open scene's pending events and active loads (`events.rs`). A lone body
+//! is a one-body world ([`World::single`]).
 //!
-//! Each body steps with its own stages (its ground and obstacles included); then the contact
-//! stage keeps every vertex of one body outside the other bodies' surfaces:
-//! 1. broad phase: a spatial hash of all triangle centroids (`hash.rs`), queried around each
-//!    vertex within the largest triangle radius plus the contact thickness;
-//! 2. narrow phase: the closest point q on each candidate triangle of another body; a vertex p
-//!    closer than `thickness` in front of the face, or behind it by less than `max_depth`, is in
-//!    contact, with n the face's outward normal;
-//! 3. response, between the vertex and the triangle's three vertices (barycentric weights b_k):
-//!    a vertex that went behind the face is put back on it along n (only that: pushing it out to
-//!    the thickness would do work and inject energy), and the relative normal velocity removed
-//!    (inelastic) by an impulse J shared by inverse masses,
-//!        J = −(v_p − Σ b_k v_k) · n / (1/m_p + Σ b_k² / m_k),
-//!    so momentum is conserved exactly; Coulomb friction removes up to μ J of relative tangential
-//!    velocity the same way. Corrections move the centre of mass of the pair not at all.
+//! One [`World::step`] runs these stages in order (after Box2D v3's `b2World_Step`):
+//! 0. **events**   – fire the events due at the step's start, end expired loads (`events.rs`).
+//!    They act on the state the step starts from, so an event at t = 0 acts on the first step
+//!    and a new dt moves "due" with it (t + dt/2), as the scene runner always did.
+//! 1. **bodies**   – each body's forces and integration (`SoftBody::integrate`, `body/`): the
+//!    only stage that reads the material; it takes gravity, wind and the integrator from here.
+//! 2. **ground**   – vertices below the plane go back onto it (`ground.rs`).
+//! 3. **obstacles** – vertices whose path entered a rigid obstacle stop at the entry point, any
+//!    inside are pushed out; then edges are kept out of thin spheres and capsules
+//!    (`obstacles.rs`, `mesh_obstacle.rs`). Ground before obstacles, as a body's own step always
+//!    did them, so every result is bit for bit what it was before the world owned them.
+//! 4. **contacts** – between bodies, and within self-colliding ones (`contacts.rs`, `edges.rs`).
+//! 5. **clock**    – one step more (`clock.rs`).
 //!
-//! 4. edges (`edges.rs`): edge against edge, for crossings no vertex is near a face to catch.
-//!
-//! Self-collision (a body's `params.self_collision`): a vertex is also tested against its own
-//! body's faces, except the faces near it on the surface — those whose closest point was nearer
-//! than their longest edge in the rest shape (the faces around the vertex and the next ring),
-//! which touch it by construction. A fold brings together parts that were far apart at rest, so
-//! they still collide. The response is the same impulse, within one body.
+//! Stages 2–4 are velocity-level corrections after the integrator, so away from contact the
+//! integrators are exactly themselves. A failing stage leaves the world as it failed;
+//! [`World::step_n`] rolls the whole world back instead (`rollback.rs`).
 
+mod clock;
+mod contacts;
 mod edges;
+mod events;
+pub mod ground;
+pub mod mesh_obstacle;
+pub mod obstacles;
+mod rollback;
+mod settings;
 
-use crate::body::SoftBody;
-use crate::geometry::closest_on_triangle;
+pub use clock::Clock;
+pub use events::{Action, Event, Events, Load};
+pub use obstacles::{Obstacle, Shape};
+pub use settings::{check_dt, ContactSettings, Ground, Integrator, WorldSettings};
+
+use crate::body::{SoftBody, Stats};
 use crate::error::SimError;
-use crate::hash::SpatialHash;
-use crate::vec3::{add, cross, dot, get, norm, scale, sub, V3};
 
+/// A world of soft bodies. See the module documentation for the step.
+#[derive(Debug, Clone)]
 pub struct World {
     pub bodies: Vec<SoftBody>,
-    /// Distance kept between a vertex and another body's surface (m).
-    pub thickness: f64,
-    /// Coulomb friction between bodies (dimensionless).
-    pub friction: f64,
-    /// Test edges against edges too (on by default; off only to see what it prevents).
-    pub edge_contact: bool,
-    hash: SpatialHash,
-    centroids: Vec<f64>,
-    owners: Vec<(u32, u32)>,
-    /// Each triangle's radius about its centroid (m): a cheap first test per candidate.
-    radii: Vec<f64>,
-    candidates: Vec<u32>,
-    /// Every body's positions at the start of the step (flat xyz, m): the side each contact
-    /// started on.
-    prev: Vec<Vec<f64>>,
-    /// Edge–edge broad phase: edge midpoints, their (body, spring), and the hash over them.
-    edge_hash: SpatialHash,
-    mids: Vec<f64>,
-    edge_owner: Vec<(u32, u32)>,
-    found: Vec<u32>,
-    /// The largest triangle radius this step (m): how deep a crossing is still caught.
-    reach_now: f64,
-    /// Per body and vertex: near another body's surface this step (edges there are tested).
-    near: Vec<Vec<bool>>,
+    /// Change freely between steps; each step validates them.
+    pub settings: WorldSettings,
+    pub(crate) clock: Clock,
+    pub(crate) events: Events,
+    /// Sums of the loads in force per body: user forces (N, flat xyz) and face pressures (Pa).
+    /// Scratch, rebuilt whenever the loads change; their sizes say which mesh a body's events
+    /// were resolved on (see [`World::body_replaced`]).
+    pub(crate) load_sums: (Vec<Vec<f64>>, Vec<Vec<f64>>),
+    /// Every body's positions at the start of the step (flat xyz, m): the obstacles' swept
+    /// check and the side each contact started on. Scratch.
+    pub(crate) prev: Vec<Vec<f64>>,
+    pub(crate) cx: contacts::Scratch,
+    /// Positions and velocities at the start of a `step_n` call. Scratch.
+    pub(crate) backup: rollback::Backup,
+}
+
+/// A step that failed: when (the time at the step's start, s, and the step's number), the scene
+/// line of the event at fault if an event failed, and why.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StepError {
+    pub time: f64,
+    pub step: u64,
+    pub line: Option<usize>,
+    pub error: SimError,
+    /// Set by [`World::step_n`]: the time (s) the world was rolled back to.
+    pub rolled_back_to: Option<f64>,
+}
+
+impl std::fmt::Display for StepError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.rolled_back_to {
+            None => self.error.fmt(f),
+            Some(t0) => write!(f, "at t = {} s: {} — rolled back to t = {} s", sig3(self.time), self.error, sig3(t0)),
+        }
+    }
+}
+
+impl std::error::Error for StepError {}
+
+/// `x` with three significant digits ("0.250", "12.0", "1.23e-5").
+pub fn sig3(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let e = x.abs().log10().floor() as i32;
+    if !(-4..6).contains(&e) {
+        return format!("{x:.2e}");
+    }
+    let decimals = (2 - e).max(0) as usize;
+    format!("{x:.decimals$}")
 }
 
 impl World {
-    pub fn new(bodies: Vec<SoftBody>, thickness: f64) -> Self {
-        World { bodies, thickness, friction: 0.5, edge_contact: true, hash: SpatialHash::new(1.0), centroids: Vec::new(), owners: Vec::new(), radii: Vec::new(), candidates: Vec::new(), prev: Vec::new(), edge_hash: SpatialHash::new(1.0), mids: Vec::new(), edge_owner: Vec::new(), found: Vec::new(), reach_now: 0.0, near: Vec::new() }
+    pub fn new(bodies: Vec<SoftBody>, settings: WorldSettings) -> Self {
+        let load_sums = (bodies.iter().map(|b| vec![0.0; 3 * b.vertex_count()]).collect(), bodies.iter().map(|b| vec![0.0; b.face_count()]).collect());
+        World {
+            clock: Clock::new(settings.dt),
+            bodies,
+            settings,
+            events: Events::default(),
+            load_sums,
+            prev: Vec::new(),
+            cx: contacts::Scratch::default(),
+            backup: rollback::Backup::default(),
+        }
     }
 
-    /// Step every body by `dt` (s), then resolve contacts between bodies.
-    pub fn step(&mut self, dt: f64) -> Result<(), SimError> {
-        let selfish = self.bodies.iter().any(|b| b.params.self_collision);
-        if self.bodies.len() > 1 || selfish {
-            self.prev.resize(self.bodies.len(), Vec::new());
+    /// A one-body world: how a lone body is simulated.
+    pub fn single(body: SoftBody, settings: WorldSettings) -> Self {
+        World::new(vec![body], settings)
+    }
+
+    /// Add a body; returns its index.
+    pub fn add_body(&mut self, body: SoftBody) -> usize {
+        self.load_sums.0.push(vec![0.0; 3 * body.vertex_count()]);
+        self.load_sums.1.push(vec![0.0; body.face_count()]);
+        self.bodies.push(body);
+        self.bodies.len() - 1
+    }
+
+    /// Steps taken and simulated time (s).
+    pub fn steps(&self) -> u64 {
+        self.clock.steps()
+    }
+    pub fn time(&self) -> f64 {
+        self.clock.time()
+    }
+    pub fn clock(&self) -> Clock {
+        self.clock
+    }
+    /// Take another world's clock (a binding that shows one body of a scene on its own).
+    pub fn set_clock(&mut self, clock: Clock) {
+        self.clock = clock;
+    }
+
+    /// Statistics of body `i` (energies with the world's gravity), at the world's step and time.
+    pub fn stats(&self, i: usize) -> Stats {
+        self.bodies[i].stats_at(self.settings.gravity, self.clock.steps(), self.clock.time())
+    }
+
+    /// Total of every body's energies (J), for diagnostics.
+    pub fn total_energy(&self) -> f64 {
+        (0..self.bodies.len()).map(|i| self.stats(i).total_energy).sum()
+    }
+
+    /// Every position and velocity of every body is finite.
+    pub fn is_finite(&self) -> bool {
+        self.bodies.iter().all(SoftBody::is_finite)
+    }
+
+    /// Whether the contact stage has anything to do: several bodies, or one colliding with
+    /// itself.
+    fn has_contacts(&self) -> bool {
+        self.bodies.len() > 1 || self.bodies.iter().any(|b| b.material.self_collision)
+    }
+
+    /// One step of `settings.dt` seconds: the stages of the module documentation.
+    pub fn step(&mut self) -> Result<(), StepError> {
+        let (step, time) = (self.clock.steps() + 1, self.clock.time());
+        let fail = |line: Option<usize>, error: SimError| StepError { time, step, line, error, rolled_back_to: None };
+        self.settings.validate().map_err(|e| fail(None, e))?;
+        self.clock.rebase(self.settings.dt);
+        let dt = self.settings.dt;
+
+        // Stage 0: events due at the start of the step.
+        self.fire_due(time, dt).map_err(|e| fail(e.line, e.error))?;
+
+        // Where every vertex starts, for the swept obstacle check and the contacts' sides.
+        let contacts = self.has_contacts();
+        if contacts || !self.settings.obstacles.is_empty() {
+            self.prev.resize_with(self.bodies.len(), Vec::new);
             for (p, b) in self.prev.iter_mut().zip(&self.bodies) {
                 p.clear();
                 p.extend_from_slice(b.positions());
             }
         }
+
+        // Stage 1: each body's forces and integration.
         for b in &mut self.bodies {
-            b.step(dt)?;
+            b.integrate(&self.settings, dt, step).map_err(|e| fail(None, e))?;
         }
-        if self.bodies.len() > 1 || selfish {
+
+        // Stage 2: ground.
+        if let Some(g) = self.settings.ground {
+            for b in &mut self.bodies {
+                let v = b.rigid_view();
+                ground::project(&g, v.inv_mass, v.x, v.v);
+            }
+        }
+
+        // Stage 3: obstacles (vertices, then edges against thin round ones).
+        if !self.settings.obstacles.is_empty() {
+            let obstacles = &self.settings.obstacles;
+            for (b, x_prev) in self.bodies.iter_mut().zip(&self.prev) {
+                let v = b.rigid_view();
+                obstacles::resolve(obstacles, v.inv_mass, x_prev, v.x, v.v);
+                obstacles::resolve_edges(obstacles, v.inv_mass, v.ei, v.ej, v.x, v.v);
+            }
+        }
+
+        // Stage 4: contacts between bodies and within self-colliding ones.
+        if contacts {
             self.collide();
         }
+
+        // Stage 5: the clock.
+        self.clock.tick();
         Ok(())
     }
-
-    /// Total of every body's energies (J), for diagnostics.
-    pub fn total_energy(&self) -> f64 {
-        self.bodies.iter().map(|b| b.stats().total_energy).sum()
-    }
-
-    fn collide(&mut self) {
-        // Every triangle's centroid and radius (about the centroid); the largest radius sets
-        // the reach of the queries.
-        self.centroids.clear();
-        self.owners.clear();
-        self.radii.clear();
-        let mut reach: f64 = 0.0;
-        for (bi, b) in self.bodies.iter().enumerate() {
-            let x = b.positions();
-            for (f, t) in b.triangles().iter().enumerate() {
-                let (a, bb, c) = (get(x, t[0] as usize), get(x, t[1] as usize), get(x, t[2] as usize));
-                let g = scale(add(add(a, bb), c), 1.0 / 3.0);
-                let r = norm(sub(a, g)).max(norm(sub(bb, g))).max(norm(sub(c, g)));
-                reach = reach.max(r);
-                self.radii.push(r);
-                self.centroids.extend_from_slice(&g);
-                self.owners.push((bi as u32, f as u32));
-            }
-        }
-        let radius = reach + self.thickness;
-        if !(radius.is_finite() && radius > 0.0) {
-            return;
-        }
-        let max_depth = reach;
-        self.reach_now = reach;
-        self.near.resize(self.bodies.len(), Vec::new());
-        for (n, b) in self.near.iter_mut().zip(&self.bodies) {
-            n.clear();
-            n.resize(b.vertex_count(), false);
-        }
-
-        // Where each body can touch another: the overlaps of its bounding box with the others'
-        // (both grown by the query radius). Only vertices and faces inside these zones take
-        // part — most of a body, most of the time, does not. A self-colliding body can touch
-        // itself anywhere.
-        let boxes: Vec<(V3, V3)> = self
-            .bodies
-            .iter()
-            .map(|b| {
-                let (lo, hi) = crate::mesh::bounds(b.positions());
-                (sub(lo, [radius; 3]), add(hi, [radius; 3]))
-            })
-            .collect();
-        let zones: Vec<Vec<(V3, V3)>> = (0..self.bodies.len())
-            .map(|bi| {
-                if self.bodies[bi].params.self_collision {
-                    return vec![boxes[bi]];
-                }
-                boxes
-                    .iter()
-                    .enumerate()
-                    .filter(|&(ob, _)| ob != bi)
-                    .map(|(_, other)| (max3(boxes[bi].0, other.0), min3(boxes[bi].1, other.1)))
-                    .filter(|(lo, hi)| (0..3).all(|d| lo[d] <= hi[d]))
-                    .collect()
-            })
-            .collect();
-
-        // Broad phase over the centroids of the triangles in the zones (the others dropped in
-        // place).
-        let mut kept = 0;
-        for k in 0..self.owners.len() {
-            let (g, r) = (get(&self.centroids, k), self.radii[k]);
-            if in_zones(&zones[self.owners[k].0 as usize], g, r) {
-                self.owners[kept] = self.owners[k];
-                self.radii[kept] = r;
-                self.centroids.copy_within(3 * k..3 * k + 3, 3 * kept);
-                kept += 1;
-            }
-        }
-        self.owners.truncate(kept);
-        self.radii.truncate(kept);
-        self.centroids.truncate(3 * kept);
-        if self.owners.is_empty() {
-            return;
-        }
-        self.hash.set_spacing(2.0 * radius);
-        self.hash.build(&self.centroids);
-
-        for bi in 0..self.bodies.len() {
-            let zones = &zones[bi];
-            if zones.is_empty() {
-                continue;
-            }
-            for vi in 0..self.bodies[bi].vertex_count() {
-                let p = get(self.bodies[bi].positions(), vi);
-                if !in_zones(zones, p, 0.0) {
-                    continue;
-                }
-                self.hash.query(p, radius, &mut self.candidates);
-                // The deepest contact with another body's face decides this vertex's response.
-                let mut best: Option<(usize, usize, [f64; 3], V3, f64)> = None;
-                for &c in &self.candidates {
-                    let (ob, f) = self.owners[c as usize];
-                    let ob = ob as usize;
-                    let g = get(&self.centroids, c as usize);
-                    // A vertex within the thickness of the triangle is within its radius plus the
-                    // thickness of its centroid; so is one that crossed it less deeply than the
-                    // distance from its crossing point to the rim (a crossing within one step).
-                    let r = self.radii[c as usize] + self.thickness;
-                    let d = sub(p, g);
-                    let d2 = dot(d, d);
-                    // Near another body's surface (within a triangle radius more): its edges
-                    // take part in the edge–edge test.
-                    if ob != bi && d2 <= (r + reach) * (r + reach) {
-                        self.near[bi][vi] = true;
-                    }
-                    if d2 > r * r {
-                        continue;
-                    }
-                    let other = &self.bodies[ob];
-                    let t = other.triangles()[f as usize];
-                    if ob == bi && (!other.params.self_collision || t.contains(&(vi as u32))) {
-                        continue;
-                    }
-                    let x = other.positions();
-                    let (a, b, cc) = (get(x, t[0] as usize), get(x, t[1] as usize), get(x, t[2] as usize));
-                    let nf = cross(sub(b, a), sub(cc, a));
-                    let len = norm(nf);
-                    if len == 0.0 {
-                        continue;
-                    }
-                    let mut n = scale(nf, 1.0 / len);
-                    let (w, q) = closest_on_triangle(p, a, b, cc);
-                    let mut s = dot(sub(p, q), n);
-                    let lateral = norm(sub(sub(p, q), scale(n, s)));
-                    if lateral >= 1e-9 + 0.5 * self.thickness.max(1e-6) || s.abs() >= self.thickness.max(max_depth) {
-                        continue;
-                    }
-                    if ob == bi {
-                        // Only faces away from the vertex on the surface (the checks cost two
-                        // more closest points, so they come after the cheap ones). Inside a
-                        // closed body its own skin is met from behind: the side the vertex was
-                        // on at the start of the step is the side to keep it on.
-                        if !far_at_rest(other, vi, t) {
-                            continue;
-                        }
-                        let side = self_side(&self.prev[bi], vi, t);
-                        n = scale(n, side);
-                        s *= side;
-                    }
-                    if s < self.thickness && s > -max_depth && best.as_ref().map_or(true, |bst| s < bst.4) {
-                        best = Some((ob, f as usize, w, n, s));
-                    }
-                }
-                if let Some((ob, f, w, n, s)) = best {
-                    self.near[bi][vi] = true;
-                    // Velocities respond within the thickness; positions only where a vertex
-                    // went behind the face (moving them further would inject energy).
-                    // Within one body a steady load (its weight, a press) would otherwise close
-                    // the gap to nothing and leave the two skins coplanar, one step from
-                    // crossing: self-contacts are pushed halfway back to the thickness each step.
-                    let depth = if ob == bi { 0.5 * (self.thickness - s) } else { (-s).max(0.0) };
-                    self.respond(bi, vi, ob, f, w, n, depth);
-                }
-            }
-        }
-        if self.edge_contact {
-            self.collide_edges(&zones);
-        }
-    }
-
-    /// Push vertex `vi` of body `bi` and face `f` of body `ob` apart by `depth` along n and
-    /// remove their approaching relative velocity, sharing both by inverse mass.
-    #[allow(clippy::too_many_arguments)]
-    fn respond(&mut self, bi: usize, vi: usize, ob: usize, f: usize, w: [f64; 3], n: V3, depth: f64) {
-        let t = self.bodies[ob].triangles()[f];
-        let ip = inv_mass(&self.bodies[bi], vi);
-        let it = t.map(|k| inv_mass(&self.bodies[ob], k as usize));
-        let wsum = ip + (0..3).map(|k| w[k] * w[k] * it[k]).sum::<f64>();
-        if wsum == 0.0 {
-            return;
-        }
-        // Positions: the vertex moves along +n, the face's vertices along −n, by inverse mass.
-        let lambda = depth / wsum;
-        // Velocities: inelastic normal impulse and Coulomb friction.
-        let vp = get(self.bodies[bi].velocities(), vi);
-        let vo = self.bodies[ob].velocities();
-        let vq = (0..3).fold([0.0; 3], |acc, k| add(acc, scale(get(vo, t[k] as usize), w[k])));
-        let impulse = contact_impulse(sub(vp, vq), n, wsum, self.friction);
-        self.bodies[bi].nudge(vi, scale(n, lambda * ip), scale(impulse, ip));
-        for k in 0..3 {
-            self.bodies[ob].nudge(t[k] as usize, scale(n, -lambda * w[k] * it[k]), scale(impulse, -w[k] * it[k]));
-        }
-    }
-}
-
-/// The impulse (per unit of the weights' inverse mass) that removes the approaching normal part
-/// of the relative velocity `rel` along n (inelastic) and up to μ times that of its tangential
-/// part (Coulomb friction), for a contact whose effective inverse mass is `wsum`
-/// (Σ weight² / mass over the vertices involved): zero if they are separating.
-pub(crate) fn contact_impulse(rel: V3, n: V3, wsum: f64, friction: f64) -> V3 {
-    let vn = dot(rel, n);
-    if vn >= 0.0 {
-        return [0.0; 3];
-    }
-    let j = -vn / wsum;
-    let tangent = sub(rel, scale(n, vn));
-    let vt = norm(tangent);
-    if vt == 0.0 {
-        return scale(n, j);
-    }
-    let jt = (friction * j).min(vt / wsum);
-    sub(scale(n, j), scale(tangent, jt / vt))
-}
-
-/// +1 if vertex `v` was in front of face `t` (along its normal) in positions `x0`, else −1.
-fn self_side(x0: &[f64], v: usize, t: [u32; 3]) -> f64 {
-    let (p, a, b, c) = (get(x0, v), get(x0, t[0] as usize), get(x0, t[1] as usize), get(x0, t[2] as usize));
-    let (_, q) = closest_on_triangle(p, a, b, c);
-    if dot(sub(p, q), cross(sub(b, a), sub(c, a))) >= 0.0 { 1.0 } else { -1.0 }
-}
-
-/// Whether vertex `v` was at least the face's longest edge away from face `t` in the rest shape
-/// (so it is not one of the faces around it).
-fn far_at_rest(b: &SoftBody, v: usize, t: [u32; 3]) -> bool {
-    if t.contains(&(v as u32)) {
-        return false;
-    }
-    let x = b.frozen_positions();
-    let (p, a, bb, c) = (get(x, v), get(x, t[0] as usize), get(x, t[1] as usize), get(x, t[2] as usize));
-    let (_, q) = closest_on_triangle(p, a, bb, c);
-    let longest = norm(sub(bb, a)).max(norm(sub(c, bb))).max(norm(sub(a, c)));
-    norm(sub(p, q)) >= longest
-}
-
-/// Whether p lies in one of the boxes `zones` (lo, hi), each grown by `grow` (m).
-fn in_zones(zones: &[(V3, V3)], p: V3, grow: f64) -> bool {
-    zones.iter().any(|(lo, hi)| (0..3).all(|d| p[d] >= lo[d] - grow && p[d] <= hi[d] + grow))
-}
-
-fn max3(a: V3, b: V3) -> V3 {
-    [a[0].max(b[0]), a[1].max(b[1]), a[2].max(b[2])]
-}
-fn min3(a: V3, b: V3) -> V3 {
-    [a[0].min(b[0]), a[1].min(b[1]), a[2].min(b[2])]
-}
-
-fn inv_mass(b: &SoftBody, i: usize) -> f64 {
-    if b.is_pinned(i) { 0.0 } else { 1.0 / b.masses()[i] }
 }

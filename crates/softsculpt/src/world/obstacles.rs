@@ -35,6 +35,9 @@ impl PartialEq for MeshShape {
     }
 }
 
+/// Friction of an obstacle unless set (dimensionless), from the parameter table.
+pub const DEFAULT_FRICTION: f64 = crate::params::OBSTACLE_FRICTION.number();
+
 /// A rigid obstacle with its Coulomb friction coefficient (dimensionless).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Obstacle {
@@ -44,10 +47,10 @@ pub struct Obstacle {
 
 impl Obstacle {
     pub fn sphere(center: V3, radius: f64) -> Self {
-        Obstacle { shape: Shape::Sphere { center, radius }, friction: 0.5 }
+        Obstacle { shape: Shape::Sphere { center, radius }, friction: DEFAULT_FRICTION }
     }
     pub fn aabb(center: V3, half: V3) -> Self {
-        Obstacle { shape: Shape::Box { center, half, axes: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]] }, friction: 0.5 }
+        Obstacle { shape: Shape::Box { center, half, axes: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]] }, friction: DEFAULT_FRICTION }
     }
     /// A box rotated by `angle` radians about the unit `axis`.
     pub fn rotated_box(center: V3, half: V3, axis: V3, angle: f64) -> Self {
@@ -56,14 +59,14 @@ impl Obstacle {
         // R e_i for the three basis vectors; the rows of `axes` are the rotated axes.
         let rot = |v: V3| rotate(v, k, s, c);
         let axes = [rot([1.0, 0.0, 0.0]), rot([0.0, 1.0, 0.0]), rot([0.0, 0.0, 1.0])];
-        Obstacle { shape: Shape::Box { center, half, axes }, friction: 0.5 }
+        Obstacle { shape: Shape::Box { center, half, axes }, friction: DEFAULT_FRICTION }
     }
     pub fn capsule(a: V3, b: V3, radius: f64) -> Self {
-        Obstacle { shape: Shape::Capsule { a, b, radius }, friction: 0.5 }
+        Obstacle { shape: Shape::Capsule { a, b, radius }, friction: DEFAULT_FRICTION }
     }
     /// A static triangle mesh (its faces' normals say which side is outside).
     pub fn triangle_mesh(mesh: &TriMesh) -> Result<Self, String> {
-        Ok(Obstacle { shape: Shape::Mesh(Arc::new(MeshShape::new(mesh)?)), friction: 0.5 })
+        Ok(Obstacle { shape: Shape::Mesh(Arc::new(MeshShape::new(mesh)?)), friction: DEFAULT_FRICTION })
     }
 
     /// Every number finite, sizes positive, axes orthonormal.
@@ -213,7 +216,7 @@ pub fn resolve(obstacles: &[Obstacle], inv_mass: &[f64], x_prev: &[f64], x: &mut
             };
             x[3 * i..3 * i + 3].copy_from_slice(&p);
             // Inelastic (restitution 0) with Coulomb friction, as on the ground.
-            let u = super::contact::bounce([v[3 * i], v[3 * i + 1], v[3 * i + 2]], n, o.friction, 0.0);
+            let u = super::ground::bounce([v[3 * i], v[3 * i + 1], v[3 * i + 2]], n, o.friction, 0.0);
             v[3 * i..3 * i + 3].copy_from_slice(&u);
         }
     }

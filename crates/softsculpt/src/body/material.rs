@@ -1,0 +1,129 @@
+//! A body's material: what the body itself is made of, with units. Everything the world imposes
+//! (gravity, wind, ground, obstacles, integrator, time step, contacts) is in
+//! [`crate::world::WorldSettings`] instead. All of it can change between steps.
+
+use crate::error::SimError;
+use crate::params as table;
+
+/// Ideal gas constant R (J/(mol·K)).
+pub const GAS_CONSTANT: f64 = 8.314462618;
+
+/// Default temperature (K) used when a total nRT is given.
+pub const DEFAULT_TEMPERATURE: f64 = table::TEMPERATURE.number();
+
+/// Which volume the gas law uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum VolumeMode {
+    /// Exact enclosed volume V = Σ_faces xa · (xb × xc) / 6. The pressure force is then exactly
+    /// P ∂V/∂x, so the gas is a conservative force. The default.
+    Exact,
+    /// Axis-aligned bounding box volume (the original paper's approximation).
+    Box,
+    /// Bounding sphere 4/3 π r³, r the largest distance from the vertex centroid (the paper's
+    /// other approximation).
+    Sphere,
+}
+
+impl VolumeMode {
+    pub const NAMES: &'static [&'static str] = &["exact", "box", "sphere"];
+    pub fn name(self) -> &'static str {
+        match self {
+            VolumeMode::Exact => "exact",
+            VolumeMode::Box => "box",
+            VolumeMode::Sphere => "sphere",
+        }
+    }
+    pub fn from_name(s: &str) -> Option<Self> {
+        Some(match s {
+            "exact" => VolumeMode::Exact,
+            "box" => VolumeMode::Box,
+            "sphere" => VolumeMode::Sphere,
+            _ => return None,
+        })
+    }
+}
+
+/// The material of a body. Names in error messages match the CLI flags.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Material {
+    /// Spring stiffness k (N/m), the same for every edge.
+    pub stiffness: f64,
+    /// Damping along each spring cs (N·s/m): force cs ((vj − vi) · d) d on i.
+    pub spring_damping: f64,
+    /// Stiffness of the bending springs (N/m), which join the two vertices opposite each edge
+    /// and so resist folding across it; 0 (the default) leaves the surface free to fold, as in
+    /// the original model. They use the same damping cs.
+    pub bending_stiffness: f64,
+    /// Viscous damping rate c (1/s): force −c mi vi, velocities decay as e^(−c t).
+    pub damping: f64,
+    /// Amount of gas n (mol).
+    pub gas_amount: f64,
+    /// Gas temperature T (K).
+    pub temperature: f64,
+    /// Which volume the gas law uses.
+    pub volume_mode: VolumeMode,
+    /// Keep the body's vertices out of its own faces (the world's contact stage does it).
+    pub self_collision: bool,
+}
+
+impl Default for Material {
+    /// The defaults of the parameter table (`crate::params`).
+    fn default() -> Self {
+        Material {
+            stiffness: table::STIFFNESS.number(),
+            spring_damping: table::SPRING_DAMPING.number(),
+            bending_stiffness: table::BENDING.number(),
+            damping: table::DAMPING.number(),
+            gas_amount: table::GAS_AMOUNT.number(),
+            temperature: table::TEMPERATURE.number(),
+            volume_mode: VolumeMode::Exact,
+            self_collision: table::SELF_COLLISION.flag(),
+        }
+    }
+}
+
+pub(crate) fn bad(name: &'static str, message: String) -> SimError {
+    SimError::BadParameter { name, message }
+}
+
+/// `value` must be finite and ≥ 0.
+pub fn check_non_negative(name: &'static str, value: f64) -> Result<(), SimError> {
+    if !value.is_finite() {
+        return Err(bad(name, format!("must be a finite number, got {value}")));
+    }
+    if value < 0.0 {
+        return Err(bad(name, format!("must not be negative, got {value}")));
+    }
+    Ok(())
+}
+
+/// `value` must be finite and > 0.
+pub fn check_positive(name: &'static str, value: f64) -> Result<(), SimError> {
+    if !(value.is_finite() && value > 0.0) {
+        return Err(bad(name, format!("must be a finite number greater than 0, got {value}")));
+    }
+    Ok(())
+}
+
+impl Material {
+    /// n R T (J): the product the gas law uses.
+    pub fn nrt(&self) -> f64 {
+        self.gas_amount * GAS_CONSTANT * self.temperature
+    }
+
+    /// Set the gas by its product nRT (J), keeping the temperature.
+    pub fn set_nrt(&mut self, nrt: f64) {
+        self.gas_amount = nrt / (GAS_CONSTANT * self.temperature);
+    }
+
+    /// Reject non-finite or out-of-range values with a message naming the parameter.
+    pub fn validate(&self) -> Result<(), SimError> {
+        check_non_negative("stiffness", self.stiffness)?;
+        check_non_negative("spring-damping", self.spring_damping)?;
+        check_non_negative("bending", self.bending_stiffness)?;
+        check_non_negative("damping", self.damping)?;
+        check_non_negative("gas", self.gas_amount)?;
+        check_positive("temperature", self.temperature)?;
+        Ok(())
+    }
+}

@@ -1,0 +1,132 @@
+//! Get and set parameters by id: body parameters on a body of a world, world parameters on its
+//! settings. Every value is checked against the table's range first.
+
+use super::{find, ParamError, Scope, Value};
+use crate::body::{GasReference, SoftBody, VolumeMode, GAS_CONSTANT};
+use crate::world::{Ground, Integrator, World, WorldSettings};
+
+fn err(id: &str, message: impl Into<String>) -> ParamError {
+    ParamError { id: id.to_string(), message: message.into() }
+}
+
+/// The table's own spelling of choice `name` of parameter `id` (choices are `&'static str`).
+pub fn choice(id: &str, name: &str) -> Result<Value, ParamError> {
+    let p = find(id)?;
+    p.choices().iter().find(|c| **c == name).map(|c| Value::Choice(c)).ok_or_else(|| err(id, format!("unknown choice '{name}' (one of: {})", p.choices().join(", "))))
+}
+
+impl World {
+    /// The current value of parameter `id`; body parameters are body `body`'s.
+    pub fn param(&self, body: usize, id: &str) -> Result<Value, ParamError> {
+        let p = find(id)?;
+        match p.scope {
+            Scope::Body => body_param(self.bodies.get(body).ok_or_else(|| no_body(id, body, self.bodies.len()))?, id),
+            Scope::World => world_param(&self.settings, id),
+            Scope::Scene | Scope::Obstacle => Err(not_here(id)),
+        }
+    }
+
+    /// Set parameter `id` (checked against its range; a message naming it and its unit if it
+    /// does not fit). Body parameters go to body `body`, world parameters to the settings.
+    pub fn set_param(&mut self, body: usize, id: &str, value: Value) -> Result<(), ParamError> {
+        let p = find(id)?;
+        p.check(&value)?;
+        match p.scope {
+            Scope::Body => {
+                let n = self.bodies.len();
+                set_body_param(self.bodies.get_mut(body).ok_or_else(|| no_body(id, body, n))?, id, value)
+            }
+            Scope::World => set_world_param(&mut self.settings, id, value),
+            Scope::Scene | Scope::Obstacle => Err(not_here(id)),
+        }
+    }
+}
+
+fn no_body(id: &str, body: usize, n: usize) -> ParamError {
+    err(id, format!("there is no body {body} (the world has {n})"))
+}
+
+fn not_here(id: &str) -> ParamError {
+    err(id, "is set in a scene file, not on a world")
+}
+
+fn body_param(b: &SoftBody, id: &str) -> Result<Value, ParamError> {
+    let m = &b.material;
+    Ok(match id {
+        "mass" => Value::Number(b.masses().iter().sum()),
+        "stiffness" => Value::Number(m.stiffness),
+        "spring_damping" => Value::Number(m.spring_damping),
+        "bending" => Value::Number(m.bending_stiffness),
+        "damping" => Value::Number(m.damping),
+        "gas.amount" => Value::Number(m.gas_amount),
+        "gas.temperature" => Value::Number(m.temperature),
+        "gas.nrt" => Value::Number(m.nrt()),
+        "gas.volume" => Value::Choice(m.volume_mode.name()),
+        "gas.ambient" => Value::Number(b.gas_reference().ambient_pressure),
+        "self_collision" => Value::Flag(m.self_collision),
+        _ => return Err(err(id, "not a body parameter")),
+    })
+}
+
+fn set_body_param(b: &mut SoftBody, id: &str, value: Value) -> Result<(), ParamError> {
+    let sim = |e: crate::SimError| err(id, e.to_string());
+    let (n, t) = (b.material.gas_amount, b.material.temperature);
+    match (id, value) {
+        ("mass", Value::Number(x)) => b.set_total_mass(x).map_err(sim)?,
+        ("stiffness", Value::Number(x)) => b.material.stiffness = x,
+        ("spring_damping", Value::Number(x)) => b.material.spring_damping = x,
+        ("bending", Value::Number(x)) => b.material.bending_stiffness = x,
+        ("damping", Value::Number(x)) => b.material.damping = x,
+        ("gas.amount", Value::Number(x)) => b.set_gas(x, t).map_err(sim)?,
+        ("gas.temperature", Value::Number(x)) => b.set_gas(n, x).map_err(sim)?,
+        ("gas.nrt", Value::Number(x)) => b.set_gas(x / (GAS_CONSTANT * t), t).map_err(sim)?,
+        ("gas.volume", Value::Choice(c)) => b.material.volume_mode = VolumeMode::from_name(c).ok_or_else(|| err(id, "unknown volume mode"))?,
+        ("gas.ambient", Value::Number(x)) => b.set_gas_reference(GasReference { ambient_pressure: x, ..b.gas_reference() }).map_err(sim)?,
+        ("self_collision", Value::Flag(f)) => b.material.self_collision = f,
+        _ => return Err(err(id, "not a body parameter")),
+    }
+    Ok(())
+}
+
+fn world_param(w: &WorldSettings, id: &str) -> Result<Value, ParamError> {
+    let ground = |f: fn(&Ground) -> f64| w.ground.as_ref().map(f).map(Value::Number).ok_or_else(|| err(id, "there is no ground"));
+    Ok(match id {
+        "dt" => Value::Number(w.dt),
+        "integrator" => Value::Choice(w.integrator.name()),
+        "gravity" => Value::Number(w.gravity),
+        "wind" => Value::Vector(w.wind),
+        "wind_drag" => Value::Number(w.wind_drag),
+        "ground" => Value::Flag(w.ground.is_some()),
+        "ground.height" => ground(|g| g.height)?,
+        "ground.friction" => ground(|g| g.friction)?,
+        "ground.restitution" => ground(|g| g.restitution)?,
+        "contact_thickness" => Value::Number(w.contact.thickness),
+        "contact_friction" => Value::Number(w.contact.friction),
+        _ => return Err(err(id, "not a world parameter")),
+    })
+}
+
+fn set_world_param(w: &mut WorldSettings, id: &str, value: Value) -> Result<(), ParamError> {
+    let no_ground = || err(id, "there is no ground (set `ground` to true first)");
+    match (id, value) {
+        ("dt", Value::Number(x)) => w.dt = x,
+        ("integrator", Value::Choice(c)) => w.integrator = Integrator::from_name(c).ok_or_else(|| err(id, "unknown integrator"))?,
+        ("gravity", Value::Number(x)) => w.gravity = x,
+        ("wind", Value::Vector(v)) => w.wind = v,
+        ("wind_drag", Value::Number(x)) => w.wind_drag = x,
+        ("ground", Value::Flag(on)) => {
+            if !on {
+                w.ground = None;
+            } else if w.ground.is_none() {
+                w.ground = Some(Ground::at(super::GROUND_HEIGHT.number()));
+            }
+        }
+        ("ground.height", Value::Number(x)) => w.ground.as_mut().ok_or_else(no_ground)?.height = x,
+        ("ground.friction", Value::Number(x)) => w.ground.as_mut().ok_or_else(no_ground)?.friction = x,
+        ("ground.restitution", Value::Number(x)) => w.ground.as_mut().ok_or_else(no_ground)?.restitution = x,
+        ("contact_thickness", Value::Number(x)) => w.contact.thickness = x,
+        ("contact_friction", Value::Number(x)) => w.contact.friction = x,
+        _ => return Err(err(id, "not a world parameter")),
+    }
+    Ok(())
+}

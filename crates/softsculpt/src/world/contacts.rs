@@ -1,0 +1,306 @@
+//! Stage "contacts" of a world step: bodies colliding with each other and with themselves.
+//!
+//! After every body has been integrated and kept out of the ground and obstacles, this stage
+//! keeps every vertex of one body outside the other bodies' surfaces:
+//! 1. broad phase: a spatial hash of all triangle centroids (`hash.rs`), queried around each
+//!    vertex within the largest triangle radius plus the contact thickness;
+//! 2. narrow phase: the closest point q on each candidate triangle of another body; a vertex p
+//!    closer than `thickness` in front of the face, or behind it by less than `max_depth`, is in
+//!    contact, with n the face's outward normal;
+//! 3. response, between the vertex and the triangle's three vertices (barycentric weights b_k):
+//!    a vertex that went behind the face is put back on it along n (only that: pushing it out to
+//!    the thickness would do work and inject energy), and the relative normal velocity removed
+//!    (inelastic) by an impulse J shared by inverse masses,
+//!        J = −(v_p − Σ b_k v_k) · n / (1/m_p + Σ b_k² / m_k),
+//!    so momentum is conserved exactly; Coulomb friction removes up to μ J of relative tangential
+//!    velocity the same way. Corrections move the centre of mass of the pair not at all.
+//!
+//! 4. edges (`edges.rs`): edge against edge, for crossings no vertex is near a face to catch.
+//!
+//! Self-collision (a body's `material.self_collision`): a vertex is also tested against its own
+//! body's faces, except the faces near it on the surface — those whose closest point was nearer
+//! than their longest edge in the rest shape (the faces around the vertex and the next ring),
+//! which touch it by construction. A fold brings together parts that were far apart at rest, so
+//! they still collide. The response is the same impulse, within one body.
+
+use super::World;
+use crate::body::SoftBody;
+use crate::geometry::closest_on_triangle;
+use crate::hash::SpatialHash;
+use crate::vec3::{add, cross, dot, get, norm, scale, sub, V3};
+
+/// Scratch of the contact stage, allocated once and reused; nothing in it carries over from
+/// one step to the next (a clone starts empty).
+#[derive(Debug)]
+pub(crate) struct Scratch {
+    pub hash: SpatialHash,
+    pub centroids: Vec<f64>,
+    pub owners: Vec<(u32, u32)>,
+    /// Each triangle's radius about its centroid (m): a cheap first test per candidate.
+    pub radii: Vec<f64>,
+    pub candidates: Vec<u32>,
+    /// Edge–edge broad phase: edge midpoints, their (body, spring), and the hash over them.
+    pub edge_hash: SpatialHash,
+    pub mids: Vec<f64>,
+    pub edge_owner: Vec<(u32, u32)>,
+    pub found: Vec<u32>,
+    /// The largest triangle radius this step (m): how deep a crossing is still caught.
+    pub reach_now: f64,
+    /// Per body and vertex: near another body's surface this step (edges there are tested).
+    pub near: Vec<Vec<bool>>,
+}
+
+impl Default for Scratch {
+    fn default() -> Self {
+        Scratch { hash: SpatialHash::new(1.0), centroids: Vec::new(), owners: Vec::new(), radii: Vec::new(), candidates: Vec::new(), edge_hash: SpatialHash::new(1.0), mids: Vec::new(), edge_owner: Vec::new(), found: Vec::new(), reach_now: 0.0, near: Vec::new() }
+    }
+}
+
+impl Clone for Scratch {
+    fn clone(&self) -> Self {
+        Scratch::default()
+    }
+}
+
+impl World {
+    pub(super) fn collide(&mut self) {
+        // Every triangle's centroid and radius (about the centroid); the largest radius sets
+        // the reach of the queries.
+        self.cx.centroids.clear();
+        self.cx.owners.clear();
+        self.cx.radii.clear();
+        let mut reach: f64 = 0.0;
+        for (bi, b) in self.bodies.iter().enumerate() {
+            let x = b.positions();
+            for (f, t) in b.triangles().iter().enumerate() {
+                let (a, bb, c) = (get(x, t[0] as usize), get(x, t[1] as usize), get(x, t[2] as usize));
+                let g = scale(add(add(a, bb), c), 1.0 / 3.0);
+                let r = norm(sub(a, g)).max(norm(sub(bb, g))).max(norm(sub(c, g)));
+                reach = reach.max(r);
+                self.cx.radii.push(r);
+                self.cx.centroids.extend_from_slice(&g);
+                self.cx.owners.push((bi as u32, f as u32));
+            }
+        }
+        let radius = reach + self.settings.contact.thickness;
+        if !(radius.is_finite() && radius > 0.0) {
+            return;
+        }
+        let max_depth = reach;
+        self.cx.reach_now = reach;
+        self.cx.near.resize(self.bodies.len(), Vec::new());
+        for (n, b) in self.cx.near.iter_mut().zip(&self.bodies) {
+            n.clear();
+            n.resize(b.vertex_count(), false);
+        }
+
+        // Where each body can touch another: the overlaps of its bounding box with the others'
+        // (both grown by the query radius). Only vertices and faces inside these zones take
+        // part — most of a body, most of the time, does not. A self-colliding body can touch
+        // itself anywhere.
+        let boxes: Vec<(V3, V3)> = self
+            .bodies
+            .iter()
+            .map(|b| {
+                let (lo, hi) = crate::mesh::bounds(b.positions());
+                (sub(lo, [radius; 3]), add(hi, [radius; 3]))
+            })
+            .collect();
+        let zones: Vec<Vec<(V3, V3)>> = (0..self.bodies.len())
+            .map(|bi| {
+                if self.bodies[bi].material.self_collision {
+                    return vec![boxes[bi]];
+                }
+                boxes
+                    .iter()
+                    .enumerate()
+                    .filter(|&(ob, _)| ob != bi)
+                    .map(|(_, other)| (max3(boxes[bi].0, other.0), min3(boxes[bi].1, other.1)))
+                    .filter(|(lo, hi)| (0..3).all(|d| lo[d] <= hi[d]))
+                    .collect()
+            })
+            .collect();
+
+        // Broad phase over the centroids of the triangles in the zones (the others dropped in
+        // place).
+        let mut kept = 0;
+        for k in 0..self.cx.owners.len() {
+            let (g, r) = (get(&self.cx.centroids, k), self.cx.radii[k]);
+            if in_zones(&zones[self.cx.owners[k].0 as usize], g, r) {
+                self.cx.owners[kept] = self.cx.owners[k];
+                self.cx.radii[kept] = r;
+                self.cx.centroids.copy_within(3 * k..3 * k + 3, 3 * kept);
+                kept += 1;
+            }
+        }
+        self.cx.owners.truncate(kept);
+        self.cx.radii.truncate(kept);
+        self.cx.centroids.truncate(3 * kept);
+        if self.cx.owners.is_empty() {
+            return;
+        }
+        self.cx.hash.set_spacing(2.0 * radius);
+        self.cx.hash.build(&self.cx.centroids);
+
+        for bi in 0..self.bodies.len() {
+            let zones = &zones[bi];
+            if zones.is_empty() {
+                continue;
+            }
+            for vi in 0..self.bodies[bi].vertex_count() {
+                let p = get(self.bodies[bi].positions(), vi);
+                if !in_zones(zones, p, 0.0) {
+                    continue;
+                }
+                self.cx.hash.query(p, radius, &mut self.cx.candidates);
+                // The deepest contact with another body's face decides this vertex's response.
+                let mut best: Option<(usize, usize, [f64; 3], V3, f64)> = None;
+                for &c in &self.cx.candidates {
+                    let (ob, f) = self.cx.owners[c as usize];
+                    let ob = ob as usize;
+                    let g = get(&self.cx.centroids, c as usize);
+                    // A vertex within the thickness of the triangle is within its radius plus the
+                    // thickness of its centroid; so is one that crossed it less deeply than the
+                    // distance from its crossing point to the rim (a crossing within one step).
+                    let r = self.cx.radii[c as usize] + self.settings.contact.thickness;
+                    let d = sub(p, g);
+                    let d2 = dot(d, d);
+                    // Near another body's surface (within a triangle radius more): its edges
+                    // take part in the edge–edge test.
+                    if ob != bi && d2 <= (r + reach) * (r + reach) {
+                        self.cx.near[bi][vi] = true;
+                    }
+                    if d2 > r * r {
+                        continue;
+                    }
+                    let other = &self.bodies[ob];
+                    let t = other.triangles()[f as usize];
+                    if ob == bi && (!other.material.self_collision || t.contains(&(vi as u32))) {
+                        continue;
+                    }
+                    let x = other.positions();
+                    let (a, b, cc) = (get(x, t[0] as usize), get(x, t[1] as usize), get(x, t[2] as usize));
+                    let nf = cross(sub(b, a), sub(cc, a));
+                    let len = norm(nf);
+                    if len == 0.0 {
+                        continue;
+                    }
+                    let mut n = scale(nf, 1.0 / len);
+                    let (w, q) = closest_on_triangle(p, a, b, cc);
+                    let mut s = dot(sub(p, q), n);
+                    let lateral = norm(sub(sub(p, q), scale(n, s)));
+                    if lateral >= 1e-9 + 0.5 * self.settings.contact.thickness.max(1e-6) || s.abs() >= self.settings.contact.thickness.max(max_depth) {
+                        continue;
+                    }
+                    if ob == bi {
+                        // Only faces away from the vertex on the surface (the checks cost two
+                        // more closest points, so they come after the cheap ones). Inside a
+                        // closed body its own skin is met from behind: the side the vertex was
+                        // on at the start of the step is the side to keep it on.
+                        if !far_at_rest(other, vi, t) {
+                            continue;
+                        }
+                        let side = self_side(&self.prev[bi], vi, t);
+                        n = scale(n, side);
+                        s *= side;
+                    }
+                    if s < self.settings.contact.thickness && s > -max_depth && best.as_ref().map_or(true, |bst| s < bst.4) {
+                        best = Some((ob, f as usize, w, n, s));
+                    }
+                }
+                if let Some((ob, f, w, n, s)) = best {
+                    self.cx.near[bi][vi] = true;
+                    // Velocities respond within the thickness; positions only where a vertex
+                    // went behind the face (moving them further would inject energy).
+                    // Within one body a steady load (its weight, a press) would otherwise close
+                    // the gap to nothing and leave the two skins coplanar, one step from
+                    // crossing: self-contacts are pushed halfway back to the thickness each step.
+                    let depth = if ob == bi { 0.5 * (self.settings.contact.thickness - s) } else { (-s).max(0.0) };
+                    self.respond(bi, vi, ob, f, w, n, depth);
+                }
+            }
+        }
+        if self.settings.contact.edge_contact {
+            self.collide_edges(&zones);
+        }
+    }
+
+    /// Push vertex `vi` of body `bi` and face `f` of body `ob` apart by `depth` along n and
+    /// remove their approaching relative velocity, sharing both by inverse mass.
+    #[allow(clippy::too_many_arguments)]
+    fn respond(&mut self, bi: usize, vi: usize, ob: usize, f: usize, w: [f64; 3], n: V3, depth: f64) {
+        let t = self.bodies[ob].triangles()[f];
+        let ip = inv_mass(&self.bodies[bi], vi);
+        let it = t.map(|k| inv_mass(&self.bodies[ob], k as usize));
+        let wsum = ip + (0..3).map(|k| w[k] * w[k] * it[k]).sum::<f64>();
+        if wsum == 0.0 {
+            return;
+        }
+        // Positions: the vertex moves along +n, the face's vertices along −n, by inverse mass.
+        let lambda = depth / wsum;
+        // Velocities: inelastic normal impulse and Coulomb friction.
+        let vp = get(self.bodies[bi].velocities(), vi);
+        let vo = self.bodies[ob].velocities();
+        let vq = (0..3).fold([0.0; 3], |acc, k| add(acc, scale(get(vo, t[k] as usize), w[k])));
+        let impulse = contact_impulse(sub(vp, vq), n, wsum, self.settings.contact.friction);
+        self.bodies[bi].nudge(vi, scale(n, lambda * ip), scale(impulse, ip));
+        for k in 0..3 {
+            self.bodies[ob].nudge(t[k] as usize, scale(n, -lambda * w[k] * it[k]), scale(impulse, -w[k] * it[k]));
+        }
+    }
+}
+
+/// The impulse (per unit of the weights' inverse mass) that removes the approaching normal part
+/// of the relative velocity `rel` along n (inelastic) and up to μ times that of its tangential
+/// part (Coulomb friction), for a contact whose effective inverse mass is `wsum`
+/// (Σ weight² / mass over the vertices involved): zero if they are separating.
+pub(crate) fn contact_impulse(rel: V3, n: V3, wsum: f64, friction: f64) -> V3 {
+    let vn = dot(rel, n);
+    if vn >= 0.0 {
+        return [0.0; 3];
+    }
+    let j = -vn / wsum;
+    let tangent = sub(rel, scale(n, vn));
+    let vt = norm(tangent);
+    if vt == 0.0 {
+        return scale(n, j);
+    }
+    let jt = (friction * j).min(vt / wsum);
+    sub(scale(n, j), scale(tangent, jt / vt))
+}
+
+/// +1 if vertex `v` was in front of face `t` (along its normal) in positions `x0`, else −1.
+fn self_side(x0: &[f64], v: usize, t: [u32; 3]) -> f64 {
+    let (p, a, b, c) = (get(x0, v), get(x0, t[0] as usize), get(x0, t[1] as usize), get(x0, t[2] as usize));
+    let (_, q) = closest_on_triangle(p, a, b, c);
+    if dot(sub(p, q), cross(sub(b, a), sub(c, a))) >= 0.0 { 1.0 } else { -1.0 }
+}
+
+/// Whether vertex `v` was at least the face's longest edge away from face `t` in the rest shape
+/// (so it is not one of the faces around it).
+fn far_at_rest(b: &SoftBody, v: usize, t: [u32; 3]) -> bool {
+    if t.contains(&(v as u32)) {
+        return false;
+    }
+    let x = b.frozen_positions();
+    let (p, a, bb, c) = (get(x, v), get(x, t[0] as usize), get(x, t[1] as usize), get(x, t[2] as usize));
+    let (_, q) = closest_on_triangle(p, a, bb, c);
+    let longest = norm(sub(bb, a)).max(norm(sub(c, bb))).max(norm(sub(a, c)));
+    norm(sub(p, q)) >= longest
+}
+
+/// Whether p lies in one of the boxes `zones` (lo, hi), each grown by `grow` (m).
+pub(super) fn in_zones(zones: &[(V3, V3)], p: V3, grow: f64) -> bool {
+    zones.iter().any(|(lo, hi)| (0..3).all(|d| p[d] >= lo[d] - grow && p[d] <= hi[d] + grow))
+}
+
+fn max3(a: V3, b: V3) -> V3 {
+    [a[0].max(b[0]), a[1].max(b[1]), a[2].max(b[2])]
+}
+fn min3(a: V3, b: V3) -> V3 {
+    [a[0].min(b[0]), a[1].min(b[1]), a[2].min(b[2])]
+}
+
+fn inv_mass(b: &SoftBody, i: usize) -> f64 {
+    if b.is_pinned(i) { 0.0 } else { 1.0 / b.masses()[i] }
+}

@@ -1,0 +1,86 @@
+//! Stepping with rollback: [`World::step_n`] either takes all its steps or leaves the whole world
+//! as it was before the call — every body's state, the clock, the event cursor, the fired
+//! events' effects (frozen shapes, gas, pins, masses, wind…) and the loads.
+//!
+//! Cheaply: a step without an event changes only positions, velocities and the clock (the rest
+//! of what it touches is scratch), so those are copied at the start of each call, into buffers
+//! kept from call to call. Only before the first step of the call at which an event fires or a
+//! load ends (`Events::due`) is the rest copied too (a clone of the bodies, settings, events and
+//! load sums). A rollback restores that full copy if there is one, then the positions,
+//! velocities and clock of the call's start: the steps before the first event changed nothing
+//! else.
+
+use super::{Clock, Events, StepError, World, WorldSettings};
+use crate::body::SoftBody;
+use crate::error::SimError;
+
+/// What the events stage can change besides positions, velocities and the clock.
+struct Full {
+    bodies: Vec<SoftBody>,
+    settings: WorldSettings,
+    events: Events,
+    load_sums: (Vec<Vec<f64>>, Vec<Vec<f64>>),
+}
+
+/// Positions and velocities of every body at the start of a call (flat xyz), reused.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Backup {
+    x: Vec<Vec<f64>>,
+    v: Vec<Vec<f64>>,
+}
+
+impl World {
+    /// Take `n` steps, or none: on failure the whole world is back where it was before the call
+    /// and the error names the simulated time of the failing step (3 significant digits) and the
+    /// time rolled back to. A state that became non-finite without failing a step (it would fail
+    /// the next one) counts as a failure at the end of the call.
+    pub fn step_n(&mut self, n: u64) -> Result<(), StepError> {
+        let mut backup = std::mem::take(&mut self.backup);
+        backup.x.resize_with(self.bodies.len(), Vec::new);
+        backup.v.resize_with(self.bodies.len(), Vec::new);
+        for (b, (x, v)) in self.bodies.iter().zip(backup.x.iter_mut().zip(backup.v.iter_mut())) {
+            x.clear();
+            x.extend_from_slice(b.positions());
+            v.clear();
+            v.extend_from_slice(b.velocities());
+        }
+        let clock = self.clock;
+        let mut full: Option<Full> = None;
+        let mut result = Ok(());
+        for _ in 0..n {
+            if full.is_none() && self.events.due(self.clock.time(), self.settings.dt) {
+                full = Some(Full { bodies: self.bodies.clone(), settings: self.settings.clone(), events: self.events.clone(), load_sums: self.load_sums.clone() });
+            }
+            if let Err(e) = self.step() {
+                result = Err(e);
+                break;
+            }
+        }
+        if result.is_ok() && !self.is_finite() {
+            let error = SimError::NonFinite { step: self.clock.steps() };
+            result = Err(StepError { time: self.clock.time(), step: self.clock.steps(), line: None, error, rolled_back_to: None });
+        }
+        if let Err(mut e) = result {
+            self.roll_back(full, &backup, clock);
+            e.rolled_back_to = Some(self.clock.time());
+            self.backup = backup;
+            return Err(e);
+        }
+        self.backup = backup;
+        Ok(())
+    }
+
+    fn roll_back(&mut self, full: Option<Full>, backup: &Backup, clock: Clock) {
+        if let Some(f) = full {
+            self.bodies = f.bodies;
+            self.settings = f.settings;
+            self.events = f.events;
+            self.load_sums = f.load_sums;
+        }
+        for (b, (x, v)) in self.bodies.iter_mut().zip(backup.x.iter().zip(&backup.v)) {
+            b.state.x.copy_from_slice(x);
+            b.state.v.copy_from_slice(v);
+        }
+        self.clock = clock;
+    }
+}

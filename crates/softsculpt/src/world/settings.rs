@@ -1,0 +1,158 @@
+//! What a world imposes on every body in it, with units: gravity, wind, the ground, rigid
+//! obstacles, the integrator and time step, and the contact settings. Change them freely
+//! between steps (each step validates them). Defaults come from the parameter table
+//! (`crate::params`).
+
+use super::obstacles::Obstacle;
+use crate::body::material::{bad, check_non_negative, check_positive};
+use crate::error::SimError;
+use crate::params as table;
+
+/// Time integrator of the state (x, v).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Integrator {
+    /// Explicit forward Euler: x' = x + dt v, v' = v + dt a(x, v). Order 1; gains energy.
+    Euler,
+    /// Explicit midpoint (RK2): slopes at (x + dt/2 v, v + dt/2 a). Order 2.
+    Midpoint,
+    /// Classic fourth-order Runge–Kutta on (x, v). Order 4.
+    Rk4,
+    /// Semi-implicit (symplectic) Euler: v' = v + dt a(x, v); x' = x + dt v'. Order 1; energy
+    /// stays bounded (no drift) for conservative forces. The default.
+    Symplectic,
+}
+
+impl Integrator {
+    pub const NAMES: &'static [&'static str] = &["euler", "midpoint", "rk4", "symplectic"];
+    pub fn name(self) -> &'static str {
+        match self {
+            Integrator::Euler => "euler",
+            Integrator::Midpoint => "midpoint",
+            Integrator::Rk4 => "rk4",
+            Integrator::Symplectic => "symplectic",
+        }
+    }
+    pub fn from_name(s: &str) -> Option<Self> {
+        Some(match s {
+            "euler" => Integrator::Euler,
+            "midpoint" => Integrator::Midpoint,
+            "rk4" => Integrator::Rk4,
+            "symplectic" => Integrator::Symplectic,
+            _ => return None,
+        })
+    }
+}
+
+/// A rigid ground plane y = height.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ground {
+    /// Height of the plane (m).
+    pub height: f64,
+    /// Coulomb friction coefficient μ (dimensionless): a contact impulse j along the normal
+    /// removes up to μ j of tangential velocity.
+    pub friction: f64,
+    /// Coefficient of restitution e in [0, 1] (dimensionless): 0 is inelastic (the default).
+    pub restitution: f64,
+}
+
+impl Ground {
+    /// A ground at `height` (m) with the default friction and restitution.
+    pub fn at(height: f64) -> Self {
+        Ground { height, friction: table::GROUND_FRICTION.number(), restitution: table::GROUND_RESTITUTION.number() }
+    }
+}
+
+/// Contact between bodies and within a self-colliding body.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactSettings {
+    /// Distance kept between a vertex and another body's surface (m).
+    pub thickness: f64,
+    /// Coulomb friction between bodies (dimensionless).
+    pub friction: f64,
+    /// Test edges against edges too (on by default; off only to see what it prevents).
+    pub edge_contact: bool,
+}
+
+impl Default for ContactSettings {
+    fn default() -> Self {
+        ContactSettings { thickness: table::CONTACT_THICKNESS.number(), friction: table::CONTACT_FRICTION.number(), edge_contact: true }
+    }
+}
+
+/// Everything a world imposes on its bodies.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WorldSettings {
+    /// Gravitational acceleration g (m/s²) along −y.
+    pub gravity: f64,
+    /// Wind velocity w (m/s).
+    pub wind: [f64; 3],
+    /// Wind drag coefficient cw (N·s/m³ = kg/(m²·s)): force cw · area · ((w − v_face) · n) n on a
+    /// face that sees the wind.
+    pub wind_drag: f64,
+    /// Optional ground plane.
+    pub ground: Option<Ground>,
+    /// Rigid obstacles (spheres, boxes, capsules, triangle meshes) no body can enter.
+    pub obstacles: Vec<Obstacle>,
+    /// Time integrator.
+    pub integrator: Integrator,
+    /// Time step (s). Changing it rebases the clock (see `clock.rs`).
+    pub dt: f64,
+    /// Contact between bodies and self-collision.
+    pub contact: ContactSettings,
+}
+
+impl Default for WorldSettings {
+    /// The defaults of the parameter table: gravity on, no wind, no ground, no obstacles.
+    fn default() -> Self {
+        WorldSettings {
+            gravity: table::GRAVITY.number(),
+            wind: table::WIND.vector(),
+            wind_drag: table::WIND_DRAG.number(),
+            ground: None,
+            obstacles: Vec::new(),
+            integrator: Integrator::from_name(table::INTEGRATOR.choice()).unwrap_or(Integrator::Symplectic),
+            dt: table::DT.number(),
+            contact: ContactSettings::default(),
+        }
+    }
+}
+
+impl WorldSettings {
+    /// No gravity, nothing else: a convenient start for tests and tools.
+    pub fn weightless() -> Self {
+        WorldSettings { gravity: 0.0, ..WorldSettings::default() }
+    }
+
+    /// Reject non-finite or out-of-range values with a message naming the parameter (as the CLI
+    /// flags do).
+    pub fn validate(&self) -> Result<(), SimError> {
+        check_dt(self.dt)?;
+        if !self.gravity.is_finite() {
+            return Err(bad("gravity", format!("must be finite, got {}", self.gravity)));
+        }
+        if self.wind.iter().any(|w| !w.is_finite()) {
+            return Err(bad("wind", format!("must be finite, got {:?}", self.wind)));
+        }
+        check_non_negative("wind-drag", self.wind_drag)?;
+        if let Some(g) = self.ground {
+            if !g.height.is_finite() {
+                return Err(bad("ground", format!("must be finite, got {}", g.height)));
+            }
+            check_non_negative("friction", g.friction)?;
+            if !(0.0..=1.0).contains(&g.restitution) {
+                return Err(bad("restitution", format!("must be between 0 and 1, got {}", g.restitution)));
+            }
+        }
+        for (k, o) in self.obstacles.iter().enumerate() {
+            o.validate().map_err(|m| bad("obstacle", format!("obstacle {}: {m}", k + 1)))?;
+        }
+        check_non_negative("contact-thickness", self.contact.thickness)?;
+        check_non_negative("contact-friction", self.contact.friction)?;
+        Ok(())
+    }
+}
+
+/// Time step (s): finite and > 0.
+pub fn check_dt(dt: f64) -> Result<(), SimError> {
+    check_positive("dt", dt)
+}
