@@ -91,7 +91,11 @@ pub fn sig3(x: f64) -> String {
     if !(-4..6).contains(&e) {
         return format!("{x:.2e}");
     }
-    let decimals = (2 - e).max(0) as usize;
+    if e >= 2 {
+        let unit = 10f64.powi(e - 2);
+        return format!("{:.0}", (x / unit).round() * unit);
+    }
+    let decimals = (2 - e) as usize;
     format!("{x:.decimals$}")
 }
 
