@@ -19,6 +19,7 @@ pub mod hash;
 pub mod mesh;
 pub mod params;
 pub mod scene;
+pub mod snapshot;
 pub mod vec3;
 pub mod workload;
 pub mod world;
