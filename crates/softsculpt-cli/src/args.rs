@@ -1,4 +1,14 @@
-//! Value parsers for flags: each rejects what the engine cannot use, with a reason.
+//! Value parsers for flags: each rejects what the engine cannot use, with a reason. Help texts
+//! of the flags that set a parameter come from the core's table ([`help`]).
+
+/// A parameter's help line with its unit: "Spring stiffness k of every edge [N/m]".
+pub fn help(p: &softsculpt::params::Param) -> String {
+    let mut text: String = p.help.chars().take(1).flat_map(char::to_uppercase).chain(p.help.chars().skip(1)).collect();
+    if !p.unit.is_empty() {
+        text = format!("{text} [{}]", p.unit);
+    }
+    text
+}
 
 /// A finite number.
 pub fn finite(s: &str) -> Result<f64, String> {

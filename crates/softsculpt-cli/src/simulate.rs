@@ -1,6 +1,8 @@
 //! `softsculpt simulate INPUT --out OUT.obj [options]` (a stable contract: keep the flags).
 
-use crate::{args, input, output};
+use crate::args::{self, help};
+use crate::{input, output};
+use softsculpt::params as table;
 use clap::Args;
 use serde_json::json;
 use softsculpt::body::{Material, SoftBody, VolumeMode};
@@ -18,47 +20,33 @@ pub struct SimulateArgs {
     /// Number of steps.
     #[arg(long, allow_hyphen_values = true, default_value = "1000", value_parser = args::count, value_name = "N")]
     pub steps: u64,
-    /// Time step (s).
-    #[arg(long, allow_hyphen_values = true, default_value = "1e-3", value_parser = args::positive, value_name = "S")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = table::DT.number(), value_parser = args::positive, value_name = "S", help = help(&table::DT))]
     pub dt: f64,
-    /// Integrator: euler, midpoint, rk4 or symplectic.
-    #[arg(long, default_value = "symplectic", value_parser = parse_integrator)]
+    #[arg(long, default_value = table::INTEGRATOR.choice(), value_parser = parse_integrator, help = help(&table::INTEGRATOR))]
     pub integrator: Integrator,
-    /// Spring stiffness k (N/m).
-    #[arg(long, allow_hyphen_values = true, default_value = "100", value_parser = args::non_negative, value_name = "K")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = table::STIFFNESS.number(), value_parser = args::non_negative, value_name = "K", help = help(&table::STIFFNESS))]
     pub stiffness: f64,
-    /// Damping along each spring cs (N·s/m).
-    #[arg(long = "spring-damping", allow_hyphen_values = true, default_value = "0.1", value_parser = args::non_negative, value_name = "CS")]
+    #[arg(long = "spring-damping", allow_hyphen_values = true, default_value_t = table::SPRING_DAMPING.number(), value_parser = args::non_negative, value_name = "CS", help = help(&table::SPRING_DAMPING))]
     pub spring_damping: f64,
-    /// Stiffness of the bending springs across every edge (N/m); 0 = none.
-    #[arg(long, allow_hyphen_values = true, default_value = "0", value_parser = args::non_negative, value_name = "KB")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = table::BENDING.number(), value_parser = args::non_negative, value_name = "KB", help = help(&table::BENDING))]
     pub bending: f64,
-    /// Viscous damping rate c (1/s): velocities decay as e^(-c t).
-    #[arg(long, allow_hyphen_values = true, default_value = "0", value_parser = args::non_negative, value_name = "C")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = table::DAMPING.number(), value_parser = args::non_negative, value_name = "C", help = help(&table::DAMPING))]
     pub damping: f64,
-    /// Total mass M (kg), split equally over the vertices.
-    #[arg(long, allow_hyphen_values = true, default_value = "1", value_parser = args::positive, value_name = "M")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = table::MASS.number(), value_parser = args::positive, value_name = "M", help = help(&table::MASS))]
     pub mass: f64,
-    /// Gas as the product nRT (J); 0 = no gas. Needs a closed mesh.
-    #[arg(long, allow_hyphen_values = true, default_value = "0", value_parser = args::non_negative, value_name = "NRT")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = table::GAS_NRT.number(), value_parser = args::non_negative, value_name = "NRT", help = help(&table::GAS_NRT))]
     pub gas: f64,
-    /// Volume the gas law uses: exact, box or sphere.
-    #[arg(long, default_value = "exact", value_parser = parse_volume)]
+    #[arg(long, default_value = table::VOLUME.choice(), value_parser = parse_volume, help = help(&table::VOLUME))]
     pub volume: VolumeMode,
-    /// Gravitational acceleration g (m/s²) along −y.
-    #[arg(long, allow_hyphen_values = true, default_value = "9.81", value_parser = args::finite, value_name = "G")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = table::GRAVITY.number(), value_parser = args::finite, value_name = "G", help = help(&table::GRAVITY))]
     pub gravity: f64,
-    /// Height of a rigid ground plane y = H (m); no ground unless given.
-    #[arg(long, allow_hyphen_values = true, value_parser = args::finite, value_name = "H")]
+    #[arg(long, allow_hyphen_values = true, value_parser = args::finite, value_name = "H", help = format!("{}; no ground unless given", help(&table::GROUND_HEIGHT)))]
     pub ground: Option<f64>,
-    /// Coulomb friction coefficient of the ground.
-    #[arg(long, allow_hyphen_values = true, default_value = "0.5", value_parser = args::non_negative, value_name = "MU")]
+    #[arg(long, allow_hyphen_values = true, default_value_t = table::GROUND_FRICTION.number(), value_parser = args::non_negative, value_name = "MU", help = help(&table::GROUND_FRICTION))]
     pub friction: f64,
-    /// Wind velocity (m/s).
-    #[arg(long, allow_hyphen_values = true, value_parser = args::vec3, value_name = "X,Y,Z")]
+    #[arg(long, allow_hyphen_values = true, value_parser = args::vec3, value_name = "X,Y,Z", help = help(&table::WIND))]
     pub wind: Option<[f64; 3]>,
-    /// Wind drag coefficient cw (N·s/m³).
-    #[arg(long = "wind-drag", allow_hyphen_values = true, default_value = "1", value_parser = args::non_negative, value_name = "CW")]
+    #[arg(long = "wind-drag", allow_hyphen_values = true, default_value_t = table::WIND_DRAG.number(), value_parser = args::non_negative, value_name = "CW", help = help(&table::WIND_DRAG))]
     pub wind_drag: f64,
     /// Initial velocity of every vertex (m/s).
     #[arg(long, allow_hyphen_values = true, value_parser = args::vec3, value_name = "X,Y,Z")]
@@ -126,7 +114,7 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     material.set_nrt(a.gas);
     let settings = WorldSettings {
         gravity: a.gravity,
-        wind: a.wind.unwrap_or([0.0; 3]),
+        wind: a.wind.unwrap_or(table::WIND.vector()),
         wind_drag: a.wind_drag,
         ground: a.ground.map(|h| Ground { friction: a.friction, ..Ground::at(h) }),
         integrator: a.integrator,

@@ -244,3 +244,19 @@ fn bending_springs_change_the_result() {
     let o = softsculpt(&["simulate", "builtin:mushroom", "--out", d.path("c.obj").to_str().unwrap(), "--bending", "-1"]);
     assert_clean_error(&o, "--bending");
 }
+
+/// The flags' defaults and help lines are the core's parameter table's (the README's table
+/// documents the same values).
+#[test]
+fn the_help_shows_the_defaults_of_the_parameter_table() {
+    let o = softsculpt(&["simulate", "--help"]);
+    assert!(o.status.success());
+    let help = String::from_utf8_lossy(&o.stdout).split_whitespace().collect::<Vec<_>>().join(" ");
+    for (flag, default) in [("--stiffness", "100"), ("--spring-damping", "0.1"), ("--damping", "0"), ("--mass", "1"), ("--gravity", "9.81"), ("--friction", "0.5"), ("--wind-drag", "1"), ("--integrator", "symplectic"), ("--volume", "exact")] {
+        let at = help.find(&format!("{flag} <")).unwrap_or_else(|| panic!("{flag} in the help"));
+        let rest = &help[at..];
+        let line = &rest[..rest[2..].find(" --").map_or(rest.len(), |e| e + 2)];
+        assert!(line.contains(&format!("[default: {default}]")), "{flag}: {line}");
+    }
+    assert!(help.contains("Spring stiffness k of every edge [N/m]"), "{help}");
+}
