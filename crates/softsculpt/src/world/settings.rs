@@ -118,11 +118,6 @@ impl Default for WorldSettings {
 }
 
 impl WorldSettings {
-    /// No gravity, nothing else: a convenient start for tests and tools.
-    pub fn weightless() -> Self {
-        WorldSettings { gravity: 0.0, ..WorldSettings::default() }
-    }
-
     /// Reject non-finite or out-of-range values with a message naming the parameter (as the CLI
     /// flags do).
     pub fn validate(&self) -> Result<(), SimError> {
