@@ -10,11 +10,12 @@ const WEB = fileURLToPath(new URL('..', import.meta.url));
 export const SHOTS = fileURLToPath(new URL('./screenshots/', import.meta.url));
 mkdirSync(SHOTS, { recursive: true });
 
-export async function startServer(port = 5199) {
+/** `vite preview` of the built modeler (`outDir`: another build, e.g. a baseline for benchmarks). */
+export async function startServer(port = 5199, outDir = 'dist') {
   // Vite's own entry run by this node (no npx wrapper), in its own process group, so that
   // stopping it stops the server itself and nothing keeps the test process alive.
   const vite = fileURLToPath(new URL('../node_modules/vite/bin/vite.js', import.meta.url));
-  const proc = spawn(process.execPath, [vite, 'preview', '--host', '127.0.0.1', '--port', String(port), '--strictPort'], { cwd: WEB, stdio: ['ignore', 'pipe', 'pipe'], detached: true });
+  const proc = spawn(process.execPath, [vite, 'preview', '--host', '127.0.0.1', '--port', String(port), '--strictPort', '--outDir', outDir], { cwd: WEB, stdio: ['ignore', 'pipe', 'pipe'], detached: true });
   let out = '';
   proc.stdout.on('data', (d) => (out += d));
   proc.stderr.on('data', (d) => (out += d));
@@ -83,3 +84,31 @@ export async function drag(page, from, to, steps = 20, holdMs = 0) {
 
 export const vertex = (page, i) => page.evaluate((j) => window.softsculpt.positions().slice(3 * j, 3 * j + 3), i);
 export const dist = (a, b) => Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+
+/**
+ * Record, in the page, the longest gap between requestAnimationFrame timestamps and the Long
+ * Tasks (PerformanceObserver 'longtask') while `action` runs and until `until` (a page function)
+ * holds, then `settleMs` more (the first frames of the new model count too).
+ * Returns { maxGapMs, longTasks: [ms…], ms }.
+ */
+export async function frameGaps(page, action, until, arg, { timeout = 180000, settleMs = 500 } = {}) {
+  await page.evaluate(() => {
+    const w = window;
+    if (!w.__gaps) {
+      w.__gaps = { on: false, last: 0, max: 0, long: [] };
+      const loop = (t) => { const g = w.__gaps; if (g.on) { g.max = Math.max(g.max, t - g.last); g.last = t; } requestAnimationFrame(loop); };
+      requestAnimationFrame(loop);
+      new PerformanceObserver((list) => { for (const e of list.getEntries()) if (w.__gaps.on) w.__gaps.long.push(Math.round(e.duration)); }).observe({ type: 'longtask' });
+    }
+    Object.assign(w.__gaps, { on: true, last: performance.now(), max: 0, long: [], t0: performance.now() });
+  });
+  await action();
+  await page.waitForFunction(until, arg, { timeout, polling: 100 });
+  await page.waitForTimeout(settleMs);
+  return page.evaluate(() => {
+    const g = window.__gaps;
+    g.on = false;
+    g.max = Math.max(g.max, performance.now() - g.last);
+    return { maxGapMs: Math.round(g.max), longTasks: g.long, ms: Math.round(performance.now() - g.t0) };
+  });
+}

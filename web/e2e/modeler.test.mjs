@@ -150,6 +150,8 @@ test('press pushes the cap in, the mass brush paints heavier, W blows wind from 
 
   const c0 = (await inspect(page, () => window.softsculpt.stats())).centerOfMass;
   await page.keyboard.press('w');
+  // The simulation (in its worker) takes the wind; the page shows it with the next frame.
+  await page.waitForFunction(() => window.softsculpt.param('windX') !== 0 || window.softsculpt.param('windZ') !== 0);
   const w = await inspect(page, () => [0, 1, 2].map((k) => window.softsculpt.param(['windX', 'windY', 'windZ'][k])));
   assert.ok(Math.abs(Math.hypot(...w) - 5) < 1e-9, `wind ${w}`);
   await page.waitForTimeout(1500);

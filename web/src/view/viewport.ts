@@ -1,9 +1,8 @@
 // The 3D view: renderer, camera, trackball, ground grid, the body's surface and springs.
-// The surface reads the engine's f32 positions (a view over wasm memory) without copying.
+// The surface draws the positions of the simulation's frames (transferred buffers) without copying.
 
 import * as THREE from 'three';
 import { TrackballControls } from 'three/examples/jsm/controls/TrackballControls.js';
-import type { SoftBody } from '../engine/softbody';
 import { SceneExtras } from './extras';
 
 const HOME = new THREE.Vector3(3.2, 2.4, 4.2);
@@ -70,24 +69,25 @@ export class Viewport {
     this.controls.update();
   }
 
-  /** Point the surface and the springs at a (new) body's topology. */
-  attach(body: SoftBody): void {
+  /** Point the surface and the springs at a (new) mesh: its triangles, springs and positions. */
+  attach(triangles: Uint32Array, springs: Uint32Array, positions: Float32Array): void {
     const g = this.surface.geometry;
-    g.setIndex(new THREE.BufferAttribute(body.triangles().slice(), 1));
-    const position = new THREE.BufferAttribute(body.syncRender(), 3);
+    g.setIndex(new THREE.BufferAttribute(triangles, 1));
+    const position = new THREE.BufferAttribute(positions, 3);
     position.setUsage(THREE.DynamicDrawUsage);
     g.setAttribute('position', position);
-    this.colors = new Float32Array(3 * body.vertexCount).fill(1);
+    this.colors = new Float32Array(positions.length).fill(1);
     g.setAttribute('color', new THREE.BufferAttribute(this.colors, 3));
     const s = this.springs.geometry;
-    s.setIndex(new THREE.BufferAttribute(body.springs().slice(), 1));
+    s.setIndex(new THREE.BufferAttribute(springs, 1));
     s.setAttribute('position', position);
+    this.update(positions);
   }
 
-  /** New positions from the engine: a fresh view over wasm memory, no copy. */
-  update(body: SoftBody): void {
+  /** New positions (a frame's buffer, same length): drawn as they are, no copy. */
+  update(positions: Float32Array): void {
     const position = this.surface.geometry.getAttribute('position') as THREE.BufferAttribute;
-    (position as any).array = body.syncRender();
+    (position as any).array = positions;
     position.needsUpdate = true;
     this.surface.geometry.computeVertexNormals();
     this.surface.geometry.computeBoundingSphere();
