@@ -2,6 +2,8 @@
 // with playwright-core. Screenshots go to e2e/screenshots/ (ignored by git).
 
 import { spawn } from 'node:child_process';
+import { after, before } from 'node:test';
+import { join } from 'node:path';
 import { mkdirSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
@@ -36,6 +38,22 @@ export async function startServer(port = 5199, outDir = 'dist') {
   stop();
   throw new Error(`the preview server did not start: ${out}`);
 }
+
+/** A test file's preview server and browser, started before its tests and stopped after them. */
+export function browserSuite() {
+  const suite = { server: null, browser: null };
+  before(async () => {
+    suite.server = await startServer();
+    suite.browser = await launch();
+  });
+  after(async () => {
+    await suite.browser?.close();
+    suite.server?.stop();
+  });
+  return suite;
+}
+
+export const shot = (page, name) => page.screenshot({ path: join(SHOTS, `${name}.png`) });
 
 export async function launch() {
   return chromium.launch({
@@ -87,28 +105,42 @@ export const dist = (a, b) => Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
 
 /**
  * Record, in the page, the longest gap between requestAnimationFrame timestamps and the Long
- * Tasks (PerformanceObserver 'longtask') while `action` runs and until `until` (a page function)
- * holds, then `settleMs` more (the first frames of the new model count too).
- * Returns { maxGapMs, longTasks: [ms…], ms }.
+ * Tasks (PerformanceObserver 'longtask') from now until `until` (a page function of `arg`) holds,
+ * checked in every animation frame (so what the page draws after that is not counted), then
+ * `settleMs` more. `action(aside)` runs meanwhile; `aside(f)` runs the test's own `f` (a
+ * screenshot, which stalls the page to capture it) with the recording paused. `startPaused`:
+ * recording begins when the first `aside` returns. Returns { maxGapMs, longTasks: [ms…], ms }.
  */
-export async function frameGaps(page, action, until, arg, { timeout = 180000, settleMs = 500 } = {}) {
-  await page.evaluate(() => {
+export async function frameGaps(page, action, until, arg, { timeout = 180000, settleMs = 500, startPaused = false } = {}) {
+  await page.evaluate(({ src, arg, settleMs, startPaused }) => {
     const w = window;
     if (!w.__gaps) {
       w.__gaps = { on: false, last: 0, max: 0, long: [] };
-      const loop = (t) => { const g = w.__gaps; if (g.on) { g.max = Math.max(g.max, t - g.last); g.last = t; } requestAnimationFrame(loop); };
+      const loop = (t) => {
+        const g = w.__gaps;
+        if (g.on) {
+          g.max = Math.max(g.max, t - g.last);
+          g.last = t;
+          if (!g.doneAt && g.until()) g.doneAt = t;
+          if (g.doneAt && t - g.doneAt >= g.settleMs) { g.on = false; g.ms = t - g.t0; }
+        }
+        requestAnimationFrame(loop);
+      };
       requestAnimationFrame(loop);
       new PerformanceObserver((list) => { for (const e of list.getEntries()) if (w.__gaps.on) w.__gaps.long.push(Math.round(e.duration)); }).observe({ type: 'longtask' });
     }
-    Object.assign(w.__gaps, { on: true, last: performance.now(), max: 0, long: [], t0: performance.now() });
-  });
-  await action();
-  await page.waitForFunction(until, arg, { timeout, polling: 100 });
-  await page.waitForTimeout(settleMs);
+    const until = new Function('arg', `return (${src})(arg);`);
+    Object.assign(w.__gaps, { on: !startPaused, paused: startPaused, last: performance.now(), max: 0, long: [], t0: performance.now(), doneAt: 0, ms: undefined, settleMs, until: () => until(arg) });
+  }, { src: until.toString(), arg, settleMs, startPaused });
+  const aside = async (f) => {
+    await page.evaluate(() => { const g = window.__gaps; if (g.on) g.max = Math.max(g.max, performance.now() - g.last); g.paused ||= g.on; g.on = false; });
+    await f();
+    await page.evaluate(() => { const g = window.__gaps; if (g.paused) Object.assign(g, { on: true, paused: false, last: performance.now() }); });
+  };
+  await action(aside);
+  await page.waitForFunction(() => !window.__gaps.on && window.__gaps.ms !== undefined, null, { timeout, polling: 100 });
   return page.evaluate(() => {
     const g = window.__gaps;
-    g.on = false;
-    g.max = Math.max(g.max, performance.now() - g.last);
-    return { maxGapMs: Math.round(g.max), longTasks: g.long, ms: Math.round(performance.now() - g.t0) };
+    return { maxGapMs: Math.round(g.max), longTasks: g.long, ms: Math.round(g.ms) };
   });
 }

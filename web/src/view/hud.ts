@@ -34,7 +34,8 @@ export class Hud {
   }
 
   show(lines: string[]): void {
-    this.readout.textContent = lines.join('\n');
+    const text = lines.join('\n');
+    if (this.readout.textContent !== text) this.readout.textContent = text;
   }
 
   /** A long operation under way ("subdividing", with the fraction done if known), or none (null). */

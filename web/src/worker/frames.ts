@@ -5,16 +5,12 @@
 import type { Frame } from '../protocol';
 import type { Document } from './document';
 
-/** Even with nothing new, a frame at least this often (ms): the statistics, and a sign of life. */
-const IDLE_MS = 500;
-
 export class FramePublisher {
   private free: Float32Array[] = [];
   /** Buffers of the current length in existence (free here or out with the page). */
   private owned = 0;
   private length = -1;
   private sent = { topology: -1, body: -1, params: '', settings: '', history: '' };
-  private lastPost = -Infinity;
 
   constructor(private readonly buffers = 2) {}
 
@@ -27,8 +23,10 @@ export class FramePublisher {
   /** Send everything again with the next frame. */
   resync(): void {
     this.sent = { topology: -1, body: -1, params: '', settings: '', history: '' };
-    this.lastPost = -Infinity;
   }
+
+  /** Send the parameters again with the next frame (a refused value: the page shows the old one again). */
+  resendParams(): void { this.sent.params = ''; }
 
   /** How many buffers exist for the current mesh size (for tests). */
   get allocated(): number { return this.owned; }
@@ -37,14 +35,14 @@ export class FramePublisher {
    * The next frame, or null if nothing is new (`moved`: the simulation stepped or a stroke is
    * acting) or no buffer is free (the page has not drawn the last frame yet).
    */
-  next(doc: Document, now: number, moved: boolean, sim: { simMs: number; slowMotion: boolean; realTimeFraction: number }): Frame | null {
+  next(doc: Document, moved: boolean, sim: { simMs: number; slowMotion: boolean; realTimeFraction: number }): Frame | null {
     const params = doc.params();
     const paramsKey = JSON.stringify(params);
     const settingsKey = JSON.stringify(doc.settings);
     const historyKey = doc.history.sizes.join(',');
     const news = doc.topologyVersion !== this.sent.topology || doc.bodyVersion !== this.sent.body ||
       paramsKey !== this.sent.params || settingsKey !== this.sent.settings || historyKey !== this.sent.history;
-    if (!moved && !news && now - this.lastPost < IDLE_MS) return null;
+    if (!moved && !news) return null;
     const len = doc.renderLength;
     if (len !== this.length) { this.length = len; this.free = []; this.owned = 0; }
     let positions = this.free.pop();
@@ -60,7 +58,6 @@ export class FramePublisher {
     if (paramsKey !== this.sent.params) { frame.params = params; this.sent.params = paramsKey; }
     if (settingsKey !== this.sent.settings) { frame.settings = { ...doc.settings }; this.sent.settings = settingsKey; }
     if (historyKey !== this.sent.history) { frame.history = doc.history.sizes; this.sent.history = historyKey; }
-    this.lastPost = now;
     return frame;
   }
 }

@@ -85,7 +85,7 @@ export class Service {
       case 'undo': return doc.undo();
       case 'redo': return doc.redo();
       case 'step': this.stepper.run(doc, doc.settings.dt, doc.settings.substeps); return;
-      case 'setParam': doc.setParam(cmd.name, cmd.value); return;
+      case 'setParam': if (!doc.setParam(cmd.name, cmd.value)) this.frames.resendParams(); return;
       case 'setMass': return doc.setMass(cmd.total);
       case 'wind': return doc.wind(cmd.direction, cmd.strength);
       case 'settings': return this.settings(cmd.patch);
@@ -154,9 +154,8 @@ export class Service {
     if (!this.doc.loaded) return;
     try {
       const stepped = this.stepper.tick(this.doc);
-      const now = this.host.now();
       const sim = { simMs: 0, slowMotion: this.stepper.slowMotion, realTimeFraction: this.stepper.realTimeFraction };
-      const frame = this.frames.next(this.doc, now, stepped || this.doc.stroking || this.poked, sim);
+      const frame = this.frames.next(this.doc, stepped || this.doc.stroking || this.poked, sim);
       if (frame) {
         this.poked = false;
         frame.simMs = this.stepper.take();
