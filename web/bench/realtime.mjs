@@ -29,7 +29,7 @@ for (const level of levels) {
     await page.waitForTimeout(5000);
     const t1 = await page.evaluate(() => [window.softsculpt.stats().time, performance.now(), window.softsculpt.fps(), window.softsculpt.simMs(), window.softsculpt.settings().dt]);
     const ratio = (t1[0] - t0[0]) / ((t1[1] - t0[1]) / 1000);
-    console.log(`${dist}  ${String(n).padStart(8)}  ${t1[4].toExponential(0)}  ${ratio.toFixed(2).padStart(16)}  ${t1[2].toFixed(0).padStart(3)}  ${t1[3].toFixed(1).padStart(12)}`);
+    console.log(`${dist}  ${String(n).padStart(8)}  ${t1[4].toExponential(0)}  ${ratio.toFixed(3).padStart(16)}  ${t1[2].toFixed(0).padStart(3)}  ${t1[3].toFixed(1).padStart(12)}`);
     await ctx.close();
   }
 }

@@ -14,6 +14,9 @@ mkdirSync(SHOTS, { recursive: true });
 
 /** `vite preview` of the built modeler (`outDir`: another build, e.g. a baseline for benchmarks). */
 export async function startServer(port = 5199, outDir = 'dist') {
+  // Something already answering on the port would be tested instead (an old server, an old build).
+  const url = `http://127.0.0.1:${port}/`;
+  if (await fetch(url).then(() => true, () => false)) throw new Error(`port ${port} is in use: stop what serves ${url} first`);
   // Vite's own entry run by this node (no npx wrapper), in its own process group, so that
   // stopping it stops the server itself and nothing keeps the test process alive.
   const vite = fileURLToPath(new URL('../node_modules/vite/bin/vite.js', import.meta.url));
@@ -27,7 +30,6 @@ export async function startServer(port = 5199, outDir = 'dist') {
     proc.stderr.destroy();
     proc.unref();
   };
-  const url = `http://127.0.0.1:${port}/`;
   for (let i = 0; i < 150; i++) {
     try {
       const r = await fetch(url);
@@ -104,7 +106,7 @@ export const vertex = (page, i) => page.evaluate((j) => window.softsculpt.positi
 export const dist = (a, b) => Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
 
 /**
- * Record, in the page, the longest gap between requestAnimationFrame timestamps and the Long
+ * Record, in the page, the longest gap between requestAnimationFrame callbacks and the Long
  * Tasks (PerformanceObserver 'longtask') from now until `until` (a page function of `arg`) holds,
  * checked in every animation frame (so what the page draws after that is not counted), then
  * `settleMs` more. `action(aside)` runs meanwhile; `aside(f)` runs the test's own `f` (a
@@ -116,7 +118,10 @@ export async function frameGaps(page, action, until, arg, { timeout = 180000, se
     const w = window;
     if (!w.__gaps) {
       w.__gaps = { on: false, last: 0, max: 0, long: [] };
-      const loop = (t) => {
+      // Timed with performance.now() in the callback: the timestamp a frame is given can predate
+      // a long block of the main thread (the frame was begun before it), and would hide it.
+      const loop = () => {
+        const t = performance.now();
         const g = w.__gaps;
         if (g.on) {
           g.max = Math.max(g.max, t - g.last);
