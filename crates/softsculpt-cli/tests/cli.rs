@@ -167,12 +167,14 @@ fn stats_lines_carry_the_contract_keys() {
     assert_eq!(steps, vec![0, 100, 200, 250]);
     let keys = [
         "step", "time", "volume", "pressure", "kinetic_energy", "elastic_energy", "gas_energy", "gravity_energy",
-        "total_energy", "momentum", "center_of_mass", "max_speed",
+        "total_energy", "momentum", "center_of_mass", "max_speed", "solver_iterations",
     ];
     for l in &lines {
         let obj = l.as_object().unwrap();
         assert_eq!(obj.keys().map(|k| k.as_str()).collect::<Vec<_>>(), keys);
         assert_eq!(l["momentum"].as_array().unwrap().len(), 3);
+        // Explicit integrators report no solver iterations.
+        assert_eq!(l["solver_iterations"], serde_json::json!({"newton": 0, "linear": 0}));
     }
     // Step 0: initial velocity (0,-1,0) for a 1 kg body.
     assert!((lines[0]["momentum"][1].as_f64().unwrap() + 1.0).abs() < 1e-12);
