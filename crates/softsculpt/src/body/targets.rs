@@ -3,7 +3,7 @@
 //!
 //! On vertex i with anchor a_i (m), stiffness k_t (N/m) and damping c_t (N·s/m):
 //!
-//!     f_i = k_t (a_i − x_i) − c_t v_i                                         (N)
+//!   f_i = k_t (a_i − x_i) − c_t v_i                                         (N)
 //!
 //! a zero-length spring to a fixed point plus a dashpot to the ground frame (the anchor is held
 //! still within a step). The explicit integrators add it as a force (stable for

@@ -1,10 +1,10 @@
 //! The `implicit` integrator: backward Euler on every force of the model.
 //!
-//!     v⁺ = v + dt M⁻¹ f(x + dt v⁺, v⁺),    x⁺ = x + dt v⁺
+//!   v⁺ = v + dt M⁻¹ f(x + dt v⁺, v⁺),    x⁺ = x + dt v⁺
 //!
 //! solved for v⁺ by Newton iterations on the residual
 //!
-//!     r(v⁺) = M (v⁺ − v) − dt f(x + dt v⁺, v⁺)        (kg·m/s per coordinate)
+//!   r(v⁺) = M (v⁺ − v) − dt f(x + dt v⁺, v⁺)        (kg·m/s per coordinate)
 //!
 //! each Newton step δ from A δ = −r with A = M + dt D + dt² K (K, D the projected stiffness and
 //! damping, `system.rs`) by a block-Jacobi preconditioned conjugate gradient (`cg.rs`), then a
@@ -14,7 +14,7 @@
 //! ‖r‖²_{M⁻¹} = Σ_i |r_i|² / m_i over the free vertices and r_0 the residual of the first guess
 //! v⁺ = v (the explicit prediction's residual, −dt f(x + dt v, v)), the step is accepted when
 //!
-//!     ‖r_k‖_{M⁻¹} ≤ tolerance · ‖r_0‖_{M⁻¹}
+//!   ‖r_k‖_{M⁻¹} ≤ tolerance · ‖r_0‖_{M⁻¹}
 //!
 //! or when ‖r_k‖ is down to the rounding of the terms summed into it (16 ε times their
 //! magnitudes: a body at equilibrium has r_0 ≈ 0 and nothing left to reduce). ‖r‖_{M⁻¹} is a

@@ -3,7 +3,7 @@
 //!
 //! Unknown: the end-of-step velocity v⁺ (flat xyz). With x_t = x + dt v⁺ the residual is
 //!
-//!     r(v⁺) = M (v⁺ − v) − dt f(x_t, v⁺)                                  (kg·m/s)
+//!   r(v⁺) = M (v⁺ − v) − dt f(x_t, v⁺)                                  (kg·m/s)
 //!
 //! and Newton's matrix is ∂r/∂v⁺ = M − dt ∂f/∂v − dt² ∂f/∂x = M + dt D + dt² K, with K = −∂f/∂x
 //! and D = −∂f/∂v. What enters the matrix, per force (the residual always uses the exact force):
