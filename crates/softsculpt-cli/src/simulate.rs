@@ -70,7 +70,7 @@ pub struct SimulateArgs {
     pub stats_every: Option<u64>,
 }
 
-fn parse_integrator(s: &str) -> Result<Integrator, String> {
+pub fn parse_integrator(s: &str) -> Result<Integrator, String> {
     Integrator::from_name(s).ok_or_else(|| format!("unknown integrator '{s}' (use one of {})", Integrator::NAMES.join(", ")))
 }
 

@@ -262,3 +262,24 @@ fn the_help_shows_the_defaults_of_the_parameter_table() {
     }
     assert!(help.contains("Spring stiffness k of every edge [N/m]"), "{help}");
 }
+
+#[test]
+fn implicit_runs_report_solver_iterations_and_bad_tolerances_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o.obj");
+    let stats = dir.path().join("s.jsonl");
+    let o = softsculpt(&[
+        "simulate", "builtin:sphere", "--out", out.to_str().unwrap(), "--steps", "20", "--dt", "0.0166", "--integrator", "implicit",
+        "--tolerance", "1e-5", "--gas", "5", "--threads", "2", "--stats", stats.to_str().unwrap(), "--stats-every", "10",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let last: serde_json::Value = serde_json::from_str(std::fs::read_to_string(&stats).unwrap().lines().last().unwrap()).unwrap();
+    assert!(last["solver_iterations"]["newton"].as_u64().unwrap() >= 1, "{last}");
+    assert!(last["solver_iterations"]["linear"].as_u64().unwrap() >= 1, "{last}");
+    for bad in ["0", "-1", "NaN"] {
+        let o = softsculpt(&["simulate", "builtin:sphere", "--out", out.to_str().unwrap(), "--integrator", "implicit", "--tolerance", bad]);
+        assert_eq!(o.status.code(), Some(2), "{bad}");
+        let e = stderr(&o);
+        assert!(e.starts_with("error:") && e.contains("--tolerance") && e.lines().count() == 1, "{e}");
+    }
+}

@@ -315,6 +315,13 @@ impl Rows<'_> {
             if kt != 0.0 || ct != 0.0 {
                 dg += dt * ct + dt * dt * kt;
             }
+            // Rounding of the spring forces: k (l − L) loses ε |x| of l (x_j − x_i is rounded at the
+            // scale of the positions), cs (Δv · d) ε |v|.
+            let deg = (sys.edges.start[i + 1] - sys.edges.start[i]) as f64;
+            let bdeg = if sys.bending { (sys.bends.start[i + 1] - sys.bends.start[i]) as f64 } else { 0.0 };
+            let xa = xt[3 * i].abs() + xt[3 * i + 1].abs() + xt[3 * i + 2].abs();
+            let va = vp[3 * i].abs() + vp[3 * i + 1].abs() + vp[3 * i + 2].abs();
+            abs += (deg * p.stiffness + bdeg * p.bending_stiffness) * xa + (deg + bdeg) * p.spring_damping * va;
             let pinned = m.inv_mass[i] == 0.0;
             let mut r2 = 0.0;
             let mut scale = 0.0;
