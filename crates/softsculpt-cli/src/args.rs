@@ -55,6 +55,16 @@ pub fn count_positive(s: &str) -> Result<u64, String> {
     Ok(n)
 }
 
+/// A Newton iteration cap: a whole number in the table's range.
+pub fn newton_cap(s: &str) -> Result<u64, String> {
+    let n = count(s)?;
+    let max = softsculpt::params::NEWTON_ITERATIONS.range.max as u64;
+    if !(1..=max).contains(&n) {
+        return Err(format!("must be a whole number from 1 to {max}, got {n}"));
+    }
+    Ok(n)
+}
+
 /// Three finite numbers separated by commas: `X,Y,Z`.
 pub fn vec3(s: &str) -> Result<[f64; 3], String> {
     let parts: Vec<&str> = s.split(',').collect();

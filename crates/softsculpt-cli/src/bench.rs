@@ -23,6 +23,21 @@ pub struct BenchArgs {
     /// One JSON object per level instead of a table.
     #[arg(long)]
     pub json: bool,
+    /// Integrator instead of the workload's symplectic Euler.
+    #[arg(long, value_parser = crate::simulate::parse_integrator)]
+    pub integrator: Option<softsculpt::Integrator>,
+    /// Time step (s) instead of the workload's 1e-4.
+    #[arg(long, allow_hyphen_values = true, value_parser = args::positive, value_name = "S")]
+    pub dt: Option<f64>,
+    /// Spring stiffness (N/m) instead of the workload's 1000.
+    #[arg(long, allow_hyphen_values = true, value_parser = args::non_negative, value_name = "K")]
+    pub stiffness: Option<f64>,
+    /// Implicit integrator's tolerance (default: the parameter table's).
+    #[arg(long, allow_hyphen_values = true, value_parser = args::positive, value_name = "TOL")]
+    pub tolerance: Option<f64>,
+    /// Threads (0 or absent: every core).
+    #[arg(long, allow_hyphen_values = true, value_parser = args::count, value_name = "N")]
+    pub threads: Option<u64>,
 }
 
 fn parse_level(s: &str) -> Result<u32, String> {
@@ -35,19 +50,37 @@ fn parse_level(s: &str) -> Result<u32, String> {
 
 pub fn run(a: BenchArgs) -> Result<(), String> {
     if !a.json {
-        println!("{:>9} {:>9} {:>12} {:>18} {:>16}", "vertices", "springs", "ms/step", "ns/spring-step", "final volume");
+        println!("{:>9} {:>9} {:>12} {:>18} {:>16} {:>8} {:>8}", "vertices", "springs", "ms/step", "ns/spring-step", "final volume", "newton", "linear");
     }
     for &level in &a.levels {
         let mut best = f64::INFINITY;
         let mut volume = 0.0;
         let (mut nv, mut ns) = (0, 0);
+        let (mut newton, mut linear) = (0u64, 0u64);
         for _ in 0..a.reps {
             let mut world = workload::world(level);
+            if let Some(i) = a.integrator {
+                world.settings.integrator = i;
+            }
+            if let Some(dt) = a.dt {
+                world.settings.dt = dt;
+            }
+            if let Some(k) = a.stiffness {
+                world.bodies[0].material.stiffness = k;
+            }
+            if let Some(t) = a.tolerance {
+                world.settings.tolerance = t;
+            }
+            world.set_threads(a.threads.unwrap_or(0) as usize).map_err(|e| format!("--threads: {e}"))?;
+            (newton, linear) = (0, 0);
             nv = world.bodies[0].vertex_count();
             ns = world.bodies[0].spring_count();
             let t0 = Instant::now();
             for _ in 0..a.steps {
                 world.step().map_err(|e| format!("bench level {level}: {e}"))?;
+                let it = world.stats(0).solver_iterations;
+                newton += it.newton as u64;
+                linear += it.linear as u64;
             }
             best = best.min(t0.elapsed().as_secs_f64());
             volume = world.bodies[0].exact_volume();
@@ -57,10 +90,12 @@ pub fn run(a: BenchArgs) -> Result<(), String> {
         if a.json {
             println!(
                 "{}",
-                json!({"vertices": nv, "springs": ns, "ms_per_step": ms, "ns_per_spring_step": ns_spring, "volume": volume, "level": level, "steps": a.steps})
+                json!({"vertices": nv, "springs": ns, "ms_per_step": ms, "ns_per_spring_step": ns_spring, "volume": volume, "level": level, "steps": a.steps,
+                       "newton_per_step": newton as f64 / a.steps as f64, "linear_per_step": linear as f64 / a.steps as f64})
             );
         } else {
-            println!("{nv:>9} {ns:>9} {ms:>12.4} {ns_spring:>18.3} {volume:>16.9}");
+            let (nps, lps) = (newton as f64 / a.steps as f64, linear as f64 / a.steps as f64);
+            println!("{nv:>9} {ns:>9} {ms:>12.4} {ns_spring:>18.3} {volume:>16.9} {nps:>8.2} {lps:>8.1}");
         }
     }
     Ok(())

@@ -27,6 +27,9 @@ pub struct RunArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// Threads for the force stages and the implicit solver (0 or absent: every core).
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::args::count, value_name = "N")]
+    pub threads: Option<u64>,
 }
 
 pub fn run(a: RunArgs) -> Result<(), String> {
@@ -36,6 +39,7 @@ pub fn run(a: RunArgs) -> Result<(), String> {
     let dir = a.scene.parent().map(Path::to_path_buf).unwrap_or_default();
     let mut resolve = |path: &str| -> Result<Vec<u8>, String> { std::fs::read(dir.join(path)).map_err(|e| e.to_string()) };
     let mut scene = SceneRun::load(&text, &mut resolve).map_err(|e| format!("{shown}: {e}"))?;
+    scene.world.set_threads(a.threads.unwrap_or(0) as usize).map_err(|e| format!("--threads: {e}"))?;
     if a.frames == Some(1) {
         return Err("--frames: at least 2 (the first frame is the start, the last the end)".into());
     }

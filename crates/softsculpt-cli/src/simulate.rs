@@ -24,6 +24,14 @@ pub struct SimulateArgs {
     pub dt: f64,
     #[arg(long, default_value = table::INTEGRATOR.choice(), value_parser = parse_integrator, help = help(&table::INTEGRATOR))]
     pub integrator: Integrator,
+    #[arg(long, allow_hyphen_values = true, default_value_t = table::TOLERANCE.number(), value_parser = args::positive, value_name = "TOL", help = help(&table::TOLERANCE))]
+    pub tolerance: f64,
+    #[arg(long = "newton-iterations", allow_hyphen_values = true, default_value_t = table::NEWTON_ITERATIONS.number() as u64, value_parser = args::newton_cap, value_name = "N", help = help(&table::NEWTON_ITERATIONS))]
+    pub newton_iterations: u64,
+    /// Threads for the force stages and the implicit solver (0 or absent: every core); the
+    /// results do not depend on it.
+    #[arg(long, allow_hyphen_values = true, value_parser = args::count, value_name = "N")]
+    pub threads: Option<u64>,
     #[arg(long, allow_hyphen_values = true, default_value_t = table::STIFFNESS.number(), value_parser = args::non_negative, value_name = "K", help = help(&table::STIFFNESS))]
     pub stiffness: f64,
     #[arg(long = "spring-damping", allow_hyphen_values = true, default_value_t = table::SPRING_DAMPING.number(), value_parser = args::non_negative, value_name = "CS", help = help(&table::SPRING_DAMPING))]
@@ -62,7 +70,7 @@ pub struct SimulateArgs {
     pub stats_every: Option<u64>,
 }
 
-fn parse_integrator(s: &str) -> Result<Integrator, String> {
+pub fn parse_integrator(s: &str) -> Result<Integrator, String> {
     Integrator::from_name(s).ok_or_else(|| format!("unknown integrator '{s}' (use one of {})", Integrator::NAMES.join(", ")))
 }
 
@@ -92,6 +100,7 @@ pub fn stats_json(s: &softsculpt::Stats) -> serde_json::Value {
         "momentum": s.momentum,
         "center_of_mass": s.center_of_mass,
         "max_speed": s.max_speed,
+        "solver_iterations": {"newton": s.solver_iterations.newton, "linear": s.solver_iterations.linear},
     })
 }
 
@@ -119,6 +128,8 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         ground: a.ground.map(|h| Ground { friction: a.friction, ..Ground::at(h) }),
         integrator: a.integrator,
         dt: a.dt,
+        tolerance: a.tolerance,
+        newton_iterations: a.newton_iterations as u32,
         ..WorldSettings::default()
     };
     let mut body = SoftBody::new(&loaded.mesh, a.mass, material).map_err(|e| format!("{}: {e}", a.input))?;
@@ -127,6 +138,7 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     }
     // A lone body is a one-body world.
     let mut world = World::single(body, settings);
+    world.set_threads(a.threads.unwrap_or(0) as usize).map_err(|e| format!("--threads: {e}"))?;
     if let Some(h) = a.ground {
         let (lo, _) = loaded.mesh.bounds();
         if lo[1] < h {

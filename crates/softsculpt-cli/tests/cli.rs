@@ -167,12 +167,14 @@ fn stats_lines_carry_the_contract_keys() {
     assert_eq!(steps, vec![0, 100, 200, 250]);
     let keys = [
         "step", "time", "volume", "pressure", "kinetic_energy", "elastic_energy", "gas_energy", "gravity_energy",
-        "total_energy", "momentum", "center_of_mass", "max_speed",
+        "total_energy", "momentum", "center_of_mass", "max_speed", "solver_iterations",
     ];
     for l in &lines {
         let obj = l.as_object().unwrap();
         assert_eq!(obj.keys().map(|k| k.as_str()).collect::<Vec<_>>(), keys);
         assert_eq!(l["momentum"].as_array().unwrap().len(), 3);
+        // Explicit integrators report no solver iterations.
+        assert_eq!(l["solver_iterations"], serde_json::json!({"newton": 0, "linear": 0}));
     }
     // Step 0: initial velocity (0,-1,0) for a 1 kg body.
     assert!((lines[0]["momentum"][1].as_f64().unwrap() + 1.0).abs() < 1e-12);
@@ -259,4 +261,25 @@ fn the_help_shows_the_defaults_of_the_parameter_table() {
         assert!(line.contains(&format!("[default: {default}]")), "{flag}: {line}");
     }
     assert!(help.contains("Spring stiffness k of every edge [N/m]"), "{help}");
+}
+
+#[test]
+fn implicit_runs_report_solver_iterations_and_bad_tolerances_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o.obj");
+    let stats = dir.path().join("s.jsonl");
+    let o = softsculpt(&[
+        "simulate", "builtin:sphere", "--out", out.to_str().unwrap(), "--steps", "20", "--dt", "0.0166", "--integrator", "implicit",
+        "--tolerance", "1e-5", "--gas", "5", "--threads", "2", "--stats", stats.to_str().unwrap(), "--stats-every", "10",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let last: serde_json::Value = serde_json::from_str(std::fs::read_to_string(&stats).unwrap().lines().last().unwrap()).unwrap();
+    assert!(last["solver_iterations"]["newton"].as_u64().unwrap() >= 1, "{last}");
+    assert!(last["solver_iterations"]["linear"].as_u64().unwrap() >= 1, "{last}");
+    for bad in ["0", "-1", "NaN"] {
+        let o = softsculpt(&["simulate", "builtin:sphere", "--out", out.to_str().unwrap(), "--integrator", "implicit", "--tolerance", bad]);
+        assert_eq!(o.status.code(), Some(2), "{bad}");
+        let e = stderr(&o);
+        assert!(e.starts_with("error:") && e.contains("--tolerance") && e.lines().count() == 1, "{e}");
+    }
 }

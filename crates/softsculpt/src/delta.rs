@@ -279,7 +279,7 @@ fn timeline(w: &WorldV1) -> Timeline {
 fn diff(before: &WorldV1, after: &WorldV1, scope: StateScope) -> Delta {
     let same_structure = before.bodies.len() == after.bodies.len() && before.bodies.iter().zip(&after.bodies).all(|(b, a)| b.triangles == a.triangles);
     if !same_structure {
-        let whole = snapshot::frame(snapshot::VERSION, &encoded(before));
+        let whole = snapshot::frame(snapshot::V1, &encoded(before));
         return Delta { scope, kind: Kind::Whole(whole) };
     }
     let settings = (encoded(&before.settings) != encoded(&after.settings)).then(|| before.settings.clone());
@@ -329,6 +329,24 @@ fn patch(w: &mut WorldV1, settings: &Option<snapshot::SettingsV1>, timeline: &Op
     Ok(())
 }
 
+/// What deltas do not track (the version-2 additions of snapshots: the implicit integrator's
+/// settings, target springs) and the thread pool stay as they are in `now` across an undo or
+/// redo: the settings always, the targets when the body has the same vertices.
+fn carry_over(now: &World, to: &mut World) {
+    let ext = snapshot::extension(now);
+    to.settings.tolerance = ext.tolerance;
+    to.settings.newton_iterations = ext.newton_iterations;
+    if ext.implicit && to.settings.integrator == crate::world::Integrator::Symplectic {
+        to.settings.integrator = crate::world::Integrator::Implicit;
+    }
+    for (b, a) in to.bodies.iter_mut().zip(&now.bodies) {
+        if b.vertex_count() == a.vertex_count() {
+            let _ = b.set_targets(a.targets());
+        }
+    }
+    to.threads = now.threads.clone();
+}
+
 impl Delta {
     /// What takes `after` back to `before` (see the module documentation for `scope`).
     pub fn between(before: &World, after: &World, scope: StateScope) -> Delta {
@@ -340,8 +358,9 @@ impl Delta {
     pub fn apply(&self, world: &mut World) -> Result<Delta, DeltaError> {
         match &self.kind {
             Kind::Whole(bytes) => {
-                let earlier = World::restore(bytes)?;
-                let inverse = Delta { scope: self.scope, kind: Kind::Whole(world.snapshot()) };
+                let mut earlier = World::restore(bytes)?;
+                let inverse = Delta { scope: self.scope, kind: Kind::Whole(snapshot::frame(snapshot::V1, &encoded(&snapshot::payload(world)))) };
+                carry_over(world, &mut earlier);
                 *world = earlier;
                 Ok(inverse)
             }
@@ -350,7 +369,9 @@ impl Delta {
                 let mut earlier = now.clone();
                 patch(&mut earlier, settings, timeline, bodies)?;
                 let inverse = diff(&now, &earlier, self.scope);
-                *world = snapshot::world_from_v1(earlier).map_err(DeltaError::Invalid)?;
+                let mut earlier = snapshot::world_from_v1(earlier).map_err(DeltaError::Invalid)?;
+                carry_over(world, &mut earlier);
+                *world = earlier;
                 Ok(inverse)
             }
         }

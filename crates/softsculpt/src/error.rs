@@ -69,6 +69,9 @@ pub enum SimError {
     NonFinite { step: u64 },
     /// The volume the gas uses fell to zero or below (the body turned inside out).
     Collapsed { step: u64, volume: f64 },
+    /// An implicit step did not reach the tolerance within the Newton iteration cap; the state
+    /// is left as it was before the step. `time` (s) is the time at the step's start.
+    NotConverged { step: u64, time: f64, iterations: u32, residual: f64, tolerance: f64 },
     /// An array passed in has the wrong length.
     Length { what: &'static str, expected: usize, got: usize },
 }
@@ -86,6 +89,13 @@ impl fmt::Display for SimError {
                 f,
                 "the body collapsed at step {step} (gas volume {volume:e} m^3 is not positive); \
                  try a smaller dt, more gas or stiffer springs"
+            ),
+            SimError::NotConverged { step, time, iterations, residual, tolerance } => write!(
+                f,
+                "the implicit step at t = {} s (step {step}) did not converge: relative residual {residual:.3e} \
+                 after {iterations} Newton iterations, tolerance {tolerance:e}; the state is unchanged. \
+                 Try a smaller dt (e.g. half), a looser --tolerance, or more --newton-iterations",
+                crate::world::sig3(*time)
             ),
             SimError::Length { what, expected, got } => {
                 write!(f, "{what}: expected {expected} values, got {got}")

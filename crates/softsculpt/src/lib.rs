@@ -19,6 +19,7 @@ pub mod error;
 pub mod geometry;
 pub mod hash;
 pub mod mesh;
+pub mod par;
 pub mod params;
 pub mod scene;
 pub mod snapshot;
@@ -26,7 +27,7 @@ pub mod vec3;
 pub mod workload;
 pub mod world;
 
-pub use body::{Material, SoftBody, Stats, VolumeMode, GAS_CONSTANT};
+pub use body::{Material, SoftBody, SolverIterations, Stats, Target, VolumeMode, GAS_CONSTANT};
 pub use world::{Ground, Integrator, StepError, World, WorldSettings};
 pub use error::{MeshError, SimError};
 pub use mesh::{prepare, LoadedMesh, MeshReport, TriMesh};

@@ -9,7 +9,7 @@
 //! | 4 | format version (u32), [`VERSION`] |
 //! | 8 | payload length in bytes (u64) |
 //! | 4 | CRC-32 (IEEE) of the payload (u32) |
-//! | … | payload: [`WorldV1`] encoded with postcard (serde) |
+//! | … | payload: [`WorldV2`] encoded with postcard (serde); version 1: [`WorldV1`] |
 //!
 //! The payload holds everything that carries over from one step to the next: every body's mesh
 //! (triangles), state, rest and bending rest lengths, masses, pins, prestress, user forces and
@@ -20,6 +20,12 @@
 //! between steps and are rebuilt, derived arrays (springs from the triangles, inverse masses,
 //! the sum of user force and prestress) are recomputed by the same arithmetic, so stepping a
 //! restored world gives the same bits as stepping the original.
+//!
+//! Version 2 (the implicit integrator) is the version-1 payload followed by [`ExtensionV2`]:
+//! the implicit integrator's settings (tolerance, Newton iteration cap) and every body's target
+//! springs. When the integrator is `implicit`, the version-1 part holds `Symplectic` in its
+//! place and `ExtensionV2::implicit` is true. A version-1 snapshot reads as before, with the
+//! defaults for the new settings and no targets.
 //!
 //! Version policy: any change to the payload's types is a new version; this build reads the
 //! versions up to [`VERSION`] (a newer one is refused with a message saying so), and keeps the
@@ -34,7 +40,9 @@ use std::fmt;
 /// The first bytes of every snapshot.
 pub const MAGIC: &[u8; 5] = b"SSNAP";
 /// The format version this build writes (and the newest it reads).
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
+/// The first version, still read (and what `crate::delta` frames its whole worlds in).
+pub const V1: u32 = 1;
 /// Magic, version, payload length, checksum.
 pub const HEADER_LEN: usize = 5 + 4 + 8 + 4;
 
@@ -211,6 +219,68 @@ pub struct LoadV1 {
     pub pressures: Option<(Vec<u32>, f64)>,
 }
 
+// ----- the payload, version 2 --------------------------------------------------------------------
+
+/// Version 2: the version-1 payload and what version 2 added.
+#[derive(Clone, Serialize, Deserialize)]
+pub struct WorldV2 {
+    pub base: WorldV1,
+    pub ext: ExtensionV2,
+}
+
+/// What version 2 added: the implicit integrator and its settings, target springs.
+#[derive(Clone, Serialize, Deserialize)]
+pub struct ExtensionV2 {
+    /// The integrator is `implicit` (the version-1 part then says `Symplectic`).
+    pub implicit: bool,
+    /// Relative residual tolerance (dimensionless) and Newton iteration cap.
+    pub tolerance: f64,
+    pub newton_iterations: u32,
+    /// Every body's target springs, in body order.
+    pub targets: Vec<Vec<TargetV2>>,
+}
+
+/// A target spring: vertex, anchor (m), stiffness (N/m), damping (N·s/m).
+#[derive(Clone, Serialize, Deserialize)]
+pub struct TargetV2 {
+    pub vertex: u32,
+    pub anchor: [f64; 3],
+    pub stiffness: f64,
+    pub damping: f64,
+}
+
+/// The version-2 additions of `w`.
+pub(crate) fn extension(w: &World) -> ExtensionV2 {
+    ExtensionV2 {
+        implicit: w.settings.integrator == Integrator::Implicit,
+        tolerance: w.settings.tolerance,
+        newton_iterations: w.settings.newton_iterations,
+        targets: w
+            .bodies
+            .iter()
+            .map(|b| b.targets().iter().map(|t| TargetV2 { vertex: t.vertex as u32, anchor: t.anchor, stiffness: t.stiffness, damping: t.damping }).collect())
+            .collect(),
+    }
+}
+
+/// Apply version-2 additions to a world read from a version-1 payload.
+pub(crate) fn apply_extension(w: &mut World, ext: &ExtensionV2) -> Result<(), String> {
+    if ext.implicit {
+        w.settings.integrator = Integrator::Implicit;
+    }
+    w.settings.tolerance = ext.tolerance;
+    w.settings.newton_iterations = ext.newton_iterations;
+    w.settings.validate().map_err(|e| e.to_string())?;
+    if ext.targets.len() != w.bodies.len() {
+        return Err(format!("targets for {} bodies, the world has {}", ext.targets.len(), w.bodies.len()));
+    }
+    for (k, (b, list)) in w.bodies.iter_mut().zip(&ext.targets).enumerate() {
+        let list: Vec<crate::body::Target> = list.iter().map(|t| crate::body::Target { vertex: t.vertex as usize, anchor: t.anchor, stiffness: t.stiffness, damping: t.damping }).collect();
+        b.set_targets(&list).map_err(|e| format!("body {k}: {e}"))?;
+    }
+    Ok(())
+}
+
 // ----- writing -----------------------------------------------------------------------------------
 
 fn u32s(v: &[usize]) -> Vec<u32> {
@@ -277,7 +347,8 @@ fn settings_v1(w: &WorldSettings) -> SettingsV1 {
             Integrator::Euler => IntegratorV1::Euler,
             Integrator::Midpoint => IntegratorV1::Midpoint,
             Integrator::Rk4 => IntegratorV1::Rk4,
-            Integrator::Symplectic => IntegratorV1::Symplectic,
+            // Version 2 says `implicit` in its extension; this is the placeholder.
+            Integrator::Symplectic | Integrator::Implicit => IntegratorV1::Symplectic,
         },
         dt: w.dt,
         contact_thickness: w.contact.thickness,
@@ -314,10 +385,11 @@ fn load_v1(l: &Load) -> LoadV1 {
 /// The snapshot of `w`: header and payload (see the module documentation).
 pub fn write(w: &World) -> Vec<u8> {
     // Plain numbers, vectors and enums: postcard cannot fail on them.
-    frame(VERSION, &postcard::to_stdvec(&payload(w)).unwrap_or_default())
+    let v2 = WorldV2 { base: payload(w), ext: extension(w) };
+    frame(VERSION, &postcard::to_stdvec(&v2).unwrap_or_default())
 }
 
-/// The payload of `w`'s snapshot (also what `crate::delta` compares).
+/// The version-1 part of `w`'s snapshot (also what `crate::delta` compares).
 pub(crate) fn payload(w: &World) -> WorldV1 {
     WorldV1 {
         settings: settings_v1(&w.settings),
@@ -387,12 +459,24 @@ fn open(bytes: &[u8]) -> Result<(u32, &[u8]), SnapshotError> {
 
 /// Restore a world from a snapshot (see [`SnapshotError`] for what can be wrong).
 pub fn read(bytes: &[u8]) -> Result<World, SnapshotError> {
-    let (_version, payload) = open(bytes)?;
-    let (v1, rest): (WorldV1, &[u8]) = postcard::take_from_bytes(payload).map_err(|e| corrupted(format!("the payload does not decode ({e})")))?;
+    let (version, payload) = open(bytes)?;
+    let undecodable = |e: postcard::Error| corrupted(format!("the payload does not decode ({e})"));
+    let (v2, rest): (WorldV2, &[u8]) = if version == V1 {
+        let (base, rest) = postcard::take_from_bytes(payload).map_err(undecodable)?;
+        (WorldV2 { base, ext: ExtensionV2 { implicit: false, tolerance: crate::params::TOLERANCE.number(), newton_iterations: crate::params::NEWTON_ITERATIONS.number() as u32, targets: Vec::new() } }, rest)
+    } else {
+        postcard::take_from_bytes(payload).map_err(undecodable)?
+    };
     if !rest.is_empty() {
         return Err(corrupted(format!("{} unread bytes at the end of the payload", rest.len())));
     }
-    world_from_v1(v1).map_err(corrupted)
+    let mut ext = v2.ext;
+    let mut world = world_from_v1(v2.base).map_err(corrupted)?;
+    if ext.targets.is_empty() {
+        ext.targets = vec![Vec::new(); world.bodies.len()];
+    }
+    apply_extension(&mut world, &ext).map_err(corrupted)?;
+    Ok(world)
 }
 
 pub(crate) fn world_from_v1(w: WorldV1) -> Result<World, String> {
@@ -439,6 +523,8 @@ fn settings_from_v1(s: SettingsV1) -> Result<WorldSettings, String> {
             IntegratorV1::Symplectic => Integrator::Symplectic,
         },
         dt: s.dt,
+        tolerance: crate::params::TOLERANCE.number(),
+        newton_iterations: crate::params::NEWTON_ITERATIONS.number() as u32,
         contact: ContactSettings { thickness: s.contact_thickness, friction: s.contact_friction, edge_contact: s.edge_contact },
     };
     settings.validate().map_err(|e| e.to_string())?;
@@ -527,6 +613,7 @@ fn body_from_v1(b: BodyV1) -> Result<SoftBody, String> {
         face_pressure_active: b.face_pressure.iter().any(|&p| p != 0.0),
         face_pressure: b.face_pressure,
         gas: gas(b.gas)?,
+        targets: Default::default(),
     };
     let frozen = Frozen { x: b.frozen_x, rest: b.frozen_rest, bending_rest: b.frozen_bending_rest, gas: gas(b.frozen_gas)?, prestress: b.frozen_prestress };
     Ok(SoftBody { material, model, state: State { x: b.x, v: b.v }, work: Work::new(3 * n), frozen })

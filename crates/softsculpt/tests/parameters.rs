@@ -113,7 +113,13 @@ fn bad_values_are_refused_naming_the_parameter_and_its_unit() {
     assert_eq!(msg(&mut w, "dt", Value::Number(0.0)), "dt: must be > 0 s, got 0");
     assert_eq!(msg(&mut w, "gravity", Value::Number(f64::NAN)), "gravity: must be finite m/s², got NaN");
     assert_eq!(msg(&mut w, "ground.restitution", Value::Number(1.5)), "ground.restitution: must be between 0 and 1, got 1.5");
-    assert_eq!(msg(&mut w, "integrator", Value::Choice("verlet")), "integrator: unknown choice 'verlet' (one of: euler, midpoint, rk4, symplectic)");
+    assert_eq!(msg(&mut w, "integrator", Value::Choice("verlet")), "integrator: unknown choice 'verlet' (one of: euler, midpoint, rk4, symplectic, implicit)");
+    // The implicit integrator's tolerance: a positive finite number (0, −1 and NaN refused).
+    for bad in [0.0, -1.0, f64::NAN] {
+        assert_eq!(msg(&mut w, "tolerance", Value::Number(bad)), format!("tolerance: must be > 0, got {bad}"));
+    }
+    assert_eq!(msg(&mut w, "newton_iterations", Value::Number(2.5)), "newton_iterations: must be a whole number, got 2.5");
+    assert_eq!(msg(&mut w, "newton_iterations", Value::Number(0.0)), "newton_iterations: must be between 1 and 1000, got 0");
     assert_eq!(msg(&mut w, "wind", Value::Number(1.0)), "wind: expected three numbers [x, y, z], got Number(1.0)");
     assert_eq!(msg(&mut w, "ground.height", Value::Number(1.0)), "ground.height: there is no ground (set `ground` to true first)");
     assert_eq!(msg(&mut w, "stifness", Value::Number(1.0)), "stifness: no such parameter");
@@ -138,5 +144,5 @@ fn the_table_as_json_lists_every_parameter() {
     assert_eq!((stiffness["scope"].as_str(), stiffness["default"].as_f64(), stiffness["min"].as_f64()), (Some("body"), Some(100.0), Some(0.0)));
     assert!(stiffness["max"].is_null());
     let integrator = rows.iter().find(|r| r["id"] == "integrator").unwrap();
-    assert_eq!(integrator["choices"].as_array().unwrap().len(), 4);
+    assert_eq!(integrator["choices"].as_array().unwrap().len(), 5);
 }

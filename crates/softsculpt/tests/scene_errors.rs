@@ -98,3 +98,23 @@ fn bad_values_regions_and_obstacles_are_refused() {
         assert!(e.to_string().contains(want), "{text}\n→ {e}\n(wanted '{want}')");
     }
 }
+
+#[test]
+fn a_tolerance_that_is_not_a_positive_number_is_refused_in_a_scene() {
+    // TOML has nan and inf literals; each bad value gets the key and its line.
+    for bad in ["0", "-1", "nan", "inf"] {
+        let e = error(&format!("[world]\nintegrator = \"implicit\"\ntolerance = {bad}\n{BODY}"));
+        assert!(e.to_string().contains("tolerance"), "{bad}: {e}");
+    }
+}
+
+#[test]
+fn an_implicit_scene_with_a_tolerance_loads_and_runs() {
+    let text = format!("[world]\nintegrator = \"implicit\"\ntolerance = 1e-5\ndt = 0.0166\nduration = 0.1\n{BODY}");
+    let mut resolve = |p: &str| -> Result<Vec<u8>, String> { Err(format!("no such file '{p}'")) };
+    let mut run = SceneRun::load(&text, &mut resolve).unwrap();
+    assert_eq!(run.world.settings.integrator, softsculpt::Integrator::Implicit);
+    assert_eq!(run.world.settings.tolerance, 1e-5);
+    run.run(|_| {}).unwrap();
+    assert!(run.world.stats(0).solver_iterations.newton > 0);
+}

@@ -9,13 +9,17 @@ use crate::error::SimError;
 pub(crate) enum Fault {
     NonFinite,
     Collapsed(f64),
+    /// The implicit step's Newton iterations reached their cap at this relative residual.
+    NotConverged { iterations: u32, residual: f64 },
 }
 
 impl Fault {
-    pub fn at(self, step: u64) -> SimError {
+    /// The error of world step `step` that started at `time` (s); `tolerance` the implicit one.
+    pub fn at(self, step: u64, time: f64, tolerance: f64) -> SimError {
         match self {
             Fault::NonFinite => SimError::NonFinite { step },
             Fault::Collapsed(volume) => SimError::Collapsed { step, volume },
+            Fault::NotConverged { iterations, residual } => SimError::NotConverged { step, time, iterations, residual, tolerance },
         }
     }
 }
@@ -77,6 +81,11 @@ pub(crate) fn gather(p: &Material, w: &WorldSettings, m: &Model, x: &[f64], v: &
     }
     if m.face_pressure_active {
         external::face_pressures(m.faces.triangles(), x, &m.face_pressure, inv, f);
+    }
+
+    // Stage targets: the target springs (`targets.rs`).
+    if m.targets.active() {
+        m.targets.accumulate(x, v, inv, f);
     }
     Ok(Gathered { scale })
 }

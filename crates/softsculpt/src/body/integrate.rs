@@ -1,7 +1,9 @@
 //! The integrators, on the state (x, v) with a(x, v) from the force stages.
 
 use super::forces::{accelerations, gather, symplectic_update, Fault};
+use super::implicit::{Implicit, SolverIterations};
 use super::{Material, Model, State, Work};
+use crate::par::Threads;
 use crate::world::{Integrator, WorldSettings};
 
 /// a(x, v) into `a` (m/s²).
@@ -17,12 +19,24 @@ fn ensure(buf: &mut Vec<f64>, n: usize) {
     }
 }
 
-/// One step of `dt` (s). The state is left untouched if a force evaluation fails.
-pub(crate) fn step(p: &Material, world: &WorldSettings, m: &Model, s: &mut State, w: &mut Work, dt: f64) -> Result<(), Fault> {
+/// One step of `dt` (s). The state is left untouched if a force evaluation fails (and by the
+/// implicit integrator if it does not converge).
+pub(crate) fn step(p: &Material, world: &WorldSettings, m: &Model, s: &mut State, w: &mut Work, dt: f64, threads: &Threads) -> Result<(), Fault> {
     let n = s.x.len();
-    let Work { f, xs, vs, a } = w;
+    w.iterations = SolverIterations::default();
+    if world.integrator == Integrator::Implicit {
+        // Backward Euler (`implicit/`): its scratch is built on the first implicit step.
+        if !w.implicit.as_ref().is_some_and(|i| i.fits(m)) {
+            w.implicit = Some(Box::new(Implicit::new(m)));
+        }
+        let solver = w.implicit.as_mut().expect("built above");
+        w.iterations = solver.step(threads, p, world, m, s, dt)?;
+        return Ok(());
+    }
+    let Work { f, xs, vs, a, .. } = w;
     let w = world;
     match w.integrator {
+        Integrator::Implicit => unreachable!("handled above"),
         Integrator::Symplectic => {
             // v' = v + dt a(x, v); x' = x + dt v'
             let gathered = gather(p, w, m, &s.x, &s.v, f).inspect_err(|_| f.fill(0.0))?;

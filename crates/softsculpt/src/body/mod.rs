@@ -20,18 +20,22 @@ mod external;
 mod faces;
 mod forces;
 mod gas;
+pub mod implicit;
 mod integrate;
 pub mod material;
 mod modeling;
 mod persist;
 mod springs;
 mod stats;
+mod targets;
 
 pub use faces::Faces;
 pub use gas::GasReference;
 pub use material::{Material, VolumeMode, DEFAULT_TEMPERATURE, GAS_CONSTANT};
 pub use springs::Springs;
+pub use implicit::SolverIterations;
 pub use stats::Stats;
+pub use targets::Target;
 
 use crate::error::{MeshError, SimError};
 use crate::mesh::{topology, TriMesh};
@@ -61,6 +65,8 @@ pub(crate) struct Model {
     pub face_pressure: Vec<f64>,
     pub face_pressure_active: bool,
     pub gas: GasReference,
+    /// Target springs (`targets.rs`).
+    pub targets: targets::Targets,
 }
 
 /// Positions (m) and velocities (m/s), flat xyz.
@@ -81,6 +87,10 @@ pub(crate) struct Work {
     pub xs: Vec<f64>,
     pub vs: Vec<f64>,
     pub a: [Vec<f64>; 4],
+    /// The implicit integrator's system and vectors, built on its first step.
+    pub implicit: Option<Box<implicit::Implicit>>,
+    /// Iterations of the last step (reported in the statistics; not state).
+    pub iterations: SolverIterations,
 }
 
 impl Work {
@@ -91,7 +101,7 @@ impl Work {
 
 impl Clone for Work {
     fn clone(&self) -> Self {
-        Work::new(self.f.len())
+        Work { iterations: self.iterations, ..Work::new(self.f.len()) }
     }
 }
 
@@ -167,6 +177,7 @@ impl SoftBody {
                 face_pressure: vec![0.0; mesh.triangles.len()],
                 face_pressure_active: false,
                 gas: GasReference { ambient_pressure: 0.0, reference_volume: 1.0 },
+                targets: Default::default(),
             },
             state: State { v: vec![0.0; 3 * n], x },
             work: Work::new(3 * n),
@@ -181,9 +192,10 @@ impl SoftBody {
 
     /// The body's stage of a world step: forces and integration over `dt` seconds with the
     /// world's settings (gravity, wind, integrator); no contact of any kind. `step` is the
-    /// world's step number, for the error. The state is left as it failed on error (the world
-    /// rolls back).
-    pub(crate) fn integrate(&mut self, world: &WorldSettings, dt: f64, step: u64) -> Result<(), SimError> {
+    /// world's step number and `time` (s) the time at its start, for the error; `threads` run
+    /// the passes. The state is left as it failed on error (the world rolls back); the implicit
+    /// integrator leaves it untouched.
+    pub(crate) fn integrate(&mut self, world: &WorldSettings, dt: f64, step: u64, time: f64, threads: &crate::par::Threads) -> Result<(), SimError> {
         self.material.validate()?;
         if self.material.nrt() > 0.0 && !self.model.closed {
             return Err(SimError::BadParameter {
@@ -191,7 +203,8 @@ impl SoftBody {
                 message: "gas pressure needs a closed surface; this mesh is open or non-manifold".into(),
             });
         }
-        integrate::step(&self.material, world, &self.model, &mut self.state, &mut self.work, dt).map_err(|e| e.at(step))
+        let tol = world.tolerance;
+        integrate::step(&self.material, world, &self.model, &mut self.state, &mut self.work, dt, threads).map_err(|e| e.at(step, time, tol))
     }
 
     /// What the world's ground and obstacle stages read and write.
@@ -270,6 +283,10 @@ impl SoftBody {
     /// without other forces.
     pub fn spring_virial(&self) -> f64 {
         self.model.springs.virial(self.material.stiffness, &self.state.x) + self.model.bending.virial(self.material.bending_stiffness, &self.state.x)
+    }
+    /// Newton and linear iterations of the body's last step (zeros for explicit integrators).
+    pub fn solver_iterations(&self) -> SolverIterations {
+        self.work.iterations
     }
     /// Largest vertex speed (m/s).
     pub fn max_speed(&self) -> f64 {

@@ -29,6 +29,8 @@ pub struct Stats {
     pub center_of_mass: [f64; 3],
     /// Largest |vi|.
     pub max_speed: f64,
+    /// Newton and linear iterations of the last step (implicit integrator; zeros otherwise).
+    pub solver_iterations: super::SolverIterations,
 }
 
 impl SoftBody {
@@ -77,6 +79,7 @@ impl SoftBody {
             momentum: p,
             center_of_mass: com.map(|c| c / total_mass),
             max_speed: vmax2.sqrt(),
+            solver_iterations: self.work.iterations,
         }
     }
 }

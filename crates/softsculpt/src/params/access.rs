@@ -93,6 +93,8 @@ fn world_param(w: &WorldSettings, id: &str) -> Result<Value, ParamError> {
     Ok(match id {
         "dt" => Value::Number(w.dt),
         "integrator" => Value::Choice(w.integrator.name()),
+        "tolerance" => Value::Number(w.tolerance),
+        "newton_iterations" => Value::Number(w.newton_iterations as f64),
         "gravity" => Value::Number(w.gravity),
         "wind" => Value::Vector(w.wind),
         "wind_drag" => Value::Number(w.wind_drag),
@@ -111,6 +113,9 @@ fn set_world_param(w: &mut WorldSettings, id: &str, value: Value) -> Result<(), 
     match (id, value) {
         ("dt", Value::Number(x)) => w.dt = x,
         ("integrator", Value::Choice(c)) => w.integrator = Integrator::from_name(c).ok_or_else(|| err(id, "unknown integrator"))?,
+        ("tolerance", Value::Number(x)) => w.tolerance = x,
+        ("newton_iterations", Value::Number(x)) if x.fract() == 0.0 => w.newton_iterations = x as u32,
+        ("newton_iterations", Value::Number(x)) => return Err(err(id, format!("must be a whole number, got {x}"))),
         ("gravity", Value::Number(x)) => w.gravity = x,
         ("wind", Value::Vector(v)) => w.wind = v,
         ("wind_drag", Value::Number(x)) => w.wind_drag = x,

@@ -116,7 +116,23 @@ pub const INTEGRATOR: Param = Param {
     unit: "",
     default: Value::Choice("symplectic"),
     range: ANY,
-    help: "time integrator: euler, midpoint, rk4 or symplectic",
+    help: "time integrator: euler, midpoint, rk4, symplectic (explicit) or implicit (backward Euler, stable at any dt)",
+};
+pub const TOLERANCE: Param = Param {
+    id: "tolerance",
+    scope: Scope::World,
+    unit: "",
+    default: Value::Number(1e-6),
+    range: POSITIVE,
+    help: "implicit integrator: relative residual |r|/|r0| (mass-weighted) at which a step's Newton iterations stop",
+};
+pub const NEWTON_ITERATIONS: Param = Param {
+    id: "newton_iterations",
+    scope: Scope::World,
+    unit: "",
+    default: Value::Number(100.0),
+    range: Range { min: 1.0, max: 1000.0, min_open: false },
+    help: "implicit integrator: most Newton iterations per step (a whole number); a step not converged by then is refused",
 };
 pub const GRAVITY: Param = Param {
     id: "gravity",
@@ -225,6 +241,8 @@ pub const TABLE: &[Param] = &[
     SELF_COLLISION,
     DT,
     INTEGRATOR,
+    TOLERANCE,
+    NEWTON_ITERATIONS,
     GRAVITY,
     WIND,
     WIND_DRAG,

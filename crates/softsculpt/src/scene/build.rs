@@ -67,7 +67,11 @@ pub fn build(spec: &SceneSpec, text: &str, resolve: Resolver) -> Result<Built, S
         return Err(cx.err("dt", format!("{} s in steps of {} s is more than 10⁹ steps", w.duration, w.dt)));
     }
     let integrator = Integrator::from_name(&w.integrator)
-        .ok_or_else(|| cx.err("integrator", format!("unknown integrator '{}' (euler, midpoint, rk4, symplectic)", w.integrator)))?;
+        .ok_or_else(|| cx.err("integrator", format!("unknown integrator '{}' (euler, midpoint, rk4, symplectic, implicit)", w.integrator)))?;
+    cx.positive("tolerance", w.tolerance)?;
+    if !(1..=crate::world::settings::MAX_NEWTON).contains(&w.newton_iterations) {
+        return Err(cx.err("newton_iterations", format!("must be a whole number from 1 to {}, got {}", crate::world::settings::MAX_NEWTON, w.newton_iterations)));
+    }
     cx.finite("gravity", w.gravity)?;
     cx.vec("wind", w.wind)?;
     cx.non_negative("wind_drag", w.wind_drag)?;
@@ -99,6 +103,8 @@ pub fn build(spec: &SceneSpec, text: &str, resolve: Resolver) -> Result<Built, S
         obstacles,
         integrator,
         dt: w.dt,
+        tolerance: w.tolerance,
+        newton_iterations: w.newton_iterations,
         contact: ContactSettings { thickness: w.contact_thickness, friction: w.contact_friction, ..ContactSettings::default() },
     };
 

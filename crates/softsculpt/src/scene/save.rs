@@ -20,6 +20,8 @@ pub fn scene_of(settings: &WorldSettings, bodies: &[(&str, &SoftBody)], duration
         dt: w.dt,
         duration,
         integrator: w.integrator.name().to_string(),
+        tolerance: w.tolerance,
+        newton_iterations: w.newton_iterations,
         gravity: w.gravity,
         wind: w.wind,
         wind_drag: w.wind_drag,

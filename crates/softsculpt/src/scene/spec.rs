@@ -34,8 +34,12 @@ pub struct WorldSpec {
     pub dt: f64,
     /// Length of the run (s).
     pub duration: f64,
-    /// `euler`, `midpoint`, `rk4` or `symplectic`.
+    /// `euler`, `midpoint`, `rk4`, `symplectic` or `implicit`.
     pub integrator: String,
+    /// Implicit integrator: relative residual at which a step's Newton iterations stop.
+    pub tolerance: f64,
+    /// Implicit integrator: most Newton iterations per step.
+    pub newton_iterations: u32,
     /// Gravitational acceleration g (m/s²) along −y.
     pub gravity: f64,
     /// Wind velocity (m/s).
@@ -57,6 +61,8 @@ impl Default for WorldSpec {
             dt: table::DT.number(),
             duration: table::DURATION.number(),
             integrator: table::INTEGRATOR.choice().into(),
+            tolerance: table::TOLERANCE.number(),
+            newton_iterations: table::NEWTON_ITERATIONS.number() as u32,
             gravity: table::GRAVITY.number(),
             wind: table::WIND.vector(),
             wind_drag: table::WIND_DRAG.number(),

@@ -29,7 +29,7 @@ pub mod ground;
 pub mod mesh_obstacle;
 pub mod obstacles;
 mod rollback;
-mod settings;
+pub(crate) mod settings;
 
 pub use clock::Clock;
 pub use events::{Action, Event, Events, Load};
@@ -57,6 +57,8 @@ pub struct World {
     pub(crate) cx: contacts::Scratch,
     /// Positions and velocities at the start of a `step_n` call. Scratch.
     pub(crate) backup: rollback::Backup,
+    /// Threads the bodies' passes run on (results do not depend on their number).
+    pub(crate) threads: crate::par::Threads,
 }
 
 /// A step that failed: when (the time at the step's start, s, and the step's number), the scene
@@ -111,6 +113,7 @@ impl World {
             prev: Vec::new(),
             cx: contacts::Scratch::default(),
             backup: rollback::Backup::default(),
+            threads: crate::par::Threads::single(),
         }
     }
 
@@ -125,6 +128,17 @@ impl World {
         self.load_sums.1.push(vec![0.0; body.face_count()]);
         self.bodies.push(body);
         self.bodies.len() - 1
+    }
+
+    /// Run the bodies' force stages and the implicit solver on `n` threads (0: one per core;
+    /// WebAssembly builds always use one). The results do not depend on the number.
+    pub fn set_threads(&mut self, n: usize) -> Result<(), String> {
+        self.threads = crate::par::Threads::new(n)?;
+        Ok(())
+    }
+    /// Threads the passes run on.
+    pub fn threads(&self) -> usize {
+        self.threads.count()
     }
 
     /// Steps taken and simulated time (s).
@@ -186,7 +200,7 @@ impl World {
 
         // Stage 1: each body's forces and integration.
         for b in &mut self.bodies {
-            b.integrate(&self.settings, dt, step).map_err(|e| fail(None, e))?;
+            b.integrate(&self.settings, dt, step, time, &self.threads).map_err(|e| fail(None, e))?;
         }
 
         // Stage 2: ground.

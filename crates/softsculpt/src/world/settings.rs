@@ -20,16 +20,21 @@ pub enum Integrator {
     /// Semi-implicit (symplectic) Euler: v' = v + dt a(x, v); x' = x + dt v'. Order 1; energy
     /// stays bounded (no drift) for conservative forces. The default.
     Symplectic,
+    /// Backward (implicit) Euler: v' = v + dt M⁻¹ f(x + dt v', v'); x' = x + dt v'. Order 1;
+    /// stable at any dt (it damps the modes it cannot resolve). Solved by Newton iterations with
+    /// a preconditioned conjugate gradient to the world's `tolerance` (`body/implicit/`).
+    Implicit,
 }
 
 impl Integrator {
-    pub const NAMES: &'static [&'static str] = &["euler", "midpoint", "rk4", "symplectic"];
+    pub const NAMES: &'static [&'static str] = &["euler", "midpoint", "rk4", "symplectic", "implicit"];
     pub fn name(self) -> &'static str {
         match self {
             Integrator::Euler => "euler",
             Integrator::Midpoint => "midpoint",
             Integrator::Rk4 => "rk4",
             Integrator::Symplectic => "symplectic",
+            Integrator::Implicit => "implicit",
         }
     }
     pub fn from_name(s: &str) -> Option<Self> {
@@ -38,6 +43,7 @@ impl Integrator {
             "midpoint" => Integrator::Midpoint,
             "rk4" => Integrator::Rk4,
             "symplectic" => Integrator::Symplectic,
+            "implicit" => Integrator::Implicit,
             _ => return None,
         })
     }
@@ -97,6 +103,12 @@ pub struct WorldSettings {
     pub integrator: Integrator,
     /// Time step (s). Changing it rebases the clock (see `clock.rs`).
     pub dt: f64,
+    /// Implicit integrator only: the relative residual (dimensionless) at which a step's Newton
+    /// iterations stop, ‖r_k‖ / ‖r_0‖ in the mass-weighted norm (`body/implicit/mod.rs`).
+    pub tolerance: f64,
+    /// Implicit integrator only: at most this many Newton iterations per step (≥ 1); a step
+    /// that has not converged by then is refused.
+    pub newton_iterations: u32,
     /// Contact between bodies and self-collision.
     pub contact: ContactSettings,
 }
@@ -112,6 +124,8 @@ impl Default for WorldSettings {
             obstacles: Vec::new(),
             integrator: Integrator::from_name(table::INTEGRATOR.choice()).unwrap_or(Integrator::Symplectic),
             dt: table::DT.number(),
+            tolerance: table::TOLERANCE.number(),
+            newton_iterations: table::NEWTON_ITERATIONS.number() as u32,
             contact: ContactSettings::default(),
         }
     }
@@ -122,6 +136,10 @@ impl WorldSettings {
     /// flags do).
     pub fn validate(&self) -> Result<(), SimError> {
         check_dt(self.dt)?;
+        check_positive("tolerance", self.tolerance)?;
+        if !(1..=MAX_NEWTON).contains(&self.newton_iterations) {
+            return Err(bad("newton-iterations", format!("must be a whole number from 1 to {MAX_NEWTON}, got {}", self.newton_iterations)));
+        }
         if !self.gravity.is_finite() {
             return Err(bad("gravity", format!("must be finite, got {}", self.gravity)));
         }
@@ -146,6 +164,9 @@ impl WorldSettings {
         Ok(())
     }
 }
+
+/// The largest Newton iteration cap (the table's range).
+pub const MAX_NEWTON: u32 = table::NEWTON_ITERATIONS.range.max as u32;
 
 /// Time step (s): finite and > 0.
 pub fn check_dt(dt: f64) -> Result<(), SimError> {

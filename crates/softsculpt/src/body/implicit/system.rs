@@ -1,0 +1,476 @@
+//! The backward-Euler system of one body: forces, residual, preconditioner and the matrix-free
+//! product, each one pass that the thread pool splits into chunks (`crate::par`).
+//!
+//! Unknown: the end-of-step velocity v⁺ (flat xyz). With x_t = x + dt v⁺ the residual is
+//!
+//!   r(v⁺) = M (v⁺ − v) − dt f(x_t, v⁺)                                  (kg·m/s)
+//!
+//! and Newton's matrix is ∂r/∂v⁺ = M − dt ∂f/∂v − dt² ∂f/∂x = M + dt D + dt² K, with K = −∂f/∂x
+//! and D = −∂f/∂v. What enters the matrix, per force (the residual always uses the exact force):
+//!
+//! - **spring** (i, j), l = |x_j − x_i|, d = (x_j − x_i)/l, L rest length: f_i = [k (l − L) +
+//!   cs (v_j − v_i)·d] d. Its elastic Hessian block is k [(1 − L/l)(I − d dᵀ) + d dᵀ]; the
+//!   transverse factor (1 − L/l) is negative for a compressed spring, so it is clamped at 0
+//!   (the block is then positive semi-definite: Choi & Ko 2002, the standard projection).
+//!   Damping adds cs d dᵀ to D. The derivative of the damping force through d (∝ cs (v·d)/l) is
+//!   not symmetric and is dropped. Per spring: B = dt² K_e + dt D_e = a I + b d dᵀ with
+//!   a = dt² k α, b = dt² k (1 − α) + dt cs, α = max(0, 1 − L/l); it couples i and j as
+//!   [B −B; −B B]. Bending springs are the same with k_b.
+//! - **viscous damping** −c m v: D += c m I (exact).
+//! - **gravity**, user forces, the kept load of a freeze under load: constant, nothing.
+//! - **gas** f_i = (P − P_ref) ∇_i V, P = nRT/V: −∂f/∂x = (nRT/V²) ∇V ∇Vᵀ − (P − P_ref) ∇²V. The
+//!   first term is positive semi-definite and rank one: it is applied as γ g (g · p) with
+//!   g_i = Σ n_f (= 6 ∇_i V) and γ = dt² nRT / (36 V²), never as a dense matrix. The second is
+//!   dropped: ∇²V (per face, p_b × x_c + x_b × p_c over the corners) is indefinite — it would
+//!   break the conjugate gradient's positive definiteness — and small next to the springs
+//!   (P · edge / 6 against k: 1e-4 of k in the standard workload). In the box and sphere volume
+//!   modes the same rank-one term with their V is used as an approximation.
+//! - **wind** and **face pressures**: their derivatives (through the face normals and the face
+//!   velocities) are dropped: the wind's velocity term cw·area/9 per face pair is ~1 % of m/dt
+//!   for a 642-vertex body at dt = 1/60 s, and face pressures are loads.
+//! - **target springs** f_i = k_t (a_i − x_i) − c_t v_i (`body/targets.rs`): K += k_t I,
+//!   D += c_t I (exact), so any strength is stable.
+//! - **pins**: a pinned vertex keeps v⁺ = v; its rows and columns are removed (its residual,
+//!   preconditioner and product entries are 0).
+//!
+//! Dropping terms from the matrix only slows Newton's convergence (an inexact Newton method);
+//! the solution it converges to is the backward-Euler step with every force exact.
+
+use super::adjacency::{FaceRows, SpringRows};
+use super::super::{gas, Model, Springs};
+use super::super::forces::Fault;
+use super::super::external;
+use crate::body::Material;
+use crate::par::{chunk, chunks, Out, Threads};
+use crate::world::WorldSettings;
+
+/// Vertices per chunk of a vertex pass (independent of the thread count).
+pub(crate) const VCHUNK: usize = 2048;
+/// Springs or faces per chunk.
+const ECHUNK: usize = 4096;
+
+/// What a step holds fixed: material, settings, model, the state at the step's start, dt.
+pub(crate) struct Frame<'a> {
+    pub p: &'a Material,
+    pub w: &'a WorldSettings,
+    pub m: &'a Model,
+    pub x: &'a [f64],
+    pub v: &'a [f64],
+    pub dt: f64,
+}
+
+/// Per spring of one kind: the force on its first end fs·d (N, xyz), the unit direction d, and
+/// the matrix coefficients a, b (kg/s; see the module documentation).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct SpringBlocks {
+    pub fd: Vec<f64>,
+    pub d: Vec<f64>,
+    pub a: Vec<f64>,
+    pub b: Vec<f64>,
+}
+
+impl SpringBlocks {
+    fn new(m: usize) -> Self {
+        SpringBlocks { fd: vec![0.0; 3 * m], d: vec![0.0; 3 * m], a: vec![0.0; m], b: vec![0.0; m] }
+    }
+}
+
+/// Everything the Newton iterations of one body need, allocated once.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct System {
+    pub edges: SpringRows,
+    pub bends: SpringRows,
+    pub faces: FaceRows,
+    pub eb: SpringBlocks,
+    pub bb: SpringBlocks,
+    /// Bending springs take part (k_b > 0), as in the explicit stages.
+    pub bending: bool,
+    /// n_f = (x_b − x_a) × (x_c − x_a) per face (m², xyz).
+    pub nf: Vec<f64>,
+    /// g_i = Σ n_f around vertex i (m²), the gas's gradient direction; used when `gamma` ≠ 0.
+    pub g: Vec<f64>,
+    /// Scalar diagonal m (1 + dt c) + dt c_t + dt² k_t per vertex (kg).
+    pub diag: Vec<f64>,
+    /// Inverse of each vertex's 3×3 diagonal block (xx, yy, zz, xy, xz, yz), 0 when pinned.
+    pub pre: Vec<f64>,
+    /// Wind and face pressure forces (N), when present.
+    pub fext: Vec<f64>,
+    /// dt² nRT / (36 V²) (kg/m⁴·… so that γ g gᵀ is in kg): the gas's rank-one term.
+    pub gamma: f64,
+    /// Reduction slots, one per chunk.
+    pub vslots: Vec<[f64; 4]>,
+    eslots: Vec<f64>,
+    fslots: Vec<f64>,
+}
+
+/// Norms of one evaluation, mass-weighted: Σ |r_i|² / m_i (J·kg… = (kg·m/s)²/kg).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Eval {
+    pub res2: f64,
+    pub noise2: f64,
+}
+
+impl System {
+    pub fn new(m: &Model) -> Self {
+        let n = m.mass.len();
+        let nf = m.faces.len();
+        System {
+            edges: SpringRows::new(n, &m.springs.i, &m.springs.j),
+            bends: SpringRows::new(n, &m.bending.i, &m.bending.j),
+            faces: FaceRows::new(n, m.faces.triangles()),
+            eb: SpringBlocks::new(m.springs.len()),
+            bb: SpringBlocks::new(m.bending.len()),
+            bending: false,
+            nf: vec![0.0; 3 * nf],
+            g: vec![0.0; 3 * n],
+            diag: vec![0.0; n],
+            pre: vec![0.0; 6 * n],
+            fext: vec![0.0; 3 * n],
+            gamma: 0.0,
+            vslots: vec![[0.0; 4]; chunks(n, VCHUNK)],
+            eslots: vec![0.0; chunks(m.springs.len().max(m.bending.len()), ECHUNK)],
+            fslots: vec![0.0; chunks(nf, ECHUNK)],
+        }
+    }
+
+    /// Fits `m` (same vertex, spring and face counts as when built).
+    pub fn fits(&self, m: &Model) -> bool {
+        self.diag.len() == m.mass.len() && self.eb.a.len() == m.springs.len() && self.bb.a.len() == m.bending.len() && 3 * m.faces.len() == self.nf.len()
+    }
+
+    /// Forces at (x_t, v⁺), the residual r (into `r`), the matrix's coefficients and the
+    /// preconditioner. `xt` = x + dt v⁺ on entry.
+    pub fn eval(&mut self, th: &Threads, fr: &Frame, vp: &[f64], xt: &[f64], r: &mut [f64]) -> Result<Eval, Fault> {
+        let (p, w, m, dt) = (fr.p, fr.w, fr.m, fr.dt);
+
+        // Springs: one pass per kind, chunks of springs (each writes its own springs only).
+        spring_pass(th, &m.springs, p.stiffness, p.spring_damping, dt, xt, vp, &mut self.eb, &mut self.eslots);
+        self.bending = p.bending_stiffness > 0.0;
+        if self.bending {
+            spring_pass(th, &m.bending, p.bending_stiffness, p.spring_damping, dt, xt, vp, &mut self.bb, &mut self.eslots);
+        }
+
+        // Faces and gas: n_f per face and 6V (per-chunk sums in chunk order), then P.
+        let nrt = p.nrt();
+        let gas_active = nrt != 0.0 || m.gas.ambient_pressure != 0.0;
+        let mut s = 0.0;
+        self.gamma = 0.0;
+        if gas_active {
+            let six_v = face_pass(th, m.faces.triangles(), xt, &mut self.nf, &mut self.fslots);
+            if !six_v.is_finite() {
+                return Err(Fault::NonFinite);
+            }
+            let volume = gas::measure(p.volume_mode, six_v, xt);
+            if !(volume > 0.0) {
+                return Err(if volume.is_finite() { Fault::Collapsed(volume) } else { Fault::NonFinite });
+            }
+            s = (gas::pressure(nrt, volume) - m.gas.ambient_pressure) / 6.0;
+            self.gamma = dt * dt * nrt / (36.0 * volume * volume);
+        }
+
+        // Wind and face pressures (rare; one thread, scattered per face).
+        let wind = w.wind_drag > 0.0 && w.wind != [0.0; 3];
+        let fext_active = wind || m.face_pressure_active;
+        if fext_active {
+            self.fext.fill(0.0);
+            if wind {
+                external::wind(m.faces.triangles(), xt, vp, w.wind, w.wind_drag, &mut self.fext);
+            }
+            if m.face_pressure_active {
+                external::face_pressures(m.faces.triangles(), xt, &m.face_pressure, 1.0, &mut self.fext);
+            }
+        }
+
+        // Vertices: gather forces, residual, diagonal blocks.
+        let rows = Rows {
+            fr,
+            s,
+            gas: gas_active,
+            fext_on: fext_active,
+            edges: &self.edges,
+            bends: &self.bends,
+            faces: &self.faces,
+            eb: &self.eb,
+            bb: &self.bb,
+            bending: self.bending,
+            nf: &self.nf,
+            gamma: self.gamma,
+            fext: &self.fext,
+        };
+        let (g, diag, pre) = (Out::new(&mut self.g), Out::new(&mut self.diag), Out::new(&mut self.pre));
+        let ro = Out::new(r);
+        let n = m.mass.len();
+        let mut slots = std::mem::take(&mut self.vslots);
+        th.each(&mut slots, |c, slot| {
+            let vr = chunk(c, VCHUNK, n);
+            // SAFETY: chunk c writes vertices vr only; chunks are disjoint.
+            unsafe {
+                *slot = rows.run(vr.clone(), vp, xt, ro.range(3 * vr.start..3 * vr.end), g.range(3 * vr.start..3 * vr.end), diag.range(vr.clone()), pre.range(6 * vr.start..6 * vr.end));
+            }
+        });
+        let (mut res2, mut noise2) = (0.0, 0.0);
+        for sl in &slots {
+            res2 += sl[0];
+            noise2 += sl[1];
+        }
+        self.vslots = slots;
+        if !res2.is_finite() {
+            return Err(Fault::NonFinite);
+        }
+        Ok(Eval { res2, noise2 })
+    }
+}
+
+/// The vertex pass's inputs.
+struct Rows<'a> {
+    fr: &'a Frame<'a>,
+    s: f64,
+    gas: bool,
+    fext_on: bool,
+    edges: &'a SpringRows,
+    bends: &'a SpringRows,
+    faces: &'a FaceRows,
+    eb: &'a SpringBlocks,
+    bb: &'a SpringBlocks,
+    bending: bool,
+    nf: &'a [f64],
+    gamma: f64,
+    fext: &'a [f64],
+}
+
+/// Add row `i` of a spring kind: Σ ±fs d into `f`, Σ (a I + b d dᵀ) into `blk`, Σ|fs d| into `abs`.
+#[inline(always)]
+fn gather_springs(rows: &SpringRows, sb: &SpringBlocks, i: usize, f: &mut [f64; 3], blk: &mut [f64; 6], abs: &mut f64) {
+    for k in rows.start[i] as usize..rows.start[i + 1] as usize {
+        let e = rows.spring[k] as usize;
+        let sign = if rows.other[k] as usize > i { 1.0 } else { -1.0 };
+        let (fx, fy, fz) = (sb.fd[3 * e], sb.fd[3 * e + 1], sb.fd[3 * e + 2]);
+        f[0] += sign * fx;
+        f[1] += sign * fy;
+        f[2] += sign * fz;
+        *abs += fx.abs() + fy.abs() + fz.abs();
+        let (a, b) = (sb.a[e], sb.b[e]);
+        let (dx, dy, dz) = (sb.d[3 * e], sb.d[3 * e + 1], sb.d[3 * e + 2]);
+        blk[0] += a + b * dx * dx;
+        blk[1] += a + b * dy * dy;
+        blk[2] += a + b * dz * dz;
+        blk[3] += b * dx * dy;
+        blk[4] += b * dx * dz;
+        blk[5] += b * dy * dz;
+    }
+}
+
+/// Inverse of the symmetric 3×3 (xx, yy, zz, xy, xz, yz) by its adjugate.
+#[inline(always)]
+fn inverse_sym(m: &[f64; 6]) -> [f64; 6] {
+    let [a, d, f, b, c, e] = *m; // [[a b c] [b d e] [c e f]]
+    let (c00, c11, c22) = (d * f - e * e, a * f - c * c, a * d - b * b);
+    let (c01, c02, c12) = (c * e - b * f, b * e - c * d, b * c - a * e);
+    let det = a * c00 + b * c01 + c * c02;
+    let inv = 1.0 / det;
+    [c00 * inv, c11 * inv, c22 * inv, c01 * inv, c02 * inv, c12 * inv]
+}
+
+impl Rows<'_> {
+    #[allow(clippy::too_many_arguments)]
+    fn run(&self, vr: std::ops::Range<usize>, vp: &[f64], xt: &[f64], r: &mut [f64], g: &mut [f64], diag: &mut [f64], pre: &mut [f64]) -> [f64; 4] {
+        let Frame { p, w, m, v, dt, .. } = *self.fr;
+        let sys = self;
+        let grav = [0.0, -w.gravity, 0.0];
+        let c = p.damping;
+        let targets = &m.targets;
+        let (mut res2, mut noise2) = (0.0, 0.0);
+        for (li, i) in vr.enumerate() {
+            let mi = m.mass[i];
+            let mut f = [0.0; 3];
+            let mut blk = [0.0; 6];
+            let mut abs = 0.0;
+            gather_springs(&sys.edges, &sys.eb, i, &mut f, &mut blk, &mut abs);
+            if sys.bending {
+                gather_springs(&sys.bends, &sys.bb, i, &mut f, &mut blk, &mut abs);
+            }
+            if self.gas {
+                let mut gi = [0.0; 3];
+                for k in sys.faces.start[i] as usize..sys.faces.start[i + 1] as usize {
+                    let fidx = 3 * sys.faces.face[k] as usize;
+                    gi[0] += sys.nf[fidx];
+                    gi[1] += sys.nf[fidx + 1];
+                    gi[2] += sys.nf[fidx + 2];
+                }
+                for d in 0..3 {
+                    f[d] += self.s * gi[d];
+                    g[3 * li + d] = gi[d];
+                }
+                abs += self.s.abs() * (gi[0].abs() + gi[1].abs() + gi[2].abs());
+                let gm = sys.gamma;
+                blk[0] += gm * gi[0] * gi[0];
+                blk[1] += gm * gi[1] * gi[1];
+                blk[2] += gm * gi[2] * gi[2];
+                blk[3] += gm * gi[0] * gi[1];
+                blk[4] += gm * gi[0] * gi[2];
+                blk[5] += gm * gi[1] * gi[2];
+            }
+            let mut dg = mi * (1.0 + dt * c);
+            let (kt, ct) = if targets.active() { (targets.k[i], targets.c[i]) } else { (0.0, 0.0) };
+            if kt != 0.0 || ct != 0.0 {
+                dg += dt * ct + dt * dt * kt;
+            }
+            // Rounding of the spring forces: k (l − L) loses ε |x| of l (x_j − x_i is rounded at the
+            // scale of the positions), cs (Δv · d) ε |v|.
+            let deg = (sys.edges.start[i + 1] - sys.edges.start[i]) as f64;
+            let bdeg = if sys.bending { (sys.bends.start[i + 1] - sys.bends.start[i]) as f64 } else { 0.0 };
+            let xa = xt[3 * i].abs() + xt[3 * i + 1].abs() + xt[3 * i + 2].abs();
+            let va = vp[3 * i].abs() + vp[3 * i + 1].abs() + vp[3 * i + 2].abs();
+            abs += (deg * p.stiffness + bdeg * p.bending_stiffness) * xa + (deg + bdeg) * p.spring_damping * va;
+            let pinned = m.inv_mass[i] == 0.0;
+            let mut r2 = 0.0;
+            let mut scale = 0.0;
+            for d in 0..3 {
+                let k3 = 3 * i + d;
+                let mut fd = f[d] + mi * grav[d] - c * mi * vp[k3];
+                if m.external_active {
+                    fd += m.external[k3];
+                }
+                if self.fext_on {
+                    fd += sys.fext[k3];
+                }
+                if kt != 0.0 || ct != 0.0 {
+                    fd += kt * (targets.anchor[k3] - xt[k3]) - ct * vp[k3];
+                }
+                let rd = if pinned { 0.0 } else { mi * (vp[k3] - v[k3]) - dt * fd };
+                r[3 * li + d] = rd;
+                r2 += rd * rd;
+                scale += dt * fd.abs() + mi * (vp[k3].abs() + v[k3].abs());
+            }
+            scale += dt * abs;
+            diag[li] = if pinned { 0.0 } else { dg };
+            if pinned {
+                pre[6 * li..6 * li + 6].fill(0.0);
+            } else {
+                blk[0] += dg;
+                blk[1] += dg;
+                blk[2] += dg;
+                pre[6 * li..6 * li + 6].copy_from_slice(&inverse_sym(&blk));
+                res2 += r2 / mi;
+                // Rounding of r_i: a few ulps of the magnitudes summed into it.
+                let nz = 16.0 * f64::EPSILON * scale;
+                noise2 += nz * nz / mi;
+            }
+        }
+        [res2, noise2, 0.0, 0.0]
+    }
+}
+
+/// Per spring: fs·d, d, a, b at (xt, vp).
+#[allow(clippy::too_many_arguments)]
+fn spring_pass(th: &Threads, sp: &Springs, k: f64, cs: f64, dt: f64, xt: &[f64], vp: &[f64], out: &mut SpringBlocks, slots: &mut [f64]) {
+    let ne = sp.len();
+    let nch = chunks(ne, ECHUNK);
+    let (fd, d, a, b) = (Out::new(&mut out.fd), Out::new(&mut out.d), Out::new(&mut out.a), Out::new(&mut out.b));
+    let (dt2k, dtcs) = (dt * dt * k, dt * cs);
+    th.each(&mut slots[..nch], |c, _| {
+        let er = chunk(c, ECHUNK, ne);
+        // SAFETY: chunk c writes springs er only.
+        let (fd, d, a, b) = unsafe { (fd.range(3 * er.start..3 * er.end), d.range(3 * er.start..3 * er.end), a.range(er.clone()), b.range(er.clone())) };
+        for (le, e) in er.enumerate() {
+            let (i, j) = (3 * sp.i[e] as usize, 3 * sp.j[e] as usize);
+            let dx = [xt[j] - xt[i], xt[j + 1] - xt[i + 1], xt[j + 2] - xt[i + 2]];
+            let l = (dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]).sqrt();
+            let inv = 1.0 / l;
+            let u = [dx[0] * inv, dx[1] * inv, dx[2] * inv];
+            let dvn = (vp[j] - vp[i]) * u[0] + (vp[j + 1] - vp[i + 1]) * u[1] + (vp[j + 2] - vp[i + 2]) * u[2];
+            let rest = sp.rest[e];
+            let fs = k * (l - rest) + cs * dvn;
+            let alpha = (1.0 - rest * inv).max(0.0);
+            for q in 0..3 {
+                fd[3 * le + q] = fs * u[q];
+                d[3 * le + q] = u[q];
+            }
+            a[le] = dt2k * alpha;
+            b[le] = dt2k * (1.0 - alpha) + dtcs;
+        }
+    });
+}
+
+/// Per face n_f into `nf`; returns 6V = Σ x_a · n_f (per-chunk sums added in chunk order).
+fn face_pass(th: &Threads, tris: &[[u32; 3]], x: &[f64], nf: &mut [f64], slots: &mut [f64]) -> f64 {
+    let n = tris.len();
+    let out = Out::new(nf);
+    th.each(slots, |c, slot| {
+        let fr = chunk(c, ECHUNK, n);
+        // SAFETY: chunk c writes faces fr only.
+        let nf = unsafe { out.range(3 * fr.start..3 * fr.end) };
+        let mut six_v = 0.0;
+        for (lf, t) in tris[fr].iter().enumerate() {
+            let (a, b, cc) = (3 * t[0] as usize, 3 * t[1] as usize, 3 * t[2] as usize);
+            let e1 = [x[b] - x[a], x[b + 1] - x[a + 1], x[b + 2] - x[a + 2]];
+            let e2 = [x[cc] - x[a], x[cc + 1] - x[a + 1], x[cc + 2] - x[a + 2]];
+            let n3 = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]];
+            six_v += x[a] * n3[0] + x[a + 1] * n3[1] + x[a + 2] * n3[2];
+            nf[3 * lf..3 * lf + 3].copy_from_slice(&n3);
+        }
+        *slot = six_v;
+    });
+    slots.iter().sum()
+}
+
+/// The matrix-free product and the preconditioner, for the conjugate gradient.
+impl System {
+    /// out = A p, A = M + dt D + dt² K (see the module documentation); `gp` = g · p. Pinned
+    /// rows are 0 (p is 0 there too).
+    pub fn product(&self, th: &Threads, m: &Model, p: &[f64], gp: f64, out: &mut [f64], slots: &mut [[f64; 4]]) -> f64 {
+        let n = m.mass.len();
+        let o = Out::new(out);
+        let gg = self.gamma * gp;
+        th.each(slots, |c, slot| {
+            let vr = chunk(c, VCHUNK, n);
+            // SAFETY: chunk c writes vertices vr only.
+            let out = unsafe { o.range(3 * vr.start..3 * vr.end) };
+            let mut pq = 0.0;
+            for (li, i) in vr.enumerate() {
+                if m.inv_mass[i] == 0.0 {
+                    out[3 * li..3 * li + 3].fill(0.0);
+                    continue;
+                }
+                let pi = [p[3 * i], p[3 * i + 1], p[3 * i + 2]];
+                let dg = self.diag[i];
+                let mut q = [dg * pi[0], dg * pi[1], dg * pi[2]];
+                row_product(&self.edges, &self.eb, i, p, &pi, &mut q);
+                if self.bending {
+                    row_product(&self.bends, &self.bb, i, p, &pi, &mut q);
+                }
+                if gg != 0.0 {
+                    for d in 0..3 {
+                        q[d] += gg * self.g[3 * i + d];
+                    }
+                }
+                out[3 * li..3 * li + 3].copy_from_slice(&q);
+                pq += q[0] * pi[0] + q[1] * pi[1] + q[2] * pi[2];
+            }
+            slot[0] = pq;
+        });
+        slots.iter().map(|s| s[0]).sum()
+    }
+
+    /// z_i = P_i⁻¹ r_i.
+    #[inline(always)]
+    pub fn precondition(&self, i: usize, r: &[f64; 3]) -> [f64; 3] {
+        let b = &self.pre[6 * i..6 * i + 6];
+        [b[0] * r[0] + b[3] * r[1] + b[4] * r[2], b[3] * r[0] + b[1] * r[1] + b[5] * r[2], b[4] * r[0] + b[5] * r[1] + b[2] * r[2]]
+    }
+}
+
+#[inline(always)]
+fn row_product(rows: &SpringRows, sb: &SpringBlocks, i: usize, p: &[f64], pi: &[f64; 3], q: &mut [f64; 3]) {
+    for k in rows.start[i] as usize..rows.start[i + 1] as usize {
+        let e = rows.spring[k] as usize;
+        let o = 3 * rows.other[k] as usize;
+        let dl = [pi[0] - p[o], pi[1] - p[o + 1], pi[2] - p[o + 2]];
+        let (dx, dy, dz) = (sb.d[3 * e], sb.d[3 * e + 1], sb.d[3 * e + 2]);
+        let (a, b) = (sb.a[e], sb.b[e]);
+        let t = b * (dx * dl[0] + dy * dl[1] + dz * dl[2]);
+        q[0] += a * dl[0] + t * dx;
+        q[1] += a * dl[1] + t * dy;
+        q[2] += a * dl[2] + t * dz;
+    }
+}
