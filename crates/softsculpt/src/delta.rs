@@ -2,7 +2,7 @@
 //! changed (SculptGL's rule: undo stores what a stroke touched).
 //!
 //! A delta is computed between two worlds, `before` and `after`, in the snapshot's payload terms
-//! (`crate::snapshot::WorldV1`, so every field a snapshot keeps is covered and nothing else):
+//! (`crate::snapshot::WorldV2`, so every field a snapshot keeps is covered and nothing else):
 //! - if the structure changed (another number of bodies, or a body's triangles differ: a new
 //!   model, a subdivision, an opened scene), the delta is the whole earlier world, as a snapshot;
 //! - otherwise, per body, the values of each per-vertex, per-spring or per-face array that differ
@@ -21,7 +21,7 @@
 //! payload in postcard (the same serde path as snapshots).
 
 use crate::mesh::topology;
-use crate::snapshot::{self, BodyV1, SnapshotError, WorldV1};
+use crate::snapshot::{self, BodyV1, SnapshotError, WorldV1, WorldV2};
 use crate::world::World;
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -173,7 +173,14 @@ struct Timeline {
 enum Kind {
     /// The structure changed: the whole earlier world, as a snapshot.
     Whole(Vec<u8>),
-    Parts { settings: Option<snapshot::SettingsV1>, timeline: Option<Timeline>, bodies: Vec<Option<BodyDelta>> },
+    Parts {
+        settings: Option<snapshot::SettingsV1>,
+        /// The version-2 additions (implicit integrator settings, target springs), when they
+        /// differ.
+        ext: Option<snapshot::ExtensionV2>,
+        timeline: Option<Timeline>,
+        bodies: Vec<Option<BodyDelta>>,
+    },
 }
 
 /// What takes a world back over one operation. See the module documentation.
@@ -276,16 +283,18 @@ fn timeline(w: &WorldV1) -> Timeline {
     Timeline { steps: w.steps, t_base: w.t_base, since: w.since, clock_dt: w.clock_dt, events: w.events.clone(), next_event: w.next_event, loads: w.loads.clone() }
 }
 
-fn diff(before: &WorldV1, after: &WorldV1, scope: StateScope) -> Delta {
+fn diff(before2: &WorldV2, after2: &WorldV2, scope: StateScope) -> Delta {
+    let (before, after) = (&before2.base, &after2.base);
     let same_structure = before.bodies.len() == after.bodies.len() && before.bodies.iter().zip(&after.bodies).all(|(b, a)| b.triangles == a.triangles);
     if !same_structure {
-        let whole = snapshot::frame(snapshot::V1, &encoded(before));
+        let whole = snapshot::frame(snapshot::VERSION, &encoded(before2));
         return Delta { scope, kind: Kind::Whole(whole) };
     }
     let settings = (encoded(&before.settings) != encoded(&after.settings)).then(|| before.settings.clone());
+    let ext = (encoded(&before2.ext) != encoded(&after2.ext)).then(|| before2.ext.clone());
     let timeline = (scope == StateScope::All && encoded(&timeline(before)) != encoded(&timeline(after))).then(|| timeline(before));
     let bodies = before.bodies.iter().zip(&after.bodies).map(|(b, a)| body_delta(b, a, scope)).collect();
-    Delta { scope, kind: Kind::Parts { settings, timeline, bodies } }
+    Delta { scope, kind: Kind::Parts { settings, ext, timeline, bodies } }
 }
 
 fn patch(w: &mut WorldV1, settings: &Option<snapshot::SettingsV1>, timeline: &Option<Timeline>, bodies: &[Option<BodyDelta>]) -> Result<(), DeltaError> {
@@ -329,28 +338,16 @@ fn patch(w: &mut WorldV1, settings: &Option<snapshot::SettingsV1>, timeline: &Op
     Ok(())
 }
 
-/// What deltas do not track (the version-2 additions of snapshots: the implicit integrator's
-/// settings, target springs) and the thread pool stay as they are in `now` across an undo or
-/// redo: the settings always, the targets when the body has the same vertices.
+/// The thread pool is how this machine runs the world, not part of it: it stays across an undo
+/// or redo.
 fn carry_over(now: &World, to: &mut World) {
-    let ext = snapshot::extension(now);
-    to.settings.tolerance = ext.tolerance;
-    to.settings.newton_iterations = ext.newton_iterations;
-    if ext.implicit && to.settings.integrator == crate::world::Integrator::Symplectic {
-        to.settings.integrator = crate::world::Integrator::Implicit;
-    }
-    for (b, a) in to.bodies.iter_mut().zip(&now.bodies) {
-        if b.vertex_count() == a.vertex_count() {
-            let _ = b.set_targets(a.targets());
-        }
-    }
     to.threads = now.threads.clone();
 }
 
 impl Delta {
     /// What takes `after` back to `before` (see the module documentation for `scope`).
     pub fn between(before: &World, after: &World, scope: StateScope) -> Delta {
-        diff(&snapshot::payload(before), &snapshot::payload(after), scope)
+        diff(&snapshot::payload_v2(before), &snapshot::payload_v2(after), scope)
     }
 
     /// Take `world` back; returns the inverse (what takes it forward again). On error the world
@@ -359,17 +356,20 @@ impl Delta {
         match &self.kind {
             Kind::Whole(bytes) => {
                 let mut earlier = World::restore(bytes)?;
-                let inverse = Delta { scope: self.scope, kind: Kind::Whole(snapshot::frame(snapshot::V1, &encoded(&snapshot::payload(world)))) };
+                let inverse = Delta { scope: self.scope, kind: Kind::Whole(world.snapshot()) };
                 carry_over(world, &mut earlier);
                 *world = earlier;
                 Ok(inverse)
             }
-            Kind::Parts { settings, timeline, bodies } => {
-                let now = snapshot::payload(world);
+            Kind::Parts { settings, ext, timeline, bodies } => {
+                let now = snapshot::payload_v2(world);
                 let mut earlier = now.clone();
-                patch(&mut earlier, settings, timeline, bodies)?;
+                patch(&mut earlier.base, settings, timeline, bodies)?;
+                if let Some(e) = ext {
+                    earlier.ext = e.clone();
+                }
                 let inverse = diff(&now, &earlier, self.scope);
-                let mut earlier = snapshot::world_from_v1(earlier).map_err(DeltaError::Invalid)?;
+                let mut earlier = snapshot::world_from_v2(earlier).map_err(DeltaError::Invalid)?;
                 carry_over(world, &mut earlier);
                 *world = earlier;
                 Ok(inverse)
@@ -391,7 +391,7 @@ impl Delta {
     pub fn is_empty(&self) -> bool {
         match &self.kind {
             Kind::Whole(_) => false,
-            Kind::Parts { settings, timeline, bodies } => settings.is_none() && timeline.is_none() && bodies.iter().all(Option::is_none),
+            Kind::Parts { settings, ext, timeline, bodies } => settings.is_none() && ext.is_none() && timeline.is_none() && bodies.iter().all(Option::is_none),
         }
     }
 

@@ -385,8 +385,7 @@ fn load_v1(l: &Load) -> LoadV1 {
 /// The snapshot of `w`: header and payload (see the module documentation).
 pub fn write(w: &World) -> Vec<u8> {
     // Plain numbers, vectors and enums: postcard cannot fail on them.
-    let v2 = WorldV2 { base: payload(w), ext: extension(w) };
-    frame(VERSION, &postcard::to_stdvec(&v2).unwrap_or_default())
+    frame(VERSION, &postcard::to_stdvec(&payload_v2(w)).unwrap_or_default())
 }
 
 /// The version-1 part of `w`'s snapshot (also what `crate::delta` compares).
@@ -470,12 +469,23 @@ pub fn read(bytes: &[u8]) -> Result<World, SnapshotError> {
     if !rest.is_empty() {
         return Err(corrupted(format!("{} unread bytes at the end of the payload", rest.len())));
     }
+    world_from_v2(v2).map_err(corrupted)
+}
+
+/// The whole payload of `w`'s snapshot, version-2 additions included (what `crate::delta`
+/// compares).
+pub(crate) fn payload_v2(w: &World) -> WorldV2 {
+    WorldV2 { base: payload(w), ext: extension(w) }
+}
+
+/// A world from a whole payload (an empty target list means none on any body).
+pub(crate) fn world_from_v2(v2: WorldV2) -> Result<World, String> {
     let mut ext = v2.ext;
-    let mut world = world_from_v1(v2.base).map_err(corrupted)?;
+    let mut world = world_from_v1(v2.base)?;
     if ext.targets.is_empty() {
         ext.targets = vec![Vec::new(); world.bodies.len()];
     }
-    apply_extension(&mut world, &ext).map_err(corrupted)?;
+    apply_extension(&mut world, &ext)?;
     Ok(world)
 }
 

@@ -32,6 +32,8 @@ enum Op {
     Gas(f64),
     Stiffness(f64),
     Gravity(f64),
+    Integrator(&'static str),
+    Target { vertex: usize, k: f64 },
     Subdivide,
 }
 
@@ -47,6 +49,8 @@ fn op() -> impl Strategy<Value = Op> {
         (0.0f64..20.0).prop_map(Op::Gas),
         (50.0f64..500.0).prop_map(Op::Stiffness),
         (0.0f64..12.0).prop_map(Op::Gravity),
+        prop::sample::select(vec!["implicit", "symplectic", "rk4"]).prop_map(Op::Integrator),
+        (0usize..42, 10.0f64..1000.0).prop_map(|(vertex, k)| Op::Target { vertex, k }),
         Just(Op::Subdivide),
     ]
 }
@@ -84,6 +88,11 @@ fn run(w: &mut World, op: &Op) {
         }
         Op::Stiffness(k) => w.set_param(0, "stiffness", softsculpt::params::Value::Number(k)).unwrap(),
         Op::Gravity(g) => w.set_param(0, "gravity", softsculpt::params::Value::Number(g)).unwrap(),
+        Op::Integrator(name) => w.set_param(0, "integrator", softsculpt::params::choice("integrator", name).unwrap()).unwrap(),
+        Op::Target { vertex, k } => {
+            let anchor = [0.0, 1.0, 0.0];
+            b.set_targets(&[softsculpt::body::Target { vertex: vertex % n, anchor, stiffness: k, damping: 0.1 }]).unwrap()
+        }
         Op::Subdivide => {
             if n < 200 {
                 w.bodies[0] = w.bodies[0].subdivided().unwrap();
