@@ -173,6 +173,44 @@ describe('world binding', () => {
     w.free();
   });
 
+  it('staged loads act: a force gives momentum F t, pins hold, a uniform pressure nets no force', () => {
+    const w = World.create();
+    w.addBuiltin('sphere');
+    w.setParam(0, 'gravity', 0);
+    const b = w.body(0);
+    const n = b.vertexCount, F = 0.3; // N in +x, spread equally
+    for (let i = 0; i < n; i++) b.userForces[3 * i] = F / n;
+    w.applyLoads(0);
+    w.step(200);
+    w.sync();
+    const t = 200 * 1e-3;
+    // Springs are internal (they cancel pairwise): only the load changes the momentum.
+    expect(Math.abs(w.body(0).stats.momentum[0] - F * t)).toBeLessThanOrEqual(200 * n * 4 * EPS * F * t);
+    expect(Math.abs(w.body(0).stats.momentum[1])).toBeLessThanOrEqual(200 * n * 4 * EPS * F * t);
+
+    const pins = new Uint8Array(n); pins[0] = 1; pins[5] = 1;
+    w.setPins(0, pins);
+    const x0 = w.body(0).positions.slice(0, 18);
+    w.step(50);
+    const x = w.body(0).positions;
+    for (const i of [0, 5]) for (let d = 0; d < 3; d++) expect(x[3 * i + d]).toBe(x0[3 * i + d]);
+    w.sync();
+    expect(Array.from(w.body(0).pinned.slice(0, 6))).toEqual([1, 0, 0, 0, 0, 1]);
+
+    const still = World.create();
+    still.addBuiltin('sphere');
+    still.setParam(0, 'gravity', 0);
+    still.sync();
+    // A pressure force times the time: 50 Pa × area ~ V^(2/3) × 0.1 s.
+    const scale = 50 * still.body(0).stats.volume ** (2 / 3) * 0.1;
+    still.body(0).facePressures.fill(50); // Pa on every face of the closed surface, inward
+    still.applyLoads(0);
+    still.step(100);
+    still.sync();
+    expect(Math.hypot(...still.body(0).stats.momentum)).toBeLessThan(1e-9 * scale);
+    w.free(); still.free();
+  });
+
   it('subdivision replaces the body and its views keep the mass', () => {
     const w = World.create();
     w.addBuiltin('octopus', 2);
