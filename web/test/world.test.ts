@@ -311,4 +311,19 @@ describe('scenes through the world binding', () => {
     expect(again.params(0).stiffness).toBe(w.params(0).stiffness);
     w.free(); again.free();
   });
+
+  it('clear forgets the scene but keeps the settings; restore keeps the scene', () => {
+    const w = World.create();
+    w.openScene(scene('fig4a_mushroom_press_wind.toml'));
+    w.restore(w.snapshot());
+    expect(w.saveScene()).toMatch(/name = "mushroom"[\s\S]*\[\[event\]\]/);
+    w.clear();
+    expect(w.bodyCount).toBe(0);
+    w.addBuiltin('sphere');
+    expect(w.params(0).wind).toEqual([1.5, 0, 0]); // the scene's wind stays
+    const text = w.saveScene();
+    expect(text).toMatch(/name = "body1"/);
+    expect(text).not.toMatch(/\[\[event\]\]/);
+    w.free();
+  });
 });

@@ -35,7 +35,7 @@
 //! | `ss_add_builtin(w, name, len, mass) -> b` | a built-in model (`sphere`, `mushroom`, `octopus`…) of `mass` kg |
 //! | `ss_add_mesh(w, pos, n_vertices, idx, n_indices, mass, prepare) -> b` | an indexed mesh (f64 xyz, u32 indices); `prepare` 1 = weld, check, orient and reorder like a file, 0 = exactly as given; result: warnings JSON |
 //! | `ss_add_obj(w, bytes, len, mass) -> b` | an OBJ file; result: warnings JSON (array of strings) |
-//! | `ss_clear(w)` | drop bodies, events and loads (and the open scene's names and events); keep settings |
+//! | `ss_clear(w)` | drop bodies, events and loads, forget the open scene; keep settings |
 //! | `ss_step(w, n)` | `World::step_n`: n steps or none (the whole world rolls back; `step` error with `time`) |
 //! | `ss_sync(w)` | refresh every body's f32 render positions, pins and stats |
 //! | `ss_body_count(w)`, `ss_body_views(w, b) -> ptr` | bodies; body b's layout table (`views.rs`) |

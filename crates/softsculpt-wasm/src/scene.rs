@@ -4,8 +4,9 @@
 //! matches by its last component too); `ss_open_scene` uses, then forgets them. The handle keeps
 //! the open scene's body names, length and parsed file ([`SceneInfo`]) so that `ss_save_scene`
 //! writes the scene's obstacles and events back (`softsculpt::scene::save`). They stay until
-//! `ss_clear` (which forgets the names and events, keeping the obstacles like the settings),
-//! the next `ss_open_scene`, or `ss_open_project_v1`; `ss_restore` and `ss_apply_delta` keep them.
+//! `ss_clear`, the next `ss_open_scene`, or `ss_open_project_v1`; `ss_restore` and
+//! `ss_apply_delta` keep them (a page that undoes across a scene's opening re-opens the scene
+//! and restores the world's snapshot into it to bring them back).
 //!
 //! `ss_obstacles(w)` writes the world's obstacles as a JSON array in the result, each with its
 //! `kind` and `friction`, lengths in m:
@@ -32,14 +33,6 @@ pub struct SceneInfo {
     pub names: Vec<String>,
     /// Length of the run (s).
     pub duration: f64,
-}
-
-impl SceneInfo {
-    /// The bodies are gone (`ss_clear`): their names and events go too.
-    pub fn forget_bodies(&mut self) {
-        self.names.clear();
-        self.spec.events.clear();
-    }
 }
 
 thread_local! {

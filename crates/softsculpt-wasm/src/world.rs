@@ -215,7 +215,7 @@ pub unsafe extern "C" fn ss_add_mesh(w: u32, pos: *const f64, n_vertices: usize,
     })
 }
 
-/// Drop every body, the events and loads (and the open scene's names and events); keep the
+/// Drop every body, the events and loads, and forget the open scene (names, file); keep the
 /// settings (obstacles included). The clock starts again at 0.
 #[no_mangle]
 pub extern "C" fn ss_clear(w: u32) -> i32 {
@@ -223,9 +223,7 @@ pub extern "C" fn ss_clear(w: u32) -> i32 {
         with_world(w, |h| {
             h.world = World::new(Vec::new(), h.world.settings.clone());
             h.views.clear();
-            if let Some(s) = &mut h.scene {
-                s.forget_bodies();
-            }
+            h.scene = None;
             Ok(())
         })
     })
