@@ -13,6 +13,8 @@
 //! code.
 
 pub mod body;
+pub mod compat;
+pub mod delta;
 pub mod error;
 pub mod geometry;
 pub mod hash;

@@ -72,7 +72,7 @@ impl std::error::Error for SnapshotError {}
 // ----- the payload, version 1 --------------------------------------------------------------------
 
 /// A whole world.
-#[derive(Serialize, Deserialize)]
+#[derive(Clone, Serialize, Deserialize)]
 pub struct WorldV1 {
     pub settings: SettingsV1,
     /// Steps taken; time = t_base + since · clock_dt (s).
@@ -89,7 +89,7 @@ pub struct WorldV1 {
 }
 
 /// `WorldSettings`; units as there (m/s², m/s, N·s/m³, s, m).
-#[derive(Serialize, Deserialize)]
+#[derive(Clone, Serialize, Deserialize)]
 pub struct SettingsV1 {
     pub gravity: f64,
     pub wind: [f64; 3],
@@ -104,7 +104,7 @@ pub struct SettingsV1 {
     pub edge_contact: bool,
 }
 
-#[derive(Serialize, Deserialize)]
+#[derive(Clone, Serialize, Deserialize)]
 pub enum IntegratorV1 {
     Euler,
     Midpoint,
@@ -112,14 +112,14 @@ pub enum IntegratorV1 {
     Symplectic,
 }
 
-#[derive(Serialize, Deserialize)]
+#[derive(Clone, Serialize, Deserialize)]
 pub struct ObstacleV1 {
     pub shape: ShapeV1,
     pub friction: f64,
 }
 
 /// Obstacle shapes (m); a mesh as positions (flat xyz) and triangles.
-#[derive(Serialize, Deserialize)]
+#[derive(Clone, Serialize, Deserialize)]
 pub enum ShapeV1 {
     Sphere { center: [f64; 3], radius: f64 },
     Box { center: [f64; 3], half: [f64; 3], axes: [[f64; 3]; 3] },
@@ -128,7 +128,7 @@ pub enum ShapeV1 {
 }
 
 /// `Material`; units as there (N/m, N·s/m, N/m, 1/s, mol, K).
-#[derive(Serialize, Deserialize)]
+#[derive(Clone, Serialize, Deserialize)]
 pub struct MaterialV1 {
     pub stiffness: f64,
     pub spring_damping: f64,
@@ -140,7 +140,7 @@ pub struct MaterialV1 {
     pub self_collision: bool,
 }
 
-#[derive(Serialize, Deserialize)]
+#[derive(Clone, Serialize, Deserialize)]
 pub enum VolumeModeV1 {
     Exact,
     Box,
@@ -149,7 +149,7 @@ pub enum VolumeModeV1 {
 
 /// One body. Per-vertex arrays are flat xyz (3 values per vertex) unless said otherwise; rest
 /// lengths follow the springs' order, which the triangles determine (edges sorted by (i, j)).
-#[derive(Serialize, Deserialize)]
+#[derive(Clone, Serialize, Deserialize)]
 pub struct BodyV1 {
     pub material: MaterialV1,
     pub triangles: Vec<[u32; 3]>,
@@ -178,7 +178,7 @@ pub struct BodyV1 {
 }
 
 /// A timed event: time (s), body index, scene line, action.
-#[derive(Serialize, Deserialize)]
+#[derive(Clone, Serialize, Deserialize)]
 pub struct EventV1 {
     pub time: f64,
     pub body: u32,
@@ -187,7 +187,7 @@ pub struct EventV1 {
 }
 
 /// `world::Action`, indices as u32.
-#[derive(Serialize, Deserialize)]
+#[derive(Clone, Serialize, Deserialize)]
 pub enum ActionV1 {
     Freeze { under_load: bool },
     Reset,
@@ -203,7 +203,7 @@ pub enum ActionV1 {
 
 /// A load in force until `until` (s): forces (N per listed vertex) or pressures (Pa per listed
 /// face) on body `body`.
-#[derive(Serialize, Deserialize)]
+#[derive(Clone, Serialize, Deserialize)]
 pub struct LoadV1 {
     pub body: u32,
     pub until: f64,
@@ -313,7 +313,13 @@ fn load_v1(l: &Load) -> LoadV1 {
 
 /// The snapshot of `w`: header and payload (see the module documentation).
 pub fn write(w: &World) -> Vec<u8> {
-    let payload = WorldV1 {
+    // Plain numbers, vectors and enums: postcard cannot fail on them.
+    frame(VERSION, &postcard::to_stdvec(&payload(w)).unwrap_or_default())
+}
+
+/// The payload of `w`'s snapshot (also what `crate::delta` compares).
+pub(crate) fn payload(w: &World) -> WorldV1 {
+    WorldV1 {
         settings: settings_v1(&w.settings),
         steps: w.clock.steps,
         t_base: w.clock.t_base,
@@ -325,9 +331,7 @@ pub fn write(w: &World) -> Vec<u8> {
         events: w.events.list[w.events.next..].iter().map(event_v1).collect(),
         next_event: 0,
         loads: w.events.loads.iter().map(load_v1).collect(),
-    };
-    // Plain numbers, vectors and enums: postcard cannot fail on them.
-    frame(VERSION, &postcard::to_stdvec(&payload).unwrap_or_default())
+    }
 }
 
 /// Header (magic, `version`, length, checksum) and `payload`.
@@ -391,7 +395,7 @@ pub fn read(bytes: &[u8]) -> Result<World, SnapshotError> {
     world_from_v1(v1).map_err(corrupted)
 }
 
-fn world_from_v1(w: WorldV1) -> Result<World, String> {
+pub(crate) fn world_from_v1(w: WorldV1) -> Result<World, String> {
     let settings = settings_from_v1(w.settings)?;
     let bodies = w.bodies.into_iter().enumerate().map(|(k, b)| body_from_v1(b).map_err(|e| format!("body {k}: {e}"))).collect::<Result<Vec<_>, _>>()?;
     let sizes: Vec<(usize, usize)> = bodies.iter().map(|b| (b.vertex_count(), b.face_count())).collect();
