@@ -327,3 +327,103 @@ describe('scenes through the world binding', () => {
     w.free();
   });
 });
+
+describe('undo deltas and version-1 projects through the world binding', () => {
+  it('undoing a brush stroke puts back what it painted and leaves the rest moving; redo paints again', () => {
+    const w = World.create();
+    w.addBuiltin('sphere');
+    w.step(10);
+    const b = () => w.body(0);
+    const rest0 = b().rest.slice();
+    w.mark();
+    const x = b().positions;
+    // Inflate the vertices near the top (y > 0.8 of the top height).
+    const top = Math.max(...Array.from({ length: b().vertexCount }, (_, i) => x[3 * i + 1]));
+    const factors = Float64Array.from({ length: b().vertexCount }, (_, i) => (x[3 * i + 1] > 0.8 * top ? 1.2 : 1));
+    w.scaleRest(0, factors);
+    w.step(20);
+    const painted = b().rest.slice();
+    const far = factors.findIndex((f, i) => f === 1 && x[3 * i + 1] < -0.5 * top);
+    const farBefore = b().positions.slice(3 * far, 3 * far + 3);
+    const undo = w.delta('touched');
+    expect(undo.length).toBeLessThan(8 * rest0.length); // fewer bytes than the rest lengths themselves
+    const redo = w.applyDelta(undo);
+    expect(Array.from(b().rest)).toEqual(Array.from(rest0));
+    expect(Array.from(b().positions.slice(3 * far, 3 * far + 3))).toEqual(Array.from(farBefore)); // not rewound
+    w.applyDelta(redo);
+    expect(Array.from(b().rest)).toEqual(Array.from(painted));
+    w.free();
+  });
+
+  it('undoing a subdivision brings the whole earlier world back', () => {
+    const w = World.create();
+    w.addBuiltin('octopus');
+    w.step(30);
+    const before = w.snapshot();
+    w.mark();
+    w.subdivide(0);
+    w.step(5);
+    const n = w.body(0).vertexCount;
+    const redo = w.applyDelta(w.delta('all'));
+    expect(Array.from(w.snapshot())).toEqual(Array.from(before));
+    w.applyDelta(redo);
+    expect(w.body(0).vertexCount).toBe(n);
+    w.free();
+  });
+
+  it('refuses a delta made for another model, or damaged bytes, and leaves the world as it was', () => {
+    const a = World.create(), b = World.create();
+    a.addBuiltin('sphere'); b.addBuiltin('sphere');
+    expect(thrown(() => a.delta('all')).message).toMatch(/no mark/);
+    a.mark();
+    a.scaleRest(0, new Float64Array(a.body(0).vertexCount).fill(1.1));
+    const d = a.delta('touched');
+    b.addBuiltin('mushroom'); // two bodies: the delta was made for one
+    const before = b.snapshot();
+    const foreign = thrown(() => b.applyDelta(d));
+    expect(foreign.kind).toBe('delta');
+    expect(foreign.message).toMatch(/does not fit/);
+    const damaged = d.slice(); damaged[damaged.length - 1] ^= 0x55;
+    expect(thrown(() => a.applyDelta(damaged)).kind).toBe('delta');
+    expect(thrown(() => a.applyDelta(d.slice(0, 7))).kind).toBe('delta');
+    expect(Array.from(b.snapshot())).toEqual(Array.from(before));
+    a.free(); b.free();
+  });
+
+  it('a version-1 project opens where it was saved and steps on like the saved body', () => {
+    const a = World.create();
+    a.addBuiltin('sphere', 2);
+    a.setParam(0, 'stiffness', 300);
+    a.setParam(0, 'gas.amount', 0.004);
+    a.sync();
+    const v = a.body(0);
+    const arr = (x: ArrayLike<number>) => Array.from(x);
+    const file = {
+      format: 'softsculpt-project', version: 1, name: 'ball',
+      body: {
+        triangles: arr(v.triangles), pinned: arr(v.pinned), gas: [0, v.stats.volume], frozenGas: [0, v.stats.volume],
+        params: { stiffness: 300, springDamping: 0.1, bendingStiffness: 0, damping: 0, gravity: 9.81, gasAmount: 0.004, temperature: 300,
+          volumeMode: 0, windX: 0, windY: 0, windZ: 0, windDrag: 1, groundOn: 0, groundHeight: 0, friction: 0.5, integrator: 3, selfCollision: 0 },
+        positions: arr(v.positions), velocities: arr(v.velocities), restLengths: arr(v.rest), masses: arr(v.masses),
+        frozenPositions: arr(v.positions), frozenRestLengths: arr(v.rest), prestress: new Array(v.positions.length).fill(0),
+        frozenPrestress: new Array(v.positions.length).fill(0), bendingRestLengths: arr(v.bendingRest), frozenBendingRestLengths: arr(v.bendingRest),
+      },
+      ui: { dt: 0.001, tool: 'inflate' },
+    };
+    const b = World.create();
+    b.addBuiltin('octopus');
+    const meta = b.openProjectV1(JSON.stringify(file));
+    expect(meta).toMatchObject({ name: 'ball', ui: { tool: 'inflate' } });
+    expect(b.bodyCount).toBe(1);
+    expect(b.params(0)).toMatchObject({ stiffness: 300, 'gas.amount': 0.004 });
+    a.step(50); b.step(50);
+    expect(Array.from(b.body(0).positions)).toEqual(Array.from(a.body(0).positions));
+    // A damaged one is refused naming what is wrong; the world stays.
+    const bad = { ...file, body: { ...file.body, pinned: file.body.pinned.slice(1) } };
+    const e = thrown(() => b.openProjectV1(JSON.stringify(bad)));
+    expect(e.kind).toBe('project');
+    expect(e.message).toMatch(/'pinned' has 641 values, expected 642/);
+    expect(Array.from(b.body(0).positions)).toEqual(Array.from(a.body(0).positions));
+    a.free(); b.free();
+  });
+});
