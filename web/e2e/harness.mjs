@@ -2,6 +2,8 @@
 // with playwright-core. Screenshots go to e2e/screenshots/ (ignored by git).
 
 import { spawn } from 'node:child_process';
+import { after, before } from 'node:test';
+import { join } from 'node:path';
 import { mkdirSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
@@ -10,11 +12,15 @@ const WEB = fileURLToPath(new URL('..', import.meta.url));
 export const SHOTS = fileURLToPath(new URL('./screenshots/', import.meta.url));
 mkdirSync(SHOTS, { recursive: true });
 
-export async function startServer(port = 5199) {
+/** `vite preview` of the built modeler (`outDir`: another build, e.g. a baseline for benchmarks). */
+export async function startServer(port = 5199, outDir = 'dist') {
+  // Something already answering on the port would be tested instead (an old server, an old build).
+  const url = `http://127.0.0.1:${port}/`;
+  if (await fetch(url).then(() => true, () => false)) throw new Error(`port ${port} is in use: stop what serves ${url} first`);
   // Vite's own entry run by this node (no npx wrapper), in its own process group, so that
   // stopping it stops the server itself and nothing keeps the test process alive.
   const vite = fileURLToPath(new URL('../node_modules/vite/bin/vite.js', import.meta.url));
-  const proc = spawn(process.execPath, [vite, 'preview', '--host', '127.0.0.1', '--port', String(port), '--strictPort'], { cwd: WEB, stdio: ['ignore', 'pipe', 'pipe'], detached: true });
+  const proc = spawn(process.execPath, [vite, 'preview', '--host', '127.0.0.1', '--port', String(port), '--strictPort', '--outDir', outDir], { cwd: WEB, stdio: ['ignore', 'pipe', 'pipe'], detached: true });
   let out = '';
   proc.stdout.on('data', (d) => (out += d));
   proc.stderr.on('data', (d) => (out += d));
@@ -24,7 +30,6 @@ export async function startServer(port = 5199) {
     proc.stderr.destroy();
     proc.unref();
   };
-  const url = `http://127.0.0.1:${port}/`;
   for (let i = 0; i < 150; i++) {
     try {
       const r = await fetch(url);
@@ -35,6 +40,22 @@ export async function startServer(port = 5199) {
   stop();
   throw new Error(`the preview server did not start: ${out}`);
 }
+
+/** A test file's preview server and browser, started before its tests and stopped after them. */
+export function browserSuite() {
+  const suite = { server: null, browser: null };
+  before(async () => {
+    suite.server = await startServer();
+    suite.browser = await launch();
+  });
+  after(async () => {
+    await suite.browser?.close();
+    suite.server?.stop();
+  });
+  return suite;
+}
+
+export const shot = (page, name) => page.screenshot({ path: join(SHOTS, `${name}.png`) });
 
 export async function launch() {
   return chromium.launch({
@@ -83,3 +104,48 @@ export async function drag(page, from, to, steps = 20, holdMs = 0) {
 
 export const vertex = (page, i) => page.evaluate((j) => window.softsculpt.positions().slice(3 * j, 3 * j + 3), i);
 export const dist = (a, b) => Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+
+/**
+ * Record, in the page, the longest gap between requestAnimationFrame callbacks and the Long
+ * Tasks (PerformanceObserver 'longtask') from now until `until` (a page function of `arg`) holds,
+ * checked in every animation frame (so what the page draws after that is not counted), then
+ * `settleMs` more. `action(aside)` runs meanwhile; `aside(f)` runs the test's own `f` (a
+ * screenshot, which stalls the page to capture it) with the recording paused. `startPaused`:
+ * recording begins when the first `aside` returns. Returns { maxGapMs, longTasks: [ms…], ms }.
+ */
+export async function frameGaps(page, action, until, arg, { timeout = 180000, settleMs = 500, startPaused = false } = {}) {
+  await page.evaluate(({ src, arg, settleMs, startPaused }) => {
+    const w = window;
+    if (!w.__gaps) {
+      w.__gaps = { on: false, last: 0, max: 0, long: [] };
+      // Timed with performance.now() in the callback: the timestamp a frame is given can predate
+      // a long block of the main thread (the frame was begun before it), and would hide it.
+      const loop = () => {
+        const t = performance.now();
+        const g = w.__gaps;
+        if (g.on) {
+          g.max = Math.max(g.max, t - g.last);
+          g.last = t;
+          if (!g.doneAt && g.until()) g.doneAt = t;
+          if (g.doneAt && t - g.doneAt >= g.settleMs) { g.on = false; g.ms = t - g.t0; }
+        }
+        requestAnimationFrame(loop);
+      };
+      requestAnimationFrame(loop);
+      new PerformanceObserver((list) => { for (const e of list.getEntries()) if (w.__gaps.on) w.__gaps.long.push(Math.round(e.duration)); }).observe({ type: 'longtask' });
+    }
+    const until = new Function('arg', `return (${src})(arg);`);
+    Object.assign(w.__gaps, { on: !startPaused, paused: startPaused, last: performance.now(), max: 0, long: [], t0: performance.now(), doneAt: 0, ms: undefined, settleMs, until: () => until(arg) });
+  }, { src: until.toString(), arg, settleMs, startPaused });
+  const aside = async (f) => {
+    await page.evaluate(() => { const g = window.__gaps; if (g.on) g.max = Math.max(g.max, performance.now() - g.last); g.paused ||= g.on; g.on = false; });
+    await f();
+    await page.evaluate(() => { const g = window.__gaps; if (g.paused) Object.assign(g, { on: true, paused: false, last: performance.now() }); });
+  };
+  await action(aside);
+  await page.waitForFunction(() => !window.__gaps.on && window.__gaps.ms !== undefined, null, { timeout, polling: 100 });
+  return page.evaluate(() => {
+    const g = window.__gaps;
+    return { maxGapMs: Math.round(g.max), longTasks: g.long, ms: Math.round(g.ms) };
+  });
+}

@@ -2,32 +2,24 @@
 // errors with the line, save and open again; and a screenshot of every shipped figure scene
 // (scenes/screenshots/, shown in scenes/README.md).
 
-import { after, before, test } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { mkdirSync, readFileSync, readdirSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { SHOTS, inspect, launch, openModeler, startServer } from './harness.mjs';
+import { SHOTS, browserSuite, inspect, openModeler } from './harness.mjs';
 
 const SCENES = fileURLToPath(new URL('../../scenes/', import.meta.url));
 const FIGURES = join(SCENES, 'screenshots');
 
-let server, browser;
-before(async () => {
-  server = await startServer();
-  browser = await launch();
-});
-after(async () => {
-  await browser?.close();
-  server?.stop();
-});
+const suite = browserSuite();
 
 const sceneInput = (page) => page.locator('input[data-picker=scene]');
 const sceneTime = (page) => inspect(page, () => window.softsculpt.scene()?.time ?? -1);
 
 test('a scene opens with its mesh file and obstacle, and its events play in time', async () => {
-  const { page, errors } = await openModeler(browser, server.url);
+  const { page, errors } = await openModeler(suite.browser, suite.server.url);
   const dir = join(tmpdir(), 'softsculpt-scene');
   mkdirSync(dir, { recursive: true });
   writeFileSync(join(dir, 'tent.obj'), 'v -3 0.05 -3\nv 3 0.05 -3\nv 3 0.05 3\nv -3 0.05 3\nf 1 3 2\nf 1 4 3\n');
@@ -86,7 +78,7 @@ nrt = 40.0
 });
 
 test('a bad scene file says which line and key, and keeps the model', async () => {
-  const { page } = await openModeler(browser, server.url);
+  const { page } = await openModeler(suite.browser, suite.server.url);
   const path = join(tmpdir(), 'bad-scene.toml');
   writeFileSync(path, '[world]\ndt = 0.001\n\n[[body]]\nmodel = "sphere"\nstifness = 10\n');
   await sceneInput(page).setInputFiles(path);
@@ -98,7 +90,7 @@ test('a bad scene file says which line and key, and keeps the model', async () =
 });
 
 test('save scene downloads a file that opens again as the same body', async () => {
-  const { page } = await openModeler(browser, server.url);
+  const { page } = await openModeler(suite.browser, suite.server.url);
   await sceneInput(page).setInputFiles(join(SCENES, 'fig4a_mushroom_press_wind.toml'));
   await page.waitForFunction(() => window.softsculpt.scene() !== null);
   await page.waitForFunction(() => window.softsculpt.scene().time > 0.5, null, { timeout: 30000 });
@@ -122,7 +114,7 @@ const MOMENT = { 'fig4b_sphere_push.toml': 2.5, 'fig7_local_deformation.toml': 0
 const KEYS = { 'fig7_local_deformation.toml': 'm' };
 for (const file of readdirSync(SCENES).filter((f) => f.endsWith('.toml')).sort()) {
   test(`figure scene ${file} plays to its end in the modeler`, async () => {
-    const { page, errors } = await openModeler(browser, server.url);
+    const { page, errors } = await openModeler(suite.browser, suite.server.url);
     await sceneInput(page).setInputFiles(join(SCENES, file));
     await page.waitForFunction(() => window.softsculpt.scene() !== null);
     if (KEYS[file]) await page.keyboard.press(KEYS[file]);

@@ -1,29 +1,34 @@
-// `window.softsculpt`: a small read-only inspection handle for tests and the curious.
-// Reading it never changes the model.
+// `window.softsculpt`: a small read-only inspection handle for tests and the curious. It reads
+// the page's mirror of the latest frame drawn (positions as drawn, in f32), synchronously;
+// reading it never changes the model. `ready` turns true when the first frame of the model has
+// been drawn.
 
 import { Vector3 } from 'three';
 import type { App } from './app';
 
 export function inspector(app: App) {
+  const m = app.mirror;
   return {
-    ready: true,
-    vertexCount: () => app.body().vertexCount,
-    faceCount: () => app.body().faceCount,
-    springCount: () => app.body().springCount,
-    positions: () => Array.from(app.body().positions()),
-    pinned: () => Array.from(app.body().pinned()),
-    masses: () => Array.from(app.body().masses()),
-    stats: () => app.body().stats(),
-    param: (name: string) => app.body().get(name as never),
+    get ready() { return m.ready; },
+    vertexCount: () => m.vertexCount,
+    faceCount: () => m.faceCount,
+    springCount: () => m.springCount,
+    positions: () => Array.from(m.positions),
+    pinned: () => Array.from(m.pinned),
+    masses: () => Array.from(m.masses),
+    stats: () => structuredClone(m.stats),
+    param: (name: string) => m.params[name as keyof typeof m.params],
     tool: () => app.tools.tool.name,
-    scene: () => app.sceneInfo,
-    playing: () => app.settings.playing,
-    settings: () => ({ ...app.settings }),
-    history: () => app.history.sizes,
+    scene: () => (m.scene ? { ...m.scene } : null),
+    playing: () => m.settings.playing,
+    settings: () => ({ ...m.settings }),
+    history: () => [...m.history] as [number, number],
     lastMessage: () => app.lastMessageText,
     fps: () => app.hud.fps,
-    slowMotion: () => app.slowMotion,
-    simMs: () => app.simMs,
+    slowMotion: () => m.slowMotion,
+    simMs: () => m.simMs,
+    /** The long operation the simulation is busy with ("subdividing"…), or null. */
+    busy: () => app.busy,
     helpVisible: () => app.hud.helpVisible,
     camera: () => app.viewport.camera.position.toArray(),
     pixels: () => {
@@ -39,7 +44,7 @@ export function inspector(app: App) {
     },
     /** Project coordinates of vertex i to page pixels (for driving the mouse in tests). */
     screenOf: (i: number) => {
-      const x = app.body().positions();
+      const x = m.positions;
       const v = app.viewport;
       const p = new Vector3(x[3 * i], x[3 * i + 1], x[3 * i + 2]).project(v.camera);
       const r = v.canvas.getBoundingClientRect();

@@ -1,7 +1,7 @@
-// Entry point: load the engine, build the modeler, wire keys, file pickers and drag-and-drop.
+// Entry point: build the modeler (it starts the simulation worker), wire keys, file pickers and
+// drag-and-drop.
 
 import './style.css';
-import { initEngine } from './engine/wasm';
 import { App } from './app';
 import { buildPanel } from './panel';
 import { IMPORT_EXTENSIONS } from './io/import';
@@ -56,23 +56,20 @@ async function openSceneFiles(app: App, files: File[]): Promise<void> {
   app.openScene(scene.name, await scene.text(), meshes);
 }
 
-async function main(): Promise<void> {
+function main(): void {
   const status = document.getElementById('status')!;
-  try {
-    await initEngine(new URL('/softsculpt.wasm', window.location.href).href);
-  } catch (e) {
-    status.textContent = `SoftSculpt could not start its engine: ${e}`;
-    status.className = 'fatal';
-    return;
-  }
   const app = new App(
     document.getElementById('view') as HTMLCanvasElement,
     document.getElementById('plots') as HTMLCanvasElement,
     document.getElementById('hud')!,
     HELP,
+    new URL('/softsculpt.wasm', window.location.href).href,
   );
-  await app.start();
-  status.remove();
+  (window as any).softsculpt = inspector(app);
+  // The engine starts in its worker; the page draws meanwhile and shows the model when it comes.
+  app.start(() => status.remove());
+  const loop = () => { app.frame(); requestAnimationFrame(loop); };
+  requestAnimationFrame(loop);
 
   const importFile = picker('import', IMPORT_EXTENSIONS.join(','), async (f) => app.importFile(f.name, await f.arrayBuffer()));
   const openProject = picker('project', '.json,.softsculpt.json', async (f) => app.openProjectFile(f.name, await f.text()));
@@ -96,16 +93,14 @@ async function main(): Promise<void> {
       case 'f': case 'F': app.freeze(); break;
       case 'r': case 'R': app.reset(); break;
       case 'u': case 'U': app.subdivide(); break;
-      case ' ': ev.preventDefault(); app.settings.playing = !app.settings.playing; app.message(app.settings.playing ? 'playing' : 'paused'); break;
+      case ' ': ev.preventDefault(); app.togglePlaying(); break;
       case '.': app.step(); break;
       case 'x': case 'X': app.wireframe = !app.wireframe; app.syncScene(); break;
       case 'v': case 'V': app.viewport.resetView(); break;
       case 'e': case 'E': void app.export('obj'); break;
-      case 'w': case 'W':
-        app.windFromView(Math.max(5, Math.hypot(app.body().get('windX'), app.body().get('windY'), app.body().get('windZ'))));
-        break;
-      case '[': app.brush.radius = Math.max(0.02, app.brush.radius / 1.2); break;
-      case ']': app.brush.radius = Math.min(3, app.brush.radius * 1.2); break;
+      case 'w': case 'W': app.windFromView(Math.max(5, app.windStrength)); break;
+      case '[': app.brush.radius = Math.max(0.02, app.brush.radius / 1.2); app.sendUi(); break;
+      case ']': app.brush.radius = Math.min(3, app.brush.radius * 1.2); app.sendUi(); break;
       case '?': case 'h': case 'H': app.hud.toggleHelp(); break;
       case 'Escape': app.hud.toggleHelp(false); break;
       default: return;
@@ -123,13 +118,10 @@ async function main(): Promise<void> {
     if (all.some((x) => x.name.endsWith('.toml'))) { await openSceneFiles(app, all); return; }
     const f = all[0];
     if (!f) return;
-    if (f.name.endsWith('.json')) await app.openProjectFile(f.name, await f.text());
-    else await app.importFile(f.name, await f.arrayBuffer());
+    if (f.name.endsWith('.json')) app.openProjectFile(f.name, await f.text());
+    else app.importFile(f.name, await f.arrayBuffer());
   });
 
-  (window as any).softsculpt = inspector(app);
-  const loop = () => { app.frame(); requestAnimationFrame(loop); };
-  requestAnimationFrame(loop);
 }
 
-void main();
+main();

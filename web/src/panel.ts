@@ -1,5 +1,6 @@
 // The side panel (lil-gui): every tool, parameter and operation, each with a tooltip that names
-// its unit and shortcut. Parameter edits go through App.setParam (validated, undoable).
+// its unit and shortcut. Parameter and settings edits are sent to the simulation (validated and
+// undoable there); the panel shows the page's mirror of its state and refreshes when it changes.
 
 import GUI, { type Controller } from 'lil-gui';
 import type { App } from './app';
@@ -17,10 +18,10 @@ export interface PanelActions {
 export function buildPanel(app: App, actions: PanelActions): GUI {
   const gui = new GUI({ title: 'SoftSculpt', width: 290 });
   const tip = (c: Controller, text: string) => { c.domElement.title = text; c.domElement.setAttribute('data-tip', text); return c; };
-  const p = app.params();
+  const p = { ...app.mirror.params };
   const view: Record<string, any> = {
     tool: app.tools.tool.name,
-    model: app.settings.model,
+    model: app.mirror.settings.model,
     pressure: '', volume: '',
     windStrength: 0,
   };
@@ -28,7 +29,7 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   // Parameters shown in the panel mirror the body; edits are validated by the engine.
   const param = (folder: GUI, name: ParamName, label: string, tipText: string, min?: number, max?: number, step?: number) => {
     const c = folder.add(p, name, min, max, step).name(label);
-    c.onFinishChange((v: number) => { if (!app.setParam(name, Number(v))) refresh(); });
+    c.onFinishChange((v: number) => app.setParam(name, Number(v)));
     return tip(c, tipText);
   };
 
@@ -36,7 +37,7 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   const toolNames = Object.fromEntries(app.tools.tools.map((t) => [`${t.label} (${t.key.toUpperCase()})`, t.name]));
   tip(tools.add(view, 'tool', toolNames).name('tool').onChange((v: string) => app.tools.select(v)),
     app.tools.tools.map((t) => t.tooltip).join('\n'));
-  tip(tools.add(app.brush, 'radius', 0.02, 2, 0.01).name('brush radius (m)'), 'Brush radius in metres ([ and ] keys)');
+  tip(tools.add(app.brush, 'radius', 0.02, 2, 0.01).name('brush radius (m)').onFinishChange(() => app.sendUi()), 'Brush radius in metres ([ and ] keys)');
   // The strength slider belongs to the active tool: rebuilt when the tool changes.
   let strength: Controller | null = null;
   const showStrength = () => {
@@ -44,7 +45,7 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
     strength = null;
     const t = app.tools.tool;
     if (!t.strengthInfo) return;
-    strength = tip(tools.add(t, 'strength', t.strengthInfo.min, t.strengthInfo.max).name(t.strengthInfo.label), `${t.label} strength: ${t.strengthInfo.label}`);
+    strength = tip(tools.add(t, 'strength', t.strengthInfo.min, t.strengthInfo.max).name(t.strengthInfo.label).onFinishChange(() => app.sendUi()), `${t.label} strength: ${t.strengthInfo.label}`);
   };
   showStrength();
 
@@ -69,15 +70,16 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
     'Download the bodies as a scene file (.toml), their shapes as they are now; an open scene keeps its obstacles and events');
 
   const sim = gui.addFolder('Simulation');
-  tip(sim.add(app.settings, 'playing').name('play (Space)').onChange(() => app.autosave()), 'Play / pause the simulation (Space)');
+  const settings = app.mirror.settings;
+  tip(sim.add(settings, 'playing').name('play (Space)').onChange((v: boolean) => app.setSettings({ playing: v })), 'Play / pause the simulation (Space)');
   tip(sim.add({ f: () => app.step() }, 'f').name('single step (.)'), 'Advance one frame of steps while paused (.)');
   tip(sim.add({ f: () => app.restartScene() }, 'f').name('restart scene'), 'Play the open scene again from its start');
   const integ = sim.add(p, 'integrator', Object.fromEntries(INTEGRATORS.map((n, i) => [n, i]))).name('integrator');
   integ.onChange((v: number) => app.setParam('integrator', Number(v)));
   tip(integ, 'euler (order 1), midpoint (2), rk4 (4), symplectic Euler (1, energy-stable; default)');
-  tip(sim.add(app.settings, 'dt', 1e-6, 5e-3).name('dt (s)').onFinishChange(() => app.autosave()), 'Time step in seconds: smaller is more stable, slower');
-  tip(sim.add(app.settings, 'realTime').name('real time').onChange(() => app.autosave()), 'Simulated time follows the clock (steps per frame follow the frame rate); off: a fixed number of steps per frame');
-  tip(sim.add(app.settings, 'substeps', 1, 500, 1).name('steps per frame').onFinishChange(() => app.autosave()), 'Steps per frame when not in real time');
+  tip(sim.add(settings, 'dt', 1e-6, 5e-3).name('dt (s)').onFinishChange((v: number) => app.setSettings({ dt: v })), 'Time step in seconds: smaller is more stable, slower');
+  tip(sim.add(settings, 'realTime').name('real time').onChange((v: boolean) => app.setSettings({ realTime: v })), 'Simulated time follows the clock (steps per frame follow the frame rate); off: a fixed number of steps per frame');
+  tip(sim.add(settings, 'substeps', 1, 500, 1).name('steps per frame').onFinishChange((v: number) => app.setSettings({ substeps: v })), 'Steps per frame when not in real time');
   param(sim, 'stiffness', 'stiffness k (N/m)', 'Spring stiffness, N/m: higher keeps the shape', 0, 5000);
   param(sim, 'springDamping', 'spring damping (N·s/m)', 'Damping along each spring, N·s/m: calms vibrations', 0, 5);
   param(sim, 'bendingStiffness', 'bending k_b (N/m)', 'Stiffness of the bending springs across every edge, N/m: resists folding (0 = a pure balloon)', 0, 5000);
@@ -85,8 +87,8 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   const selfHit = { on: p.selfCollision !== 0 };
   tip(sim.add(selfHit, 'on').name('self-collision').onChange((v: boolean) => app.setParam('selfCollision', v ? 1 : 0)),
     'Keep the surface from passing through itself (a crushed or folded body); costs time, off by default');
-  const mass = { total: app.body().masses().reduce((a, b) => a + b, 0) };
-  tip(sim.add(mass, 'total', 0.01, 100).name('total mass (kg)').onFinishChange((v: number) => app.edit('set mass', true, () => app.body().set('totalMass', v))),
+  const mass = { total: app.mirror.totalMass };
+  tip(sim.add(mass, 'total', 0.01, 100).name('total mass (kg)').onFinishChange((v: number) => app.setMass(v)),
     'Total mass in kg, split equally over the vertices (resets painted masses)');
 
   const world = gui.addFolder('Gravity & ground');
@@ -125,22 +127,22 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
 
 
   function refresh(): void {
-    Object.assign(p, app.params());
+    Object.assign(p, app.mirror.params);
     ground.on = p.groundOn !== 0;
     selfHit.on = p.selfCollision !== 0;
     gravity.on = p.gravity !== 0;
     if (p.gravity !== 0) gravity.last = p.gravity;
     if (view.tool !== app.tools.tool.name) showStrength();
     view.tool = app.tools.tool.name;
-    view.model = app.settings.model;
-    mass.total = app.body().masses().reduce((a, b) => a + b, 0);
+    view.model = app.mirror.settings.model;
+    mass.total = app.mirror.totalMass;
     view.windStrength = Math.hypot(p.windX, p.windY, p.windZ);
     gui.controllersRecursive().forEach((c) => c.updateDisplay());
   }
   app.onChange(refresh);
   // Live readouts, a few times a second.
   setInterval(() => {
-    const s = app.body().stats();
+    const s = app.mirror.stats;
     view.pressure = fmt(s.pressure);
     view.volume = fmt(s.volume);
     gui.controllersRecursive().forEach((c) => { if (c.property === 'pressure' || c.property === 'volume') c.updateDisplay(); });

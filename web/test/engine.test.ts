@@ -1,7 +1,8 @@
 import { beforeAll, describe, expect, it } from 'vitest';
 import { loadEngine } from './setup';
 import { SoftBody } from '../src/engine/softbody';
-import { capture, parse, restore, serialize } from '../src/project';
+import { parse, serialize } from '../src/project';
+import { capture, restore } from '../src/engine/state';
 import { History, travel } from '../src/history';
 
 beforeAll(loadEngine);

@@ -1,7 +1,8 @@
 import { beforeAll, describe, expect, it } from 'vitest';
 import { loadEngine } from './setup';
 import { falloff, facesAround, grabForce, inflateFactor, verticesAround } from '../src/tools/brush';
-import { defaultSettings, loadModel, placeOnGround, stableDt, MODELS } from '../src/models';
+import { placeOnGround, MODELS } from '../src/models';
+import { defaultSettings, loadModel, stableDt } from '../src/engine/models';
 
 beforeAll(loadEngine);
 

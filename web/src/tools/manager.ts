@@ -10,7 +10,8 @@ export class ToolManager {
   private readonly moveHandler = (ev: PointerEvent) => { if (this.dragging) this.dragging.move(ev); };
   private readonly up = () => this.onUp();
 
-  constructor(private readonly ctx: ToolContext, readonly tools: Tool[], private readonly onChange: (t: Tool) => void) {
+  /** `enabled`: whether a press may start a stroke now (not while the simulation is busy loading). */
+  constructor(private readonly ctx: ToolContext, readonly tools: Tool[], private readonly onChange: (t: Tool) => void, private readonly enabled: () => boolean = () => true) {
     this.active = tools[0];
     this.active.connect(ctx);
     const canvas = ctx.viewport.canvas;
@@ -34,12 +35,8 @@ export class ToolManager {
     this.onChange(t);
   }
 
-  update(dt: number): void {
-    this.active.update(dt);
-  }
-
   private onDown(ev: PointerEvent): void {
-    if (ev.button !== 0) return;
+    if (ev.button !== 0 || !this.enabled()) return;
     const hit = this.ctx.viewport.pick(ev);
     if (!hit || !this.active.start(hit, ev)) return;
     this.dragging = this.active;

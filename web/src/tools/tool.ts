@@ -1,9 +1,12 @@
 // Every interaction tool has the same small lifecycle (as three.js controls): connect when it
-// becomes the active tool, disconnect when another takes over, dispose at the end, update every
-// frame; and start/move/end for a drag on the body (the camera is disabled while a tool drags).
+// becomes the active tool, disconnect when another takes over, dispose at the end; and
+// start/move/end for a drag on the body (the camera is disabled while a tool drags).
+// The tools run on the page: they pick and follow the pointer and send the stroke to the
+// simulation worker (`strokeStart`, `strokeMove`, `strokeEnd`), which acts on the body every
+// tick (worker/strokes.ts).
 
 import type * as THREE from 'three';
-import type { SoftBody } from '../engine/softbody';
+import type { Command, StrokeTool, Vec3 } from '../protocol';
 import type { Viewport } from '../view/viewport';
 
 export interface Brush {
@@ -18,20 +21,24 @@ export interface Strength {
   max: number;
 }
 
+/** The body as last drawn, for picking and overlays. */
+export interface BodyView {
+  /** xyz per vertex (m). */
+  positions: Float32Array;
+  masses: Float64Array;
+  pinned: Uint8Array;
+}
+
 export interface ToolContext {
-  body(): SoftBody;
   readonly viewport: Viewport;
   readonly brush: Brush;
-  /** An operation that changes the model is about to begin: remember the state for undo. */
-  beginEdit(label: string): void;
-  /** The operation ended (pushes the undo entry and autosaves). */
-  endEdit(): void;
-  /** The tool changed what an overlay shows. */
-  refreshOverlay(): void;
+  body(): BodyView;
+  /** Send a stroke command to the simulation. */
+  send(cmd: Command): void;
 }
 
 export interface Tool {
-  readonly name: string;
+  readonly name: StrokeTool;
   readonly label: string;
   readonly key: string;
   readonly tooltip: string;
@@ -41,19 +48,20 @@ export interface Tool {
   connect(ctx: ToolContext): void;
   disconnect(): void;
   dispose(): void;
-  /** Every frame, before the simulation steps (dt: simulated seconds this frame). */
-  update(dt: number): void;
   /** Pointer pressed on the body: return true to take the drag. */
   start(hit: THREE.Intersection, ev: PointerEvent): boolean;
   move(ev: PointerEvent): void;
   end(): void;
   /** Colour overlay while the tool is active, or null. */
-  overlay?(colors: Float32Array, body: SoftBody): void;
+  overlay?(colors: Float32Array, body: BodyView): void;
 }
 
-/** Base with the shared plumbing; tools override what they need. */
+/**
+ * Base with the shared plumbing: a stroke starts at the picked point and, by default, follows the
+ * surface point under the pointer (press and the brushes); tools override what they need.
+ */
 export abstract class BaseTool implements Tool {
-  abstract readonly name: string;
+  abstract readonly name: StrokeTool;
   abstract readonly label: string;
   abstract readonly key: string;
   abstract readonly tooltip: string;
@@ -67,12 +75,29 @@ export abstract class BaseTool implements Tool {
   connect(ctx: ToolContext): void { this.ctx = ctx; }
   disconnect(): void { if (this.dragging) this.end(); this.ctx = null; }
   dispose(): void { this.disconnect(); }
-  update(_dt: number): void {}
-  start(_hit: THREE.Intersection, ev: PointerEvent): boolean { this.inverted = ev.shiftKey; this.dragging = true; return true; }
-  move(_ev: PointerEvent): void {}
-  end(): void { this.dragging = false; }
+
+  start(hit: THREE.Intersection, ev: PointerEvent): boolean {
+    const ctx = this.ctx!;
+    this.inverted = ev.shiftKey;
+    this.dragging = true;
+    ctx.send({ type: 'strokeStart', tool: this.name, point: point(hit.point), radius: ctx.brush.radius, strength: this.strength, inverted: this.inverted });
+    return true;
+  }
+
+  move(ev: PointerEvent): void {
+    if (!this.dragging || !this.ctx) return;
+    this.inverted = ev.shiftKey;
+    const hit = this.ctx.viewport.pick(ev);
+    this.ctx.send({ type: 'strokeMove', point: hit ? point(hit.point) : null, inverted: this.inverted });
+  }
+
+  end(): void {
+    if (!this.dragging) return;
+    this.dragging = false;
+    this.ctx?.send({ type: 'strokeEnd' });
+  }
 }
 
-export function point(v: THREE.Vector3): [number, number, number] {
+export function point(v: THREE.Vector3): Vec3 {
   return [v.x, v.y, v.z];
 }

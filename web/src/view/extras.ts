@@ -1,39 +1,38 @@
-// What a scene adds to the view: its other bodies (read from the engine's f32 positions, like
-// the main surface) and its rigid obstacles (sphere, box, capsule, triangle mesh).
+// What a scene adds to the view: its other bodies (drawn from the frame's positions, like the
+// main surface) and its rigid obstacles (sphere, box, capsule, triangle mesh).
 
 import * as THREE from 'three';
-import type { SoftBody } from '../engine/softbody';
-import type { Obstacle } from '../engine/scene';
+import type { Obstacle } from '../protocol';
 
 const BODY_COLORS = [0x7fb0d9, 0x9ccf7f, 0xd98fb0, 0xc9c26b];
 
 export class SceneExtras {
   readonly group = new THREE.Group();
-  private bodies: { body: SoftBody; mesh: THREE.Mesh }[] = [];
+  private bodies: { count: number; mesh: THREE.Mesh }[] = [];
   private obstacles: THREE.Object3D[] = [];
   private readonly obstacleMaterial = new THREE.MeshStandardMaterial({ color: 0x8a8f96, roughness: 0.8, metalness: 0.1, side: THREE.DoubleSide });
 
   /** The bodies besides the active one (each drawn with its own colour). */
-  setBodies(bodies: SoftBody[]): void {
+  setBodies(bodies: { vertexCount: number; triangles: Uint32Array }[]): void {
     for (const b of this.bodies) { this.group.remove(b.mesh); b.mesh.geometry.dispose(); (b.mesh.material as THREE.Material).dispose(); }
     this.bodies = bodies.map((body, k) => {
       const g = new THREE.BufferGeometry();
-      g.setIndex(new THREE.BufferAttribute(body.triangles().slice(), 1));
-      g.setAttribute('position', new THREE.BufferAttribute(body.syncRender(), 3));
+      g.setIndex(new THREE.BufferAttribute(body.triangles, 1));
+      g.setAttribute('position', new THREE.BufferAttribute(new Float32Array(3 * body.vertexCount), 3));
       const mesh = new THREE.Mesh(g, new THREE.MeshStandardMaterial({ color: BODY_COLORS[k % BODY_COLORS.length], roughness: 0.55, side: THREE.DoubleSide }));
       mesh.frustumCulled = false;
       this.group.add(mesh);
-      return { body, mesh };
+      return { count: body.vertexCount, mesh };
     });
-    this.update();
   }
 
-  /** New positions from the engine (fresh views, no copies). */
-  update(): void {
-    for (const { body, mesh } of this.bodies) {
-      if (!body.alive) continue;
+  /** New positions: the frame's buffer, the other bodies' xyz from `start` on, in order (views, no copies). */
+  update(all: Float32Array, start: number): void {
+    let at = start;
+    for (const { count, mesh } of this.bodies) {
       const p = mesh.geometry.getAttribute('position') as THREE.BufferAttribute;
-      (p as any).array = body.syncRender();
+      (p as any).array = all.subarray(at, at + 3 * count);
+      at += 3 * count;
       p.needsUpdate = true;
       mesh.geometry.computeVertexNormals();
     }

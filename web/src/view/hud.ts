@@ -1,9 +1,13 @@
-// Text overlays: the readout (fps, simulation time per frame, sizes), messages, and help.
+// Text overlays: the readout (fps, simulation time per frame, sizes), the progress of a long
+// operation in the worker, messages, and help.
+
+import type { SceneInfo } from '../protocol';
 
 export class Hud {
   private readonly readout: HTMLElement;
   private readonly messages: HTMLElement;
   private readonly help: HTMLElement;
+  private readonly busy: HTMLElement;
   private frames = 0;
   private lastFps = performance.now();
   fps = 0;
@@ -11,6 +15,8 @@ export class Hud {
   constructor(root: HTMLElement, helpText: string) {
     this.readout = el(root, 'div', 'readout');
     this.messages = el(root, 'div', 'messages');
+    this.busy = el(root, 'div', 'progress');
+    this.busy.hidden = true;
     this.help = el(root, 'div', 'help');
     this.help.innerHTML = helpText;
     this.help.hidden = true;
@@ -28,8 +34,16 @@ export class Hud {
   }
 
   show(lines: string[]): void {
-    this.readout.textContent = lines.join('\n');
+    const text = lines.join('\n');
+    if (this.readout.textContent !== text) this.readout.textContent = text;
   }
+
+  /** A long operation under way ("subdividing", with the fraction done if known), or none (null). */
+  progress(label: string | null, fraction?: number): void {
+    this.busy.hidden = label === null;
+    if (label !== null) this.busy.textContent = `${label}…${fraction === undefined ? '' : ` ${Math.round(100 * fraction)}%`}`;
+  }
+  get progressText(): string | null { return this.busy.hidden ? null : this.busy.textContent; }
 
   /** A message; kind 'error' stays until dismissed, others fade after a few seconds. */
   message(text: string, kind: 'info' | 'warn' | 'error' = 'info'): void {
@@ -44,6 +58,11 @@ export class Hud {
     this.help.hidden = show === undefined ? !this.help.hidden : !show;
   }
   get helpVisible(): boolean { return !this.help.hidden; }
+}
+
+/** The HUD line of an open scene. */
+export function sceneLine({ name, time, duration, bodies }: SceneInfo): string {
+  return `scene ${name}: ${bodies} ${bodies === 1 ? 'body' : 'bodies'}   t ${time.toFixed(2)} of ${duration} s${time >= duration ? ' (events done)' : ''}`;
 }
 
 function el(parent: HTMLElement, tag: string, cls: string): HTMLElement {

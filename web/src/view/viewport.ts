@@ -1,9 +1,8 @@
 // The 3D view: renderer, camera, trackball, ground grid, the body's surface and springs.
-// The surface reads the engine's f32 positions (a view over wasm memory) without copying.
+// The surface draws the positions of the simulation's frames (transferred buffers) without copying.
 
 import * as THREE from 'three';
 import { TrackballControls } from 'three/examples/jsm/controls/TrackballControls.js';
-import type { SoftBody } from '../engine/softbody';
 import { SceneExtras } from './extras';
 
 const HOME = new THREE.Vector3(3.2, 2.4, 4.2);
@@ -22,9 +21,13 @@ export class Viewport {
   /** A scene's other bodies and obstacles. */
   readonly extras = new SceneExtras();
   private colors = new Float32Array(0);
+  /** Something changed since the last render (a new frame, the camera, the overlay…). */
+  private dirty = true;
+  /** WebGL runs in software here (no GPU): drawn without multisampling, which costs it most. */
+  readonly software = isSoftwareRenderer();
 
   constructor(readonly canvas: HTMLCanvasElement) {
-    this.renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+    this.renderer = new THREE.WebGLRenderer({ canvas, antialias: !this.software, preserveDrawingBuffer: true });
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
     this.scene.background = new THREE.Color(0x20252c);
     this.scene.add(new THREE.HemisphereLight(0xdde8ff, 0x303030, 1.6));
@@ -37,6 +40,7 @@ export class Viewport {
     this.controls.zoomSpeed = 1.2;
     this.controls.panSpeed = 0.6;
     this.controls.target.copy(TARGET);
+    this.controls.addEventListener('change', () => this.invalidate());
 
     const geometry = new THREE.BufferGeometry();
     this.surface = new THREE.Mesh(geometry, new THREE.MeshStandardMaterial({ color: 0xd9a066, roughness: 0.55, metalness: 0.05, vertexColors: false, side: THREE.DoubleSide }));
@@ -57,6 +61,7 @@ export class Viewport {
     const w = this.canvas.clientWidth || window.innerWidth;
     const h = this.canvas.clientHeight || window.innerHeight;
     this.renderer.setSize(w, h, false);
+    this.invalidate();
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
     this.controls.handleResize();
@@ -66,35 +71,39 @@ export class Viewport {
     this.camera.position.copy(HOME);
     this.camera.up.set(0, 1, 0);
     this.controls.target.copy(TARGET);
+    this.controls.addEventListener('change', () => this.invalidate());
     this.camera.lookAt(TARGET);
     this.controls.update();
   }
 
-  /** Point the surface and the springs at a (new) body's topology. */
-  attach(body: SoftBody): void {
+  /** Point the surface and the springs at a (new) mesh: its triangles, springs and positions. */
+  attach(triangles: Uint32Array, springs: Uint32Array, positions: Float32Array): void {
     const g = this.surface.geometry;
-    g.setIndex(new THREE.BufferAttribute(body.triangles().slice(), 1));
-    const position = new THREE.BufferAttribute(body.syncRender(), 3);
+    g.setIndex(new THREE.BufferAttribute(triangles, 1));
+    const position = new THREE.BufferAttribute(positions, 3);
     position.setUsage(THREE.DynamicDrawUsage);
     g.setAttribute('position', position);
-    this.colors = new Float32Array(3 * body.vertexCount).fill(1);
+    this.colors = new Float32Array(positions.length).fill(1);
     g.setAttribute('color', new THREE.BufferAttribute(this.colors, 3));
     const s = this.springs.geometry;
-    s.setIndex(new THREE.BufferAttribute(body.springs().slice(), 1));
+    s.setIndex(new THREE.BufferAttribute(springs, 1));
     s.setAttribute('position', position);
+    this.update(positions);
   }
 
-  /** New positions from the engine: a fresh view over wasm memory, no copy. */
-  update(body: SoftBody): void {
+  /** New positions (a frame's buffer, same length): drawn as they are, no copy. */
+  update(positions: Float32Array): void {
     const position = this.surface.geometry.getAttribute('position') as THREE.BufferAttribute;
-    (position as any).array = body.syncRender();
+    (position as any).array = positions;
     position.needsUpdate = true;
+    this.invalidate();
     this.surface.geometry.computeVertexNormals();
     this.surface.geometry.computeBoundingSphere();
   }
 
   /** Per-vertex colours (rgb in [0, 1]) or null for the plain material. */
   setColors(fill: ((colors: Float32Array) => void) | null): void {
+    this.invalidate();
     const m = this.surface.material;
     if (!fill) {
       if (m.vertexColors) { m.vertexColors = false; m.color.set(0xd9a066); m.needsUpdate = true; }
@@ -106,12 +115,14 @@ export class Viewport {
   }
 
   setGround(on: boolean, height: number): void {
+    this.invalidate();
     this.groundPlane.visible = on;
     this.grid.position.y = height;
     this.groundPlane.position.y = height - 0.001;
   }
 
   setWind(w: [number, number, number]): void {
+    this.invalidate();
     const v = new THREE.Vector3(...w);
     const len = v.length();
     this.windArrow.visible = len > 0;
@@ -122,8 +133,17 @@ export class Viewport {
     }
   }
 
+  /** The view needs drawing again. */
+  invalidate(): void { this.dirty = true; }
+
+  /**
+   * Draw, if anything changed since the last time: an unchanged view is not drawn again (a
+   * paused or loading model costs nothing per frame, which matters where drawing is slow).
+   */
   render(): void {
     this.controls.update();
+    if (!this.dirty) return;
+    this.dirty = false;
     this.renderer.render(this.scene, this.camera);
   }
 
@@ -146,4 +166,13 @@ export class Viewport {
     this.controls.dispose();
     this.renderer.dispose();
   }
+}
+
+/** Whether WebGL would run without a GPU (SwiftShader, llvmpipe): a context that refuses a major performance caveat cannot be had. */
+function isSoftwareRenderer(): boolean {
+  const probe = document.createElement('canvas');
+  const gl = probe.getContext('webgl2', { failIfMajorPerformanceCaveat: true });
+  if (!gl) return true;
+  gl.getExtension('WEBGL_lose_context')?.loseContext();
+  return false;
 }

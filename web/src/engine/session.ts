@@ -1,10 +1,10 @@
 // An open scene in the modeler: the engine scene, the file it came from (to restart it), and
 // what the modeler does with it — which body the tools shape, world parameters shared by all
-// bodies, the HUD line.
+// bodies.
 
-import { Scene } from './engine/scene';
-import type { SoftBody } from './engine/softbody';
-import type { ParamName } from './engine/params';
+import { Scene } from './scene';
+import type { SoftBody } from './softbody';
+import type { ParamName } from './params';
 
 /** What a scene was opened from, to restart it. */
 export interface SceneSource { name: string; text: string; files: Map<string, Uint8Array> }
@@ -40,10 +40,6 @@ export class SceneSession {
     return { name: this.source.name, time: this.scene.time, duration: this.scene.duration, bodies: this.scene.bodies.length };
   }
 
-  hudLine(): string {
-    const { name, time, duration, bodies } = this.info;
-    return `scene ${name}: ${bodies} ${bodies === 1 ? 'body' : 'bodies'}   t ${time.toFixed(2)} of ${duration} s${time >= duration ? ' (events done)' : ''}`;
-  }
 
   /** Free the scene and its other bodies (the active one stays with the modeler). */
   close(): void {

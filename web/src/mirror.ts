@@ -1,0 +1,68 @@
+// The page's mirror of the simulation: the latest frame drawn and the state that came with it
+// (topology, masses and pins, parameters, settings, history sizes). The viewport, the tools'
+// picking and overlays, the panel, the HUD and `window.softsculpt` all read it; it is only ever
+// written by `apply`, one frame at a time, so what it holds is always one consistent frame.
+
+import type { Frame, Obstacle, ParamName, SceneInfo, Settings, Stats, Topology } from './protocol';
+import type { BodyView } from './tools/tool';
+import { Param } from './engine/params';
+
+const NO_STATS: Stats = {
+  step: 0, time: 0, volume: 0, pressure: 0, kinetic: 0, elastic: 0, gas: 0, gravity: 0, total: 0,
+  momentum: [0, 0, 0], centerOfMass: [0, 0, 0], maxSpeed: 0,
+};
+
+export class Mirror implements BodyView {
+  /** The first frame of a model has been drawn. */
+  ready = false;
+  /** The frame buffer being drawn: the active body's xyz, then the other bodies'. */
+  all: Float32Array = new Float32Array(0);
+  /** The active body's positions (a view into `all`). */
+  positions: Float32Array = new Float32Array(0);
+  triangles: Uint32Array = new Uint32Array(0);
+  springs: Uint32Array = new Uint32Array(0);
+  others: Topology['others'] = [];
+  obstacles: Obstacle[] = [];
+  masses: Float64Array = new Float64Array(0);
+  pinned: Uint8Array = new Uint8Array(0);
+  stats: Stats = NO_STATS;
+  simMs = 0;
+  slowMotion = false;
+  realTimeFraction = 1;
+  scene: SceneInfo | null = null;
+  /** Every parameter of the active body (an object the panel may bind to: updated in place). */
+  readonly params = Object.fromEntries(Object.keys(Param).map((k) => [k, 0])) as Record<ParamName, number>;
+  /** The simulation's settings (updated in place; the panel binds to it). */
+  readonly settings: Settings = { dt: 1e-3, substeps: 16, realTime: true, playing: true, model: 'mushroom' };
+  history: [number, number] = [0, 0];
+
+  get vertexCount(): number { return this.positions.length / 3; }
+  get faceCount(): number { return this.triangles.length / 3; }
+  get springCount(): number { return this.springs.length / 2; }
+  get totalMass(): number { return this.masses.reduce((a, b) => a + b, 0); }
+
+  /** Take a frame; returns the buffer it replaces (drawn already: hand it back to the worker). */
+  apply(f: Frame): Float32Array | null {
+    const old = this.all.byteLength > 0 ? this.all : null;
+    if (f.topology) {
+      this.triangles = f.topology.triangles;
+      this.springs = f.topology.springs;
+      this.others = f.topology.others;
+      this.obstacles = f.topology.obstacles;
+      this.positions = f.positions.subarray(0, 3 * f.topology.vertexCount);
+    } else {
+      this.positions = f.positions.subarray(0, this.positions.length);
+    }
+    this.all = f.positions;
+    if (f.body) { this.masses = f.body.masses; this.pinned = f.body.pinned; }
+    if (f.params) Object.assign(this.params, f.params);
+    if (f.settings) Object.assign(this.settings, f.settings);
+    if (f.history) this.history = f.history;
+    this.stats = f.stats;
+    this.simMs = f.simMs;
+    this.slowMotion = f.slowMotion;
+    this.realTimeFraction = f.realTimeFraction;
+    this.scene = f.scene;
+    return old;
+  }
+}

@@ -1,0 +1,149 @@
+// The messages between the page (main thread: drawing and input) and the simulation worker
+// (engine, document, undo, autosave). Every message either way is one of the types below; both
+// sides import them from here and nowhere else.
+//
+// Main → worker (`Command`): operations on the document, parameter and settings changes, tool
+// strokes, and the frame buffers handed back after drawing.
+// Worker → main (`Reply`): frames (positions every time; topology, masses and pins, parameters,
+// settings and history only when they changed), messages for the user, progress of long
+// operations, files to download.
+//
+// Frames are double-buffered: the worker owns two Float32Array position buffers per mesh size.
+// It fills a free one and transfers it with a frame; the page draws it and, once the next frame
+// has been drawn, transfers the previous buffer back (`returnBuffer`). So no buffer is allocated
+// per frame, and the worker never runs more than one frame ahead of the drawing (it keeps
+// stepping meanwhile; only publishing waits).
+
+import type { ParamName } from './engine/params';
+import type { Stats } from './engine/softbody';
+import type { Obstacle } from './engine/scene';
+
+export type { Stats, Obstacle, ParamName };
+export type Vec3 = [number, number, number];
+export type MessageKind = 'info' | 'warn' | 'error';
+
+/** How the simulation runs (the worker's; the page mirrors them). */
+export interface Settings {
+  /** Time step (s). */
+  dt: number;
+  /** Steps per frame when not in real time. */
+  substeps: number;
+  /** Advance simulated time at the pace of the clock (as many steps as wall-clock time allows). */
+  realTime: boolean;
+  playing: boolean;
+  /** Name of the model, file or scene (used for file names). */
+  model: string;
+}
+
+/** What the page keeps in a project file besides the body: brush, tool, tool strengths. */
+export interface UiState {
+  brush: { radius: number };
+  tool: string;
+  strengths: Record<string, number>;
+}
+
+/** The tools whose strokes act on the body (see worker/strokes.ts). */
+export type StrokeTool = 'grab' | 'press' | 'inflate' | 'mass' | 'pin';
+
+export interface SceneInfo { name: string; time: number; duration: number; bodies: number }
+
+// ----- main → worker ----------------------------------------------------------------------------
+
+export type Command =
+  /** Load the engine from `wasmUrl`, then open the autosave (if `restore` and there is one) or the mushroom. */
+  | { type: 'init'; wasmUrl: string; restore: boolean }
+  | { type: 'loadBuiltin'; name: string }
+  /** A model file (OBJ, PLY, STL, glTF/GLB); `data` is transferred. */
+  | { type: 'import'; name: string; data: ArrayBuffer }
+  | { type: 'openProject'; name: string; text: string }
+  /** A scene file with the mesh files it names (by file name). */
+  | { type: 'openScene'; name: string; text: string; files: Map<string, Uint8Array> }
+  | { type: 'restartScene' }
+  /** Reply: a `download` of the project file (with `ui`, the page's state). */
+  | { type: 'saveProject'; ui: UiState }
+  /** Reply: a `download` of the scene file. */
+  | { type: 'saveScene' }
+  | { type: 'freeze' }
+  | { type: 'reset' }
+  | { type: 'subdivide' }
+  | { type: 'undo' }
+  | { type: 'redo' }
+  /** One frame of steps (settings.substeps) while paused. */
+  | { type: 'step' }
+  /** Undoable; a refused value is reported (message) and the parameters are sent again. */
+  | { type: 'setParam'; name: ParamName; value: number }
+  /** Total mass (kg) split equally over the vertices (undoable). */
+  | { type: 'setMass'; total: number }
+  /** Wind along `direction` (unit, the view direction) at `strength` m/s (undoable). */
+  | { type: 'wind'; direction: Vec3; strength: number }
+  | { type: 'settings'; patch: Partial<Settings> }
+  /** The page's tool state, kept for project files and the autosave. */
+  | { type: 'ui'; ui: UiState }
+  /**
+   * A tool stroke begins at `point` (on the surface): grab takes the vertices within `radius`,
+   * press the faces, the brushes paint the vertices. `strength` in the tool's unit; `inverted`:
+   * Shift (deflate, lighter, unpin). One undo entry per stroke.
+   */
+  | { type: 'strokeStart'; tool: StrokeTool; point: Vec3; radius: number; strength: number; inverted: boolean }
+  /** Grab: the cursor's point on the grab plane; press and brushes: the brush centre (null: off the body). */
+  | { type: 'strokeMove'; point: Vec3 | null; inverted: boolean }
+  | { type: 'strokeEnd' }
+  /** A frame's position buffer, drawn and handed back (transferred). */
+  | { type: 'returnBuffer'; buffer: ArrayBuffer }
+  /** Send everything again in the next frame (after a lost message). */
+  | { type: 'resync' };
+
+// ----- worker → main ----------------------------------------------------------------------------
+
+/** The meshes to draw; sent when they change (load, import, subdivide, undo, scene). */
+export interface Topology {
+  /** The active body (the one the tools shape). */
+  vertexCount: number;
+  triangles: Uint32Array;
+  springs: Uint32Array;
+  /** A scene's other bodies, in order; their positions follow the active body's in the frame buffer. */
+  others: { vertexCount: number; triangles: Uint32Array }[];
+  obstacles: Obstacle[];
+}
+
+export interface Frame {
+  /** xyz per vertex (m): the active body, then each other body; transfer back with `returnBuffer`. */
+  positions: Float32Array;
+  /** The active body's statistics. */
+  stats: Stats;
+  /** Wall-clock ms spent stepping since the last frame. */
+  simMs: number;
+  /** The simulation could not keep up with the clock; `realTimeFraction` of real time is simulated. */
+  slowMotion: boolean;
+  realTimeFraction: number;
+  scene: SceneInfo | null;
+  topology?: Topology;
+  /** Masses (kg) and pins (0/1) per vertex of the active body, when they changed. */
+  body?: { masses: Float64Array; pinned: Uint8Array };
+  /** Every parameter of the active body, when one changed. */
+  params?: Record<ParamName, number>;
+  settings?: Settings;
+  /** Undo and redo stack sizes, when they changed. */
+  history?: [number, number];
+}
+
+export type Reply =
+  | { type: 'frame'; frame: Frame }
+  | { type: 'message'; text: string; kind: MessageKind }
+  /** A long operation started (`label`, e.g. "subdividing", with `fraction` done if known) or ended (null). */
+  | { type: 'progress'; label: string | null; fraction?: number }
+  | { type: 'download'; filename: string; mime: string; text: string }
+  /** An opened project's page state (brush, tool, strengths). */
+  | { type: 'ui'; ui: Partial<UiState> }
+  /** The engine could not start at all. */
+  | { type: 'fatal'; text: string };
+
+/** The buffers a reply transfers (the frame's positions, its topology's arrays). */
+export function transferables(r: Reply): Transferable[] {
+  if (r.type !== 'frame') return [];
+  const f = r.frame;
+  const out: Transferable[] = [f.positions.buffer as ArrayBuffer];
+  if (f.topology) out.push(f.topology.triangles.buffer as ArrayBuffer, f.topology.springs.buffer as ArrayBuffer, ...f.topology.others.map((o) => o.triangles.buffer as ArrayBuffer));
+  if (f.body) out.push(f.body.masses.buffer as ArrayBuffer, f.body.pinned.buffer as ArrayBuffer);
+  return out;
+}

@@ -1,0 +1,177 @@
+// The simulation service: the worker's side of the protocol. It turns commands into document
+// operations, runs the real-time stepping tick, publishes frames, reports progress and messages,
+// and autosaves. A plain class: the worker (worker/main.ts) feeds it messages and ticks; the
+// tests do the same in Node.
+
+import type { Command, MessageKind, Reply, Settings, UiState } from '../protocol';
+import { transferables } from '../protocol';
+import { Document, errorText, loadEngine } from './document';
+import { baseName } from '../project';
+import { FramePublisher } from './frames';
+import { Stepper } from './stepper';
+
+export interface ServiceHost {
+  post(reply: Reply, transfer: Transferable[]): void;
+  now(): number;
+  /** Where the autosave lives (IndexedDB in the browser; absent: no autosave). */
+  storage?: { load(): Promise<string | null>; save(text: string): Promise<void> };
+  /** Defer `f` by `ms` (the autosave's debounce). */
+  later?(f: () => void, ms: number): unknown;
+  cancel?(timer: unknown): void;
+}
+
+export class Service {
+  readonly doc: Document;
+  readonly frames = new FramePublisher();
+  readonly stepper: Stepper;
+  private progressLabel: string | null = null;
+  private progressAt = 0;
+  private saveTimer: unknown = null;
+  private lastTickError = '';
+  /** A command may have changed what the page shows: publish a frame on the next tick. */
+  private poked = false;
+
+  constructor(private readonly host: ServiceHost) {
+    this.stepper = new Stepper(() => host.now());
+    this.doc = new Document({
+      message: (text, kind) => this.message(text, kind),
+      progress: (label, fraction) => this.progress(label, fraction),
+      changed: () => this.autosave(),
+      ui: (ui) => this.post({ type: 'ui', ui }),
+    });
+  }
+
+  private post(r: Reply): void { this.host.post(r, transferables(r)); }
+  message(text: string, kind: MessageKind = 'info'): void { this.post({ type: 'message', text, kind }); }
+
+  /** Progress of a long operation, at most ten times a second (and always its start and end). */
+  private progress(label: string | null, fraction?: number): void {
+    const now = this.host.now();
+    if (label === this.progressLabel && (label === null || now - this.progressAt < 100)) return;
+    this.progressLabel = label;
+    this.progressAt = now;
+    this.post(fraction === undefined ? { type: 'progress', label } : { type: 'progress', label, fraction });
+  }
+
+  /** Handle one command. Whatever fails is reported; the document stays as it was. */
+  async handle(cmd: Command): Promise<void> {
+    if (cmd.type !== 'returnBuffer') this.poked = true;
+    try {
+      await this.dispatch(cmd);
+    } catch (e) {
+      this.progress(null);
+      this.message(`${describe(cmd)} failed: ${errorText(e)} — the model is as it was before`, 'error');
+    }
+  }
+
+  private async dispatch(cmd: Command): Promise<void> {
+    const doc = this.doc;
+    if (cmd.type === 'init') return this.init(cmd.wasmUrl, cmd.restore);
+    if (cmd.type === 'returnBuffer') return this.frames.giveBack(cmd.buffer);
+    if (cmd.type === 'resync') return this.frames.resync();
+    if (cmd.type === 'ui') { doc.ui = cmd.ui; return; }
+    if (!doc.loaded) { this.message('the engine is still starting; try again in a moment', 'warn'); return; }
+    switch (cmd.type) {
+      case 'loadBuiltin': return doc.loadBuiltin(cmd.name);
+      case 'import': return doc.importFile(cmd.name, cmd.data);
+      case 'openProject': return doc.openProject(cmd.name, cmd.text);
+      case 'openScene': doc.openScene(cmd.name, cmd.text, cmd.files); return;
+      case 'restartScene': return doc.restartScene();
+      case 'saveProject': return this.saveProject(cmd.ui);
+      case 'saveScene': return this.saveScene();
+      case 'freeze': return doc.freeze();
+      case 'reset': return doc.reset();
+      case 'subdivide': return doc.subdivide();
+      case 'undo': return doc.undo();
+      case 'redo': return doc.redo();
+      case 'step': this.stepper.run(doc, doc.settings.dt, doc.settings.substeps); return;
+      case 'setParam': if (!doc.setParam(cmd.name, cmd.value)) this.frames.resendParams(); return;
+      case 'setMass': return doc.setMass(cmd.total);
+      case 'wind': return doc.wind(cmd.direction, cmd.strength);
+      case 'settings': return this.settings(cmd.patch);
+      case 'strokeStart': return doc.strokeStart(cmd);
+      case 'strokeMove': return doc.strokeMove(cmd.point, cmd.inverted);
+      case 'strokeEnd': return doc.strokeEnd();
+    }
+  }
+
+  private async init(wasmUrl: string, restore: boolean): Promise<void> {
+    try {
+      await loadEngine(wasmUrl);
+    } catch (e) {
+      this.post({ type: 'fatal', text: `SoftSculpt could not start its engine: ${errorText(e)}` });
+      return;
+    }
+    let text: string | null = null;
+    if (restore && this.host.storage) {
+      try {
+        text = await this.host.storage.load();
+      } catch (e) {
+        this.message(`could not read the autosaved project: ${errorText(e)}`, 'warn');
+      }
+    }
+    this.doc.open(text);
+  }
+
+  private settings(patch: Partial<Settings>): void {
+    const s = this.doc.settings;
+    if (typeof patch.dt === 'number' && Number.isFinite(patch.dt) && patch.dt > 0) s.dt = patch.dt;
+    if (typeof patch.substeps === 'number' && patch.substeps >= 1) s.substeps = Math.round(patch.substeps);
+    if (typeof patch.realTime === 'boolean') s.realTime = patch.realTime;
+    if (typeof patch.playing === 'boolean') s.playing = patch.playing;
+    this.autosave();
+  }
+
+  private saveProject(ui: UiState): void {
+    this.doc.ui = ui;
+    this.post({ type: 'download', filename: `${baseName(this.doc.settings.model)}.softsculpt.json`, mime: 'application/json', text: this.doc.projectText() });
+  }
+
+  private saveScene(): void {
+    try {
+      const text = this.doc.sceneText();
+      this.post({ type: 'download', filename: `${baseName(this.doc.settings.model)}.toml`, mime: 'application/toml', text });
+      this.message('saved the scene: the shapes as they are now, opening at rest');
+    } catch (e) {
+      this.message(`could not save the scene: ${errorText(e)}`, 'error');
+    }
+  }
+
+  /** Write the project to the autosave a moment after the last change. */
+  autosave(): void {
+    const { storage, later, cancel } = this.host;
+    if (!storage || !later) return;
+    if (this.saveTimer !== null) cancel?.(this.saveTimer);
+    this.saveTimer = later(() => {
+      this.saveTimer = null;
+      if (!this.doc.loaded) return;
+      storage.save(this.doc.projectText()).catch((e) => this.message(`autosave failed: ${errorText(e)}`, 'warn'));
+    }, 250);
+  }
+
+  /** One tick: step as the clock allows, then publish a frame if there is something to show. */
+  tick(): void {
+    if (!this.doc.loaded) return;
+    try {
+      const stepped = this.stepper.tick(this.doc);
+      const sim = { simMs: 0, slowMotion: this.stepper.slowMotion, realTimeFraction: this.stepper.realTimeFraction };
+      const frame = this.frames.next(this.doc, stepped || this.doc.stroking || this.poked, sim);
+      if (frame) {
+        this.poked = false;
+        frame.simMs = this.stepper.take();
+        this.post({ type: 'frame', frame });
+      }
+      this.lastTickError = '';
+    } catch (e) {
+      // Say it once, not every tick.
+      const text = `the simulation stopped: ${errorText(e)}`;
+      if (text !== this.lastTickError) this.message(text, 'error');
+      this.lastTickError = text;
+      this.doc.settings.playing = false;
+    }
+  }
+}
+
+function describe(cmd: Command): string {
+  return cmd.type.replace(/[A-Z]/g, (c) => ` ${c.toLowerCase()}`);
+}

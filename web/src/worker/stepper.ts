@@ -1,0 +1,66 @@
+// Real-time stepping in the worker: each tick runs as many steps as the wall-clock time since
+// the last tick holds (at most 0.1 s of it; fractions of a step carry over), in chunks of about
+// 2 ms, within a time budget so that commands (the grab's cursor, a press) are read between
+// ticks. If the steps do not fit in the budget the simulation runs in slow motion and says so.
+
+import type { Document } from './document';
+
+export class Stepper {
+  private last = 0;
+  private carry = 0;
+  /** Measured cost of one step (ms), to size the chunks of steps between budget checks. */
+  private stepCostMs = 0.05;
+  /** Wall-clock ms spent stepping since `take()`. */
+  private spent = 0;
+  slowMotion = false;
+  /** Simulated time over the wall-clock time the last tick covered (1: real time). */
+  realTimeFraction = 1;
+
+  constructor(private readonly now: () => number, private readonly budgetMs = 30) {}
+
+  /** One tick; returns whether it stepped. */
+  tick(doc: Document): boolean {
+    const now = this.now();
+    const elapsed = this.last ? Math.min(0.1, (now - this.last) / 1000) : 1 / 60;
+    this.last = now;
+    const s = doc.settings;
+    if (!s.playing) {
+      doc.updateStroke(0);
+      this.slowMotion = false;
+      this.carry = 0;
+      return false;
+    }
+    const want = s.realTime ? elapsed / s.dt + this.carry : s.substeps;
+    const n = Math.floor(want);
+    this.carry = s.realTime ? want - n : 0;
+    doc.updateStroke(s.dt * n);
+    const done = this.run(doc, s.dt, n, this.budgetMs);
+    this.slowMotion = done < n;
+    if (this.slowMotion) this.carry = 0;
+    this.realTimeFraction = n > 0 ? done / n : 1;
+    return done > 0;
+  }
+
+  /** `n` steps of `dt` in chunks, stopping once `budgetMs` is spent or a step fails; returns how many ran. */
+  run(doc: Document, dt: number, n: number, budgetMs = Infinity): number {
+    let done = 0;
+    const t0 = this.now();
+    while (done < n) {
+      const chunk = Math.min(n - done, Math.max(1, Math.floor(2 / this.stepCostMs)));
+      const c0 = this.now();
+      if (!doc.advance(dt, chunk)) break;
+      this.stepCostMs = 0.8 * this.stepCostMs + 0.2 * Math.max(1e-4, (this.now() - c0) / chunk);
+      done += chunk;
+      if (this.now() - t0 > budgetMs) break;
+    }
+    this.spent += this.now() - t0;
+    return done;
+  }
+
+  /** Wall-clock ms spent stepping since the last call (for the frame). */
+  take(): number {
+    const ms = this.spent;
+    this.spent = 0;
+    return ms;
+  }
+}

@@ -1,0 +1,146 @@
+// What a tool stroke does to the body, in the worker. The page's tools (src/tools/) pick the
+// point and follow the pointer; these act on the engine every tick while the button is held:
+// - grab: the vertices under the brush are pulled by a spring toward the cursor's point (each
+//   keeps its offset); strength: the pull's angular frequency ω (1/s);
+// - press: an external pressure (Pa, the strength at the brush centre) on the faces under it;
+// - inflate / mass: rest lengths / masses grow (Shift: shrink) at a rate (1/s) under the brush;
+// - pin: vertices under the brush are pinned (Shift: unpinned).
+
+import type { StrokeTool, Vec3 } from '../protocol';
+import { facesAround, grabForce, inflateFactor, verticesAround, type Weighted } from '../tools/brush';
+
+/** What a stroke needs from the body (the document hands over its active body). */
+export interface StrokeBody {
+  readonly vertexCount: number;
+  positions(): Float64Array;
+  velocities(): Float64Array;
+  masses(): Float64Array;
+  triangles(): Uint32Array;
+  pinned(): Uint8Array;
+  /** Staging array of user forces (N, xyz per vertex); then applyUserForces(). */
+  userForces(): Float64Array;
+  applyUserForces(): void;
+  /** Staging array of face pressures (Pa); then applyFacePressures(). */
+  facePressures(): Float64Array;
+  applyFacePressures(): void;
+  scaleRestByVertex(factors: ArrayLike<number>): void;
+  setMasses(masses: ArrayLike<number>): void;
+  setPinned(vertex: number, pinned: boolean): void;
+}
+
+export interface StrokeStart { tool: StrokeTool; point: Vec3; radius: number; strength: number; inverted: boolean }
+
+export abstract class Stroke {
+  protected point: Vec3 | null;
+  protected inverted: boolean;
+  constructor(protected readonly s: StrokeStart) {
+    this.point = s.point;
+    this.inverted = s.inverted;
+  }
+  /** The stroke begins (the document has remembered the state for undo). */
+  abstract start(body: StrokeBody): void;
+  move(point: Vec3 | null, inverted: boolean, _body: StrokeBody): void { this.point = point; this.inverted = inverted; }
+  /** Every tick before the steps (dt: simulated seconds this tick, 0 when paused). */
+  update(_body: StrokeBody, _dt: number): void {}
+  abstract end(body: StrokeBody): void;
+  /** Whether it changes masses or pins (which the page then needs again). */
+  get paintsBodyData(): boolean { return false; }
+}
+
+class Grab extends Stroke {
+  private picked: Weighted = { indices: [], weights: [] };
+  private offsets: number[] = [];
+  start(body: StrokeBody): void {
+    const x = body.positions(), p = this.s.point;
+    this.picked = verticesAround(x, p, this.s.radius);
+    this.offsets = this.picked.indices.flatMap((i) => [x[3 * i] - p[0], x[3 * i + 1] - p[1], x[3 * i + 2] - p[2]]);
+  }
+  /** The cursor moved: `point` is its point on the grab plane (null keeps the last one). */
+  move(point: Vec3 | null): void { if (point) this.point = point; }
+  update(body: StrokeBody): void {
+    const x = body.positions(), v = body.velocities(), m = body.masses();
+    const f = body.userForces();
+    f.fill(0);
+    const c = this.point ?? this.s.point;
+    this.picked.indices.forEach((i, k) => {
+      for (let d = 0; d < 3; d++) {
+        f[3 * i + d] = grabForce(m[i], this.picked.weights[k], this.s.strength, c[d] + this.offsets[3 * k + d], x[3 * i + d], v[3 * i + d]);
+      }
+    });
+    body.applyUserForces();
+  }
+  end(body: StrokeBody): void {
+    body.userForces().fill(0);
+    body.applyUserForces();
+  }
+}
+
+class Press extends Stroke {
+  start(body: StrokeBody): void { this.apply(body); }
+  move(point: Vec3 | null, inverted: boolean, body: StrokeBody): void {
+    if (!point) return;
+    super.move(point, inverted, body);
+    this.apply(body);
+  }
+  private apply(body: StrokeBody): void {
+    const p = body.facePressures();
+    p.fill(0);
+    const faces = facesAround(body.positions(), body.triangles(), this.point!, this.s.radius);
+    faces.indices.forEach((f, k) => (p[f] = this.s.strength * faces.weights[k]));
+    body.applyFacePressures();
+  }
+  end(body: StrokeBody): void {
+    body.facePressures().fill(0);
+    body.applyFacePressures();
+  }
+}
+
+/** The brushes act every tick on the vertices under the centre while the button is held. */
+abstract class Paint extends Stroke {
+  protected abstract paint(body: StrokeBody, w: Weighted, dt: number): void;
+  start(body: StrokeBody): void { this.update(body, 0); }
+  update(body: StrokeBody, dt: number): void {
+    if (!this.point) return;
+    const w = verticesAround(body.positions(), this.point, this.s.radius);
+    if (w.indices.length > 0) this.paint(body, w, dt);
+  }
+  end(): void {}
+}
+
+class Inflate extends Paint {
+  private factors = new Float64Array(0);
+  protected paint(body: StrokeBody, w: Weighted, dt: number): void {
+    if (dt <= 0) return;
+    if (this.factors.length !== body.vertexCount) this.factors = new Float64Array(body.vertexCount);
+    const factors = this.factors.fill(1);
+    w.indices.forEach((i, k) => (factors[i] = inflateFactor(w.weights[k], this.s.strength, dt, this.inverted)));
+    body.scaleRestByVertex(factors);
+  }
+}
+
+class Mass extends Paint {
+  get paintsBodyData(): boolean { return true; }
+  protected paint(body: StrokeBody, w: Weighted, dt: number): void {
+    if (dt <= 0) return;
+    const m = body.masses().slice();
+    w.indices.forEach((i, k) => {
+      const f = inflateFactor(w.weights[k], this.s.strength, dt, this.inverted);
+      m[i] = Math.min(Math.max(m[i] * f, 1e-9), 1e9);
+    });
+    body.setMasses(m);
+  }
+}
+
+class Pin extends Paint {
+  get paintsBodyData(): boolean { return true; }
+  protected paint(body: StrokeBody, w: Weighted): void {
+    const pinned = body.pinned();
+    for (const i of w.indices) if ((pinned[i] === 1) === this.inverted) body.setPinned(i, !this.inverted);
+  }
+}
+
+const KINDS: Record<StrokeTool, new (s: StrokeStart) => Stroke> = { grab: Grab, press: Press, inflate: Inflate, mass: Mass, pin: Pin };
+
+export function makeStroke(s: StrokeStart): Stroke {
+  return new KINDS[s.tool](s);
+}

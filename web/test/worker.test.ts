@@ -1,0 +1,196 @@
+// The simulation worker's side of the protocol, in Node without a Worker: the service is a plain
+// class fed commands and ticks; what it posts is collected and checked.
+import { beforeAll, describe, expect, it } from 'vitest';
+import { readFileSync } from 'node:fs';
+import { loadEngine } from './setup';
+import { Service } from '../src/worker/service';
+import type { Command, Frame, Reply } from '../src/protocol';
+
+beforeAll(loadEngine);
+
+const CUBE = 'v -0.5 0 -0.5\nv 0.5 0 -0.5\nv 0.5 1 -0.5\nv -0.5 1 -0.5\nv -0.5 0 0.5\nv 0.5 0 0.5\nv 0.5 1 0.5\nv -0.5 1 0.5\n' +
+  'f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n';
+const bytes = (s: string) => new TextEncoder().encode(s).buffer as ArrayBuffer;
+
+/** A service on a fake clock, its replies collected; the autosave goes to `saved`. */
+function harness() {
+  const replies: Reply[] = [];
+  const saved: string[] = [];
+  let clock = 0;
+  const timers = new Map<number, () => void>();
+  let timerId = 0;
+  const service = new Service({
+    post: (r) => replies.push(r),
+    now: () => clock,
+    storage: { load: async () => null, save: async (t) => { saved.push(t); } },
+    later: (f) => { timers.set(++timerId, f); return timerId; },
+    cancel: (id) => { timers.delete(id as number); },
+  });
+  const send = (c: Command) => service.handle(c);
+  const frames = () => replies.filter((r): r is Reply & { type: 'frame' } => r.type === 'frame').map((r) => r.frame);
+  const messages = () => replies.filter((r) => r.type === 'message').map((r) => (r as { text: string }).text);
+  /** A tick `ms` later; returns the frame it posted, if any. */
+  const tick = (ms = 16): Frame | undefined => {
+    clock += ms;
+    const n = replies.length;
+    service.tick();
+    return replies.slice(n).find((r) => r.type === 'frame')?.frame as Frame | undefined;
+  };
+  /** The page draws a frame and hands its buffer back. */
+  const giveBack = (f: Frame) => send({ type: 'returnBuffer', buffer: f.positions.buffer as ArrayBuffer });
+  const flushTimers = () => { for (const [id, f] of [...timers]) { timers.delete(id); f(); } };
+  return { service, replies, saved, send, frames, messages, tick, giveBack, flushTimers };
+}
+
+async function started() {
+  const h = harness();
+  // The engine is loaded already (setup); init opens the default model (no autosave here).
+  await h.send({ type: 'init', wasmUrl: 'unused', restore: true });
+  return h;
+}
+
+describe('worker service', () => {
+  it('opens the mushroom and sends its first frame with the topology, masses, parameters, settings and history', async () => {
+    const h = await started();
+    const progress = h.replies.filter((r) => r.type === 'progress');
+    expect(progress[0]).toMatchObject({ type: 'progress', label: 'loading mushroom' });
+    expect(progress.at(-1)).toEqual({ type: 'progress', label: null });
+    const f = h.tick()!;
+    expect(f.topology!.vertexCount).toBe(362);
+    expect(f.topology!.triangles.length).toBe(3 * 720);
+    expect(f.topology!.springs.length).toBe(2 * 1080);
+    expect(f.positions.length).toBe(3 * 362);
+    expect(f.positions.every(Number.isFinite)).toBe(true);
+    expect(f.body!.masses.length).toBe(362);
+    expect(f.body!.pinned.some((p) => p === 1)).toBe(true); // rooted
+    expect(f.params!.groundOn).toBe(1);
+    expect(f.settings!.model).toBe('mushroom');
+    expect(f.history).toEqual([0, 0]);
+    expect(f.stats.time).toBeGreaterThan(6); // settled on load
+    // The next frame: positions and stats only.
+    h.giveBack(f);
+    const g = h.tick()!;
+    expect(g.topology).toBeUndefined();
+    expect(g.body).toBeUndefined();
+    expect(g.params).toBeUndefined();
+    expect(g.stats.time).toBeGreaterThan(f.stats.time);
+  });
+
+  it('recycles two position buffers: no new buffer per frame, no frame until one comes back', async () => {
+    const h = await started();
+    const a = h.tick()!, b = h.tick()!;
+    expect(a.positions.buffer).not.toBe(b.positions.buffer);
+    expect(h.tick()).toBeUndefined(); // both out with the page: it keeps stepping, publishes nothing
+    const t = h.service.doc.stats().time;
+    h.tick();
+    expect(h.service.doc.stats().time).toBeGreaterThan(t);
+    h.giveBack(a);
+    const c = h.tick()!;
+    expect(c.positions.buffer).toBe(a.positions.buffer);
+    h.giveBack(b);
+    h.giveBack(c);
+    for (let i = 0; i < 20; i++) h.giveBack(h.tick()!);
+    expect(h.service.frames.allocated).toBe(2);
+    const seen = new Set(h.frames().map((f) => f.positions.buffer));
+    expect(seen.size).toBe(2);
+  });
+
+  it('a new mesh size gets its own two buffers; old ones coming back are dropped', async () => {
+    const h = await started();
+    const old = h.tick()!;
+    await h.send({ type: 'subdivide' });
+    const f = h.tick()!;
+    expect(f.topology!.vertexCount).toBe(1442);
+    expect(f.positions.length).toBe(3 * 1442);
+    expect(f.history).toEqual([1, 0]);
+    h.giveBack(old);
+    expect(h.service.frames.allocated).toBe(1);
+    h.giveBack(f);
+    expect(h.tick()!.positions.buffer).toBe(f.positions.buffer);
+  });
+
+  it('grab: a stroke pulls the picked vertices toward the cursor, one undo entry per stroke', async () => {
+    const h = await started();
+    const x = h.tick()!.positions;
+    let top = 0;
+    for (let i = 0; i < x.length / 3; i++) if (x[3 * i + 1] > x[3 * top + 1]) top = i;
+    const p: [number, number, number] = [x[3 * top], x[3 * top + 1], x[3 * top + 2]];
+    await h.send({ type: 'strokeStart', tool: 'grab', point: p, radius: 0.3, strength: 30, inverted: false });
+    await h.send({ type: 'strokeMove', point: [p[0], p[1] + 1, p[2]], inverted: false });
+    let last: Frame | undefined;
+    for (let i = 0; i < 40; i++) { const f = h.tick(); if (f) { last = f; h.giveBack(f); } }
+    expect(last!.positions[3 * top + 1]).toBeGreaterThan(p[1] + 0.05);
+    await h.send({ type: 'strokeEnd' });
+    expect(h.service.doc.history.sizes).toEqual([1, 0]);
+    await h.send({ type: 'undo' });
+    expect(h.messages().at(-1)).toBe('undid grab');
+    expect(h.service.doc.history.sizes).toEqual([0, 1]);
+  });
+
+  it('refused commands reply with one message and leave the document as it was', async () => {
+    const h = await started();
+    const doc = h.service.doc;
+    const before = { n: doc.vertexCount, k: doc.params().stiffness, history: doc.history.sizes };
+    h.giveBack(h.tick()!);
+    await h.send({ type: 'setParam', name: 'stiffness', value: -1 });
+    expect(h.messages().at(-1)).toMatch(/stiffness/);
+    await h.send({ type: 'import', name: 'garbage.obj', data: bytes('this is not a mesh\n\u0001') });
+    expect(h.messages().at(-1)).toMatch(/could not import garbage\.obj.*the current model is unchanged/);
+    await h.send({ type: 'openProject', name: 'x.json', text: '{"format":"nope"}' });
+    expect(h.messages().at(-1)).toMatch(/could not open x\.json: not a SoftSculpt project/);
+    await h.send({ type: 'openScene', name: 'bad.toml', text: '[[body]]\nmodel = "sphere"\nstifness = 1\n', files: new Map() });
+    expect(h.messages().at(-1)).toMatch(/could not open bad\.toml: line 3/);
+    await h.send({ type: 'loadBuiltin', name: 'teapot' });
+    expect(h.messages().at(-1)).toMatch(/no built-in model 'teapot'/);
+    expect({ n: doc.vertexCount, k: doc.params().stiffness, history: doc.history.sizes }).toEqual(before);
+    expect(h.replies.filter((r) => r.type === 'message' && r.kind === 'error').length).toBe(5);
+    // The page gets the parameters again after a refusal (its field showed the refused value).
+    const f = h.tick()!;
+    expect(f.params!.stiffness).toBe(before.k);
+    expect(f.topology).toBeUndefined();
+  });
+
+  it('a blow-up rolls the step back, pauses and says so', async () => {
+    const h = await started();
+    await h.send({ type: 'setParam', name: 'stiffness', value: 1e7 });
+    await h.send({ type: 'settings', patch: { dt: 0.005 } });
+    for (let i = 0; i < 50 && h.service.doc.settings.playing; i++) { const f = h.tick(100); if (f) h.giveBack(f); }
+    expect(h.service.doc.settings.playing).toBe(false);
+    expect(h.messages().at(-1)).toMatch(/rolled back.*Paused/);
+    const f = h.frames().at(-1)!;
+    expect(f.settings!.playing).toBe(false);
+    expect(f.positions.every(Number.isFinite)).toBe(true);
+  });
+
+  it('imports a mesh, saves and reopens the project, and autosaves after operations', async () => {
+    const h = await started();
+    await h.send({ type: 'import', name: 'cube.obj', data: bytes(CUBE) });
+    expect(h.messages()).toContain('imported cube.obj: 8 vertices, 12 faces (scaled ×1.44 to fit)');
+    expect(h.tick()!.topology!.vertexCount).toBe(8);
+    h.flushTimers();
+    expect(h.saved.length).toBe(1);
+    await h.send({ type: 'saveProject', ui: { brush: { radius: 0.5 }, tool: 'press', strengths: { press: 99 } } });
+    const d = h.replies.find((r) => r.type === 'download') as Reply & { type: 'download' };
+    expect(d.filename).toBe('cube.softsculpt.json');
+    await h.send({ type: 'loadBuiltin', name: 'sphere' });
+    expect(h.service.doc.vertexCount).toBe(642);
+    await h.send({ type: 'openProject', name: 'cube.softsculpt.json', text: d.text });
+    expect(h.service.doc.vertexCount).toBe(8);
+    expect(h.replies.filter((r) => r.type === 'ui').at(-1)).toEqual({ type: 'ui', ui: { brush: { radius: 0.5 }, tool: 'press', strengths: { press: 99 } } });
+  });
+
+  it('a scene: the other bodies follow the active one in the frame buffer, with obstacles', async () => {
+    const h = await started();
+    const text = readFileSync(new URL('../../scenes/fig4a_mushroom_press_wind.toml', import.meta.url), 'utf8');
+    await h.send({ type: 'openScene', name: 'fig4a.toml', text, files: new Map() });
+    const f = h.tick()!;
+    expect(f.scene).toMatchObject({ name: 'fig4a.toml', bodies: 1 });
+    const two = '[[body]]\nmodel = "sphere"\n[[body]]\nmodel = "sphere"\ntranslate = [3, 0, 0]\n[[obstacle]]\nshape = "sphere"\ncenter = [0, -2, 0]\nradius = 1\n';
+    await h.send({ type: 'openScene', name: 'two.toml', text: two, files: new Map() });
+    const g = h.tick()!;
+    expect(g.topology!.others.map((o) => o.vertexCount)).toEqual([642]);
+    expect(g.topology!.obstacles.map((o) => o.kind)).toEqual(['sphere']);
+    expect(g.positions.length).toBe(3 * (642 + 642));
+    expect(g.positions[3 * 642]).toBeGreaterThan(2); // the second sphere, 3 m along x
+  });
+});
