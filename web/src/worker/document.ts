@@ -132,7 +132,7 @@ export class Document {
   open(autosave: Autosave | null): void {
     if (autosave) {
       try {
-        if ('record' in autosave) this.openRecord(autosave.record, false);
+        if ('record' in autosave) this.openRecordOrThrow(autosave.record, false);
         else this.openProjectText(autosave.legacyText, false);
         this.hooks.message('restored your last session (autosaved)');
         return;
