@@ -11,18 +11,23 @@ const wasm = readFileSync(fileURLToPath(new URL('../public/softsculpt.wasm', imp
 const { instance } = await WebAssembly.instantiate(wasm, {});
 const e = instance.exports;
 const native = fileURLToPath(new URL('../../target/release/softsculpt', import.meta.url));
+const fail = () => {
+  const m = e.memory.buffer;
+  throw new Error(new TextDecoder().decode(new Uint8Array(m, e.ss_error_ptr(), e.ss_error_len())));
+};
 
 console.log('vertices  wasm ms/step  native ms/step  wasm/native');
 for (const level of levels) {
   let best = Infinity, nv = 0;
   for (let rep = 0; rep < 3; rep++) {
-    const h = e.ss_create_workload(level);
-    nv = e.ss_vertex_count(h);
-    e.ss_step(h, 1e-4, 10); // warm up
+    const w = e.ss_workload(level); // a world handle: the workload's one-body world (dt 1e-4 s)
+    if (w < 0) fail();
+    nv = new Uint32Array(e.memory.buffer, e.ss_body_views(w, 0), 1)[0];
+    if (e.ss_step(w, 10) !== 0) fail(); // warm up
     const t0 = performance.now();
-    if (e.ss_step(h, 1e-4, steps) !== 0) throw new Error('step failed');
+    if (e.ss_step(w, steps) !== 0) fail();
     best = Math.min(best, (performance.now() - t0) / steps);
-    e.ss_free(h);
+    e.ss_world_free(w);
   }
   const out = execFileSync(native, ['bench', '--levels', String(level), '--steps', String(steps), '--reps', '3', '--json']).toString();
   const nat = JSON.parse(out.trim().split('\n').pop()).ms_per_step;

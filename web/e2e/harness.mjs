@@ -13,7 +13,8 @@ export const SHOTS = fileURLToPath(new URL('./screenshots/', import.meta.url));
 mkdirSync(SHOTS, { recursive: true });
 
 /** `vite preview` of the built modeler (`outDir`: another build, e.g. a baseline for benchmarks). */
-export async function startServer(port = 5199, outDir = 'dist') {
+/** The port of the e2e server: 5199, or E2E_PORT (when another checkout's tests hold 5199). */
+export async function startServer(port = Number(process.env.E2E_PORT ?? 5199), outDir = 'dist') {
   // Something already answering on the port would be tested instead (an old server, an old build).
   const url = `http://127.0.0.1:${port}/`;
   if (await fetch(url).then(() => true, () => false)) throw new Error(`port ${port} is in use: stop what serves ${url} first`);

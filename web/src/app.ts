@@ -7,7 +7,7 @@
 // renders them, and the buffer drawn before goes back to the worker.
 
 import { Vector3 } from 'three';
-import type { Command, Frame, MessageKind, ParamName, Reply, Settings, UiState } from './protocol';
+import type { Command, Frame, MessageKind, ParamValue, Reply, Settings, UiState } from './protocol';
 import { SimulationClient } from './client';
 import { Mirror } from './mirror';
 import { Viewport } from './view/viewport';
@@ -88,7 +88,8 @@ export class App implements ToolContext {
   undo(): void { if (!this.tools.isDragging) this.operate({ type: 'undo' }); }
   redo(): void { if (!this.tools.isDragging) this.operate({ type: 'redo' }); }
   step(): void { this.send({ type: 'step' }); }
-  setParam(name: ParamName, value: number): void { this.send({ type: 'setParam', name, value }); }
+  /** Set a parameter by its table id (see `mirror.table`). */
+  setParam(name: string, value: ParamValue): void { this.send({ type: 'setParam', name, value }); }
   setMass(total: number): void { this.send({ type: 'setMass', total }); }
   /** Change settings (play, dt, real time, steps per frame); the mirror follows at once. */
   setSettings(patch: Partial<Settings>): void {
@@ -106,8 +107,12 @@ export class App implements ToolContext {
     this.send({ type: 'wind', direction: [d.x, d.y, d.z], strength });
   }
   get windStrength(): number {
-    const p = this.mirror.params;
-    return Math.hypot(p.windX ?? 0, p.windY ?? 0, p.windZ ?? 0);
+    return Math.hypot(...this.wind);
+  }
+  /** The wind velocity (m/s). */
+  get wind(): [number, number, number] {
+    const w = this.mirror.params.wind;
+    return Array.isArray(w) ? w : [0, 0, 0];
   }
 
   /** Download the shape as drawn (the latest frame's positions and triangles). */
@@ -137,8 +142,8 @@ export class App implements ToolContext {
         if (this.pending) {
           // Not drawn yet and already superseded: what it brought that the new one lacks carries
           // over, and its buffer goes straight back to the worker.
-          const { topology, body, params, settings, history } = this.pending;
-          r.frame = { topology, body, params, settings, history, ...stripUndefined(r.frame) };
+          const { topology, body, params, table, settings, history } = this.pending;
+          r.frame = { topology, body, params, table, settings, history, ...stripUndefined(r.frame) };
           this.giveBack(this.pending.positions);
         }
         this.pending = r.frame;
@@ -175,7 +180,7 @@ export class App implements ToolContext {
     if (f.topology || f.body) this.refreshOverlay();
     if (f.params) this.syncScene();
     this.plots.push(m.stats.time, [m.stats.volume, m.stats.pressure, m.stats.kinetic, m.stats.elastic, m.stats.gas]);
-    if (f.topology || f.body || f.params || f.settings || f.history) this.changed();
+    if (f.topology || f.body || f.params || f.table || f.settings || f.history) this.changed();
     if (old) this.drawn = old;
     if (!m.ready) {
       m.ready = true;
@@ -193,8 +198,8 @@ export class App implements ToolContext {
 
   syncScene(): void {
     const p = this.mirror.params;
-    this.viewport.setGround(p.groundOn !== 0, p.groundHeight);
-    this.viewport.setWind([p.windX, p.windY, p.windZ]);
+    this.viewport.setGround(p.ground === true, typeof p['ground.height'] === 'number' ? p['ground.height'] : 0);
+    this.viewport.setWind(this.wind);
     this.viewport.springs.visible = this.wireframe;
   }
 

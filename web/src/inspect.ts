@@ -5,6 +5,18 @@
 
 import { Vector3 } from 'three';
 import type { App } from './app';
+import type { Params } from './protocol';
+
+const num = (v: unknown) => (typeof v === 'number' ? v : typeof v === 'boolean' ? Number(v) : undefined);
+const vec = (p: Params, k: number) => (Array.isArray(p.wind) ? p.wind[k] : undefined);
+/** The page's parameter names before the engine's table ids, as numbers (kept so scripts and tests reading them go on working). */
+const LEGACY: Record<string, (p: Params) => number | undefined> = {
+  springDamping: (p) => num(p.spring_damping), bendingStiffness: (p) => num(p.bending), gasAmount: (p) => num(p['gas.amount']),
+  temperature: (p) => num(p['gas.temperature']), windX: (p) => vec(p, 0), windY: (p) => vec(p, 1), windZ: (p) => vec(p, 2),
+  windDrag: (p) => num(p.wind_drag), groundOn: (p) => num(p.ground), groundHeight: (p) => num(p['ground.height']),
+  friction: (p) => num(p['ground.friction']), totalMass: (p) => num(p.mass), selfCollision: (p) => num(p.self_collision),
+  ambientPressure: (p) => num(p['gas.ambient']),
+};
 
 export function inspector(app: App) {
   const m = app.mirror;
@@ -17,7 +29,8 @@ export function inspector(app: App) {
     pinned: () => Array.from(m.pinned),
     masses: () => Array.from(m.masses),
     stats: () => structuredClone(m.stats),
-    param: (name: string) => m.params[name as keyof typeof m.params],
+    /** A parameter by its table id (docs/parameters.md), or by the page's earlier name (`groundOn`, `windX`, …) as a number. */
+    param: (name: string) => (name in m.params ? m.params[name] : LEGACY[name]?.(m.params)),
     tool: () => app.tools.tool.name,
     scene: () => (m.scene ? { ...m.scene } : null),
     playing: () => m.settings.playing,

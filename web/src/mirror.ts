@@ -3,9 +3,8 @@
 // picking and overlays, the panel, the HUD and `window.softsculpt` all read it; it is only ever
 // written by `apply`, one frame at a time, so what it holds is always one consistent frame.
 
-import type { Frame, Obstacle, ParamName, SceneInfo, Settings, Stats, Topology } from './protocol';
+import type { Frame, Obstacle, ParamInfo, Params, SceneInfo, Settings, Stats, Topology } from './protocol';
 import type { BodyView } from './tools/tool';
-import { Param } from './engine/params';
 
 const NO_STATS: Stats = {
   step: 0, time: 0, volume: 0, pressure: 0, kinetic: 0, elastic: 0, gas: 0, gravity: 0, total: 0,
@@ -30,8 +29,10 @@ export class Mirror implements BodyView {
   slowMotion = false;
   realTimeFraction = 1;
   scene: SceneInfo | null = null;
-  /** Every parameter of the active body (an object the panel may bind to: updated in place). */
-  readonly params = Object.fromEntries(Object.keys(Param).map((k) => [k, 0])) as Record<ParamName, number>;
+  /** Every parameter of the active body and the world by table id (an object the panel may bind to: updated in place). */
+  readonly params: Params = {};
+  /** The engine's parameter table: ids, units, ranges, help (empty until the first frame). */
+  table: ParamInfo[] = [];
   /** The simulation's settings (updated in place; the panel binds to it). */
   readonly settings: Settings = { dt: 1e-3, substeps: 16, realTime: true, playing: true, model: 'mushroom' };
   history: [number, number] = [0, 0];
@@ -56,6 +57,7 @@ export class Mirror implements BodyView {
     this.all = f.positions;
     if (f.body) { this.masses = f.body.masses; this.pinned = f.body.pinned; }
     if (f.params) Object.assign(this.params, f.params);
+    if (f.table) this.table = f.table;
     if (f.settings) Object.assign(this.settings, f.settings);
     if (f.history) this.history = f.history;
     this.stats = f.stats;

@@ -1,7 +1,8 @@
 // The models the modeler offers, how a mesh is placed on the ground, gas as nRT.
 // (Loading them into the engine and their default settings: engine/models.ts.)
 
-import { GAS_CONSTANT } from './engine/params';
+/** R (J/(mol·K)). */
+export const GAS_CONSTANT = 8.314462618;
 
 export const MODELS = ['mushroom', 'sphere', 'octopus', 'bunny'] as const;
 export type ModelName = (typeof MODELS)[number];

@@ -1,10 +1,13 @@
 // The side panel (lil-gui): every tool, parameter and operation, each with a tooltip that names
 // its unit and shortcut. Parameter and settings edits are sent to the simulation (validated and
 // undoable there); the panel shows the page's mirror of its state and refreshes when it changes.
+// The parameters' controls are made from the engine's parameter table when it arrives
+// (panel-params.ts).
 
 import GUI, { type Controller } from 'lil-gui';
 import type { App } from './app';
-import { INTEGRATORS, VOLUME_MODES, type ParamName } from './engine/params';
+import { addParams, takeParams } from './panel-params';
+import type { ParamValue } from './protocol';
 import { MODELS, type ModelName } from './models';
 import { fmt } from './view/plots';
 
@@ -18,19 +21,14 @@ export interface PanelActions {
 export function buildPanel(app: App, actions: PanelActions): GUI {
   const gui = new GUI({ title: 'SoftSculpt', width: 290 });
   const tip = (c: Controller, text: string) => { c.domElement.title = text; c.domElement.setAttribute('data-tip', text); return c; };
-  const p = { ...app.mirror.params };
+  /** The parameters' values the controllers bind to (table ids). */
+  const p: Record<string, ParamValue> = {};
+  let paramsBuilt = false;
   const view: Record<string, any> = {
     tool: app.tools.tool.name,
     model: app.mirror.settings.model,
     pressure: '', volume: '',
     windStrength: 0,
-  };
-
-  // Parameters shown in the panel mirror the body; edits are validated by the engine.
-  const param = (folder: GUI, name: ParamName, label: string, tipText: string, min?: number, max?: number, step?: number) => {
-    const c = folder.add(p, name, min, max, step).name(label);
-    c.onFinishChange((v: number) => app.setParam(name, Number(v)));
-    return tip(c, tipText);
   };
 
   const tools = gui.addFolder('Tool');
@@ -74,42 +72,20 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   tip(sim.add(settings, 'playing').name('play (Space)').onChange((v: boolean) => app.setSettings({ playing: v })), 'Play / pause the simulation (Space)');
   tip(sim.add({ f: () => app.step() }, 'f').name('single step (.)'), 'Advance one frame of steps while paused (.)');
   tip(sim.add({ f: () => app.restartScene() }, 'f').name('restart scene'), 'Play the open scene again from its start');
-  const integ = sim.add(p, 'integrator', Object.fromEntries(INTEGRATORS.map((n, i) => [n, i]))).name('integrator');
-  integ.onChange((v: number) => app.setParam('integrator', Number(v)));
-  tip(integ, 'euler (order 1), midpoint (2), rk4 (4), symplectic Euler (1, energy-stable; default)');
   tip(sim.add(settings, 'dt', 1e-6, 5e-3).name('dt (s)').onFinishChange((v: number) => app.setSettings({ dt: v })), 'Time step in seconds: smaller is more stable, slower');
   tip(sim.add(settings, 'realTime').name('real time').onChange((v: boolean) => app.setSettings({ realTime: v })), 'Simulated time follows the clock (steps per frame follow the frame rate); off: a fixed number of steps per frame');
   tip(sim.add(settings, 'substeps', 1, 500, 1).name('steps per frame').onFinishChange((v: number) => app.setSettings({ substeps: v })), 'Steps per frame when not in real time');
-  param(sim, 'stiffness', 'stiffness k (N/m)', 'Spring stiffness, N/m: higher keeps the shape', 0, 5000);
-  param(sim, 'springDamping', 'spring damping (N·s/m)', 'Damping along each spring, N·s/m: calms vibrations', 0, 5);
-  param(sim, 'bendingStiffness', 'bending k_b (N/m)', 'Stiffness of the bending springs across every edge, N/m: resists folding (0 = a pure balloon)', 0, 5000);
-  param(sim, 'damping', 'damping c (1/s)', 'Viscous damping rate, 1/s: velocities decay as e^(−ct)', 0, 20);
-  const selfHit = { on: p.selfCollision !== 0 };
-  tip(sim.add(selfHit, 'on').name('self-collision').onChange((v: boolean) => app.setParam('selfCollision', v ? 1 : 0)),
-    'Keep the surface from passing through itself (a crushed or folded body); costs time, off by default');
-  const mass = { total: app.mirror.totalMass };
-  tip(sim.add(mass, 'total', 0.01, 100).name('total mass (kg)').onFinishChange((v: number) => app.setMass(v)),
-    'Total mass in kg, split equally over the vertices (resets painted masses)');
 
   const world = gui.addFolder('Gravity & ground');
   // On/off remembers the last g, so switching gravity back on restores it.
-  const gravity = { on: p.gravity !== 0, last: p.gravity || 9.81 };
-  tip(world.add(gravity, 'on').name('gravity').onChange((on: boolean) => {
-    if (!on && p.gravity !== 0) gravity.last = p.gravity;
+  const g = () => (typeof p.gravity === 'number' ? p.gravity : 0);
+  const gravity = { on: true, last: 9.81 };
+  tip(world.add(gravity, 'on').name('gravity on').onChange((on: boolean) => {
+    if (!on && g() !== 0) gravity.last = g();
     app.setParam('gravity', on ? gravity.last : 0);
   }), 'Gravity on or off (keeps g)');
-  param(world, 'gravity', 'gravity g (m/s²)', 'Gravitational acceleration along −y, m/s²', 0, 30);
-  const ground = { on: p.groundOn !== 0 };
-  tip(world.add(ground, 'on').name('ground').onChange((v: boolean) => app.setParam('groundOn', v ? 1 : 0)), 'A rigid ground plane');
-  param(world, 'groundHeight', 'ground height (m)', 'Height of the ground plane, m', -5, 5);
-  param(world, 'friction', 'friction μ', 'Coulomb friction coefficient of the ground', 0, 2);
 
   const gas = gui.addFolder('Gas');
-  param(gas, 'gasAmount', 'amount n (mol)', 'Amount of gas n in mol (P = nRT/V)', 0, 0.1, 0.0001);
-  param(gas, 'temperature', 'temperature T (K)', 'Gas temperature in kelvin', 1, 1000);
-  const vm = gas.add(p, 'volumeMode', Object.fromEntries(VOLUME_MODES.map((n, i) => [n, i]))).name('volume');
-  vm.onChange((v: number) => app.setParam('volumeMode', Number(v)));
-  tip(vm, 'Volume the gas law uses: exact (default), bounding box or bounding sphere (the paper’s approximations)');
   tip(gas.add(view, 'pressure').name('P = nRT/V (Pa)').disable(), 'Live gas pressure');
   tip(gas.add(view, 'volume').name('V (m³)').disable(), 'Live volume used by the gas law');
 
@@ -117,7 +93,6 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   tip(wind.add(view, 'windStrength', 0, 30, 0.1).name('strength (m/s)').onFinishChange((s: number) => app.windFromView(s)),
     'Wind speed; the wind blows along the current view direction (the arrow shows it)');
   tip(wind.add({ f: () => app.windFromView(view.windStrength || 5) }, 'f').name('blow from view (W)'), 'Set the wind direction to the view direction (W)');
-  param(wind, 'windDrag', 'drag cw (N·s/m³)', 'Wind drag coefficient: force = cw · area · (relative wind · normal)', 0, 10);
   tip(wind.add({ f: () => { view.windStrength = 0; app.windFromView(0); } }, 'f').name('calm'), 'No wind');
 
   const display = gui.addFolder('View');
@@ -127,16 +102,18 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
 
 
   function refresh(): void {
-    Object.assign(p, app.mirror.params);
-    ground.on = p.groundOn !== 0;
-    selfHit.on = p.selfCollision !== 0;
-    gravity.on = p.gravity !== 0;
-    if (p.gravity !== 0) gravity.last = p.gravity;
+    if (!paramsBuilt && app.mirror.table.length > 0) {
+      takeParams(p, app.mirror.params);
+      addParams(app.mirror.table, { sim, world, gas, wind }, p, (id, v) => app.setParam(id, v), tip);
+      paramsBuilt = true;
+    }
+    takeParams(p, app.mirror.params);
+    gravity.on = g() !== 0;
+    if (g() !== 0) gravity.last = g();
     if (view.tool !== app.tools.tool.name) showStrength();
     view.tool = app.tools.tool.name;
     view.model = app.mirror.settings.model;
-    mass.total = app.mirror.totalMass;
-    view.windStrength = Math.hypot(p.windX, p.windY, p.windZ);
+    view.windStrength = app.windStrength;
     gui.controllersRecursive().forEach((c) => c.updateDisplay());
   }
   app.onChange(refresh);

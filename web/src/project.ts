@@ -1,62 +1,72 @@
-// Project files: a body's whole state (engine/state.ts) and the page's state, as JSON text.
-
-import type { BodyState } from './engine/state';
-
-export type { BodyState };
+// Project files: the whole world as a snapshot (docs/snapshot.md), with the project's name and
+// the page's state, as JSON text:
+//   {"format": "softsculpt-project", "version": 2, "name": "…", "ui": {…}, "snapshot": "<base64>"}
+// Version 1 files (a body's arrays as JSON, written by earlier modelers) still open: the engine
+// migrates them (`World.openProjectV1`). Anything else is refused with one message naming what
+// is wrong.
 
 export const PROJECT_FORMAT = 'softsculpt-project';
+export const PROJECT_VERSION = 2;
 
 export interface Project {
   name: string;
-  state: BodyState;
   ui: Record<string, unknown>;
+  /** The world's snapshot bytes. */
+  snapshot: Uint8Array;
 }
 
-const F64 = ['positions', 'velocities', 'restLengths', 'masses', 'frozenPositions', 'frozenRestLengths', 'prestress', 'frozenPrestress', 'bendingRestLengths', 'frozenBendingRestLengths'] as const;
+/** A parsed project file: version 2 as it is, version 1 as its text (the engine reads it). */
+export type ParsedProject = ({ version: 2 } & Project) | { version: 1; text: string };
 
-/** Project file text (JSON; numbers print in shortest round-trip form, so they load back exactly). */
+export class ProjectError extends Error {}
+
+/** Base64 of bytes, in chunks (a snapshot can be tens of MB). */
+export function toBase64(bytes: Uint8Array): string {
+  const parts: string[] = [];
+  for (let i = 0; i < bytes.length; i += 0x8000) parts.push(String.fromCharCode(...bytes.subarray(i, i + 0x8000)));
+  return btoa(parts.join(''));
+}
+
+export function fromBase64(text: string): Uint8Array {
+  const s = atob(text);
+  const out = new Uint8Array(s.length);
+  for (let i = 0; i < s.length; i++) out[i] = s.charCodeAt(i);
+  return out;
+}
+
+/** Project file text. */
 export function serialize(p: Project): string {
-  const s = p.state;
-  const body: Record<string, unknown> = { triangles: Array.from(s.triangles), pinned: Array.from(s.pinned), gas: s.gas, frozenGas: s.frozenGas, params: s.params };
-  for (const k of F64) body[k] = Array.from(s[k]);
-  return JSON.stringify({ format: PROJECT_FORMAT, version: 1, name: p.name, body, ui: p.ui });
+  return JSON.stringify({ format: PROJECT_FORMAT, version: PROJECT_VERSION, name: p.name, ui: p.ui, snapshot: toBase64(p.snapshot) });
 }
 
-function numbers(v: unknown, what: string): number[] {
-  if (!Array.isArray(v) || v.some((x) => typeof x !== 'number' || !Number.isFinite(x))) throw new Error(`project: '${what}' must be a list of finite numbers`);
-  return v as number[];
-}
-
-/** Parse a project file; throws an Error saying what is wrong. */
-export function parse(text: string): Project {
+/** Read a project file; throws a ProjectError saying what is wrong (the engine checks the snapshot itself). */
+export function parse(text: string): ParsedProject {
+  if (text.trim() === '') throw new ProjectError('the project file is empty');
   let j: any;
   try {
     j = JSON.parse(text);
-  } catch {
-    throw new Error('not a SoftSculpt project (not JSON)');
+  } catch (e) {
+    const why = e instanceof Error ? e.message : '';
+    if (/end of (JSON )?input|Unterminated|Unexpected end/i.test(why)) throw new ProjectError('the project file is truncated (its JSON ends early)');
+    throw new ProjectError('not a SoftSculpt project (not JSON)');
   }
-  if (!j || j.format !== PROJECT_FORMAT) throw new Error('not a SoftSculpt project (no "format": "softsculpt-project")');
-  if (j.version !== 1) throw new Error(`project version ${j.version} is not supported (this modeler reads version 1)`);
-  const b = j.body ?? {};
-  const arr = Object.fromEntries(F64.map((k) => [k, new Float64Array(numbers(b[k], k))])) as Record<(typeof F64)[number], Float64Array>;
-  const triangles = new Uint32Array(numbers(b.triangles, 'triangles'));
-  const n = arr.positions.length / 3;
-  if (!Number.isInteger(n) || n === 0 || triangles.length % 3 !== 0 || triangles.some((i) => i >= n)) throw new Error('project: the mesh is malformed');
-  for (const k of ['velocities', 'frozenPositions', 'prestress', 'frozenPrestress'] as const) if (arr[k].length !== 3 * n) throw new Error(`project: '${k}' has the wrong length`);
-  if (arr.masses.length !== n) throw new Error("project: 'masses' has the wrong length");
-  const params: Record<string, number> = {};
-  for (const [k, v] of Object.entries(b.params ?? {})) if (typeof v === 'number') params[k] = v;
+  if (!j || typeof j !== 'object' || j.format !== PROJECT_FORMAT) throw new ProjectError('not a SoftSculpt project (no "format": "softsculpt-project")');
+  const v = j.version;
+  if (!Number.isInteger(v) || v < 1) throw new ProjectError('the project has no valid "version"');
+  if (v > PROJECT_VERSION) throw new ProjectError(`project version ${v} is newer than this modeler reads (≤ ${PROJECT_VERSION}); update SoftSculpt to open it`);
+  if (v === 1) return { version: 1, text };
+  if (typeof j.snapshot !== 'string' || j.snapshot === '') throw new ProjectError('the project has no "snapshot" (the model)');
+  let snapshot: Uint8Array;
+  try {
+    snapshot = fromBase64(j.snapshot);
+  } catch {
+    throw new ProjectError('the project\'s "snapshot" is not valid base64 (the file is corrupted)');
+  }
   return {
+    version: 2,
     name: typeof j.name === 'string' ? j.name : 'project',
-    state: {
-      ...arr,
-      triangles,
-      pinned: new Uint8Array(numbers(b.pinned, 'pinned')),
-      gas: numbers(b.gas, 'gas') as [number, number],
-      frozenGas: numbers(b.frozenGas, 'frozenGas') as [number, number],
-      params,
-    },
     ui: typeof j.ui === 'object' && j.ui ? j.ui : {},
+    snapshot,
   };
 }
 

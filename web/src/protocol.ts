@@ -14,11 +14,11 @@
 // per frame, and the worker never runs more than one frame ahead of the drawing (it keeps
 // stepping meanwhile; only publishing waits).
 
-import type { ParamName } from './engine/params';
-import type { Stats } from './engine/softbody';
-import type { Obstacle } from './engine/scene';
+import type { Obstacle, ParamInfo, ParamValue, Stats } from './engine/world';
 
-export type { Stats, Obstacle, ParamName };
+export type { Stats, Obstacle, ParamInfo, ParamValue };
+/** Parameter values by the engine's table ids (null: not set, e.g. the ground's without ground). */
+export type Params = Record<string, ParamValue | null>;
 export type Vec3 = [number, number, number];
 export type MessageKind = 'info' | 'warn' | 'error';
 
@@ -70,8 +70,8 @@ export type Command =
   | { type: 'redo' }
   /** One frame of steps (settings.substeps) while paused. */
   | { type: 'step' }
-  /** Undoable; a refused value is reported (message) and the parameters are sent again. */
-  | { type: 'setParam'; name: ParamName; value: number }
+  /** A parameter by its table id (engine/world.ts `paramTable`); undoable; a refused value is reported (message) and the parameters are sent again. */
+  | { type: 'setParam'; name: string; value: ParamValue }
   /** Total mass (kg) split equally over the vertices (undoable). */
   | { type: 'setMass'; total: number }
   /** Wind along `direction` (unit, the view direction) at `strength` m/s (undoable). */
@@ -120,8 +120,10 @@ export interface Frame {
   topology?: Topology;
   /** Masses (kg) and pins (0/1) per vertex of the active body, when they changed. */
   body?: { masses: Float64Array; pinned: Uint8Array };
-  /** Every parameter of the active body, when one changed. */
-  params?: Record<ParamName, number>;
+  /** Every parameter of the active body and the world, by table id, when one changed. */
+  params?: Params;
+  /** The engine's parameter table (ids, units, ranges, help), with the first frame. */
+  table?: ParamInfo[];
   settings?: Settings;
   /** Undo and redo stack sizes, when they changed. */
   history?: [number, number];

@@ -4,7 +4,7 @@ import { STLExporter } from 'three/examples/jsm/exporters/STLExporter.js';
 import { loadEngine } from './setup';
 import { importModel, mergeMeshes } from '../src/io/import';
 import { exportShape, shapeMesh } from '../src/io/export';
-import { SoftBody } from '../src/engine/softbody';
+import { World } from '../src/engine/world';
 
 beforeAll(loadEngine);
 
@@ -21,11 +21,12 @@ describe('import', () => {
     const imported = await importModel('ball.stl', stl.buffer as ArrayBuffer);
     if (imported.kind !== 'mesh') throw new Error('expected a mesh');
     expect(imported.indices.length % 3).toBe(0);
-    const body = SoftBody.fromMesh(imported.positions, imported.indices);
-    expect(body.warnings).toMatch(/welded/);
-    expect(body.vertexCount).toBe(92); // three's detail 2 splits each edge in 3: 10·3² + 2
-    body.set('gasAmount', 0.001); // closed: gas is accepted
-    body.free();
+    const w = World.create();
+    w.addMesh(imported.positions, imported.indices);
+    expect(w.warnings.join('\n')).toMatch(/welded/);
+    expect(w.body(0).vertexCount).toBe(92); // three's detail 2 splits each edge in 3: 10·3² + 2
+    w.setParam(0, 'gas.amount', 0.001); // closed: gas is accepted
+    w.free();
   });
 
   it('PLY comes in through the three.js loader', async () => {
@@ -41,7 +42,9 @@ describe('import', () => {
   it('OBJ goes to the engine reader, which names the bad line', async () => {
     const imported = await importModel('bad.obj', enc('v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n'));
     if (imported.kind !== 'obj') throw new Error('expected obj bytes');
-    expect(() => SoftBody.fromObj(imported.bytes)).toThrow(/line 4: face refers to vertex 9/);
+    const w = World.create();
+    expect(() => w.addObj(imported.bytes)).toThrow(/line 4: face refers to vertex 9/);
+    w.free();
   });
 
   it('refuses empty files, unknown types and files without triangles', async () => {
@@ -65,20 +68,24 @@ describe('import', () => {
 
 describe('export', () => {
   it('OBJ has every vertex and face of the shape', async () => {
-    const body = SoftBody.builtin('octopus');
-    const blob = await exportShape('obj', body.positions(), body.triangles());
+    const w = World.create();
+    w.addBuiltin('octopus');
+    const body = w.body(0);
+    const blob = await exportShape('obj', body.positions.slice(), body.triangles.slice());
     const text = await blob.text();
     expect(text.split('\n').filter((l) => l.startsWith('v ')).length).toBe(body.vertexCount);
     expect(text.split('\n').filter((l) => l.startsWith('f ')).length).toBe(body.faceCount);
-    body.free();
+    w.free();
   });
 
   it('STL is binary with one record per face', async () => {
-    const body = SoftBody.builtin('sphere');
-    const blob = await exportShape('stl', body.positions(), body.triangles());
+    const w = World.create();
+    w.addBuiltin('sphere');
+    const body = w.body(0);
+    const blob = await exportShape('stl', body.positions.slice(), body.triangles.slice());
     // 80-byte header + 4-byte count + 50 bytes per triangle.
     expect(blob.size).toBe(84 + 50 * body.faceCount);
-    body.free();
+    w.free();
   });
 
   it('the export mesh reads the engine positions', () => {

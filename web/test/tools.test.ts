@@ -2,7 +2,8 @@ import { beforeAll, describe, expect, it } from 'vitest';
 import { loadEngine } from './setup';
 import { falloff, facesAround, grabForce, inflateFactor, verticesAround } from '../src/tools/brush';
 import { placeOnGround, MODELS } from '../src/models';
-import { defaultSettings, loadModel, stableDt } from '../src/engine/models';
+import { addModel, stableDt, useDefaults } from '../src/engine/models';
+import { World } from '../src/engine/world';
 
 beforeAll(loadEngine);
 
@@ -43,26 +44,29 @@ describe('brush maths', () => {
 describe('models', () => {
   it('every model loads closed, standing on y = 0, with a stable step', () => {
     for (const name of MODELS) {
-      const b = loadModel(name);
-      const { dt } = defaultSettings(b);
-      const x = b.positions();
+      const w = World.create();
+      const b = addModel(w, name);
+      const dt = useDefaults(w, b);
+      const x = w.body(b).positions;
       let lo = Infinity;
       for (let i = 1; i < x.length; i += 3) lo = Math.min(lo, x[i]);
       expect(lo).toBeCloseTo(0, 12);
-      // A second of simulated time at the chosen dt stays finite (no blow-up).
-      b.step(dt, Math.round(1 / dt));
-      expect(b.positions().every(Number.isFinite)).toBe(true);
-      expect(b.stats().volume).toBeGreaterThan(0);
-      b.free();
+      // A second of simulated time at the chosen dt stays finite (no blow-up; a blow-up throws).
+      w.step(Math.round(1 / dt));
+      w.sync();
+      expect(w.body(b).positions.every(Number.isFinite)).toBe(true);
+      expect(w.body(b).stats.volume).toBeGreaterThan(0);
+      w.free();
     }
   });
 
   it('the bunny is the Stanford bunny: 1,839 vertices, closed, scaled to fit', () => {
-    const b = loadModel('bunny');
-    expect(b.vertexCount).toBe(1839);
-    expect(b.faceCount).toBe(3674);
-    b.set('gasAmount', 0.01); // accepted only on a closed surface
-    b.free();
+    const w = World.create();
+    const b = addModel(w, 'bunny');
+    expect(w.body(b).vertexCount).toBe(1839);
+    expect(w.body(b).faceCount).toBe(3674);
+    w.setParam(b, 'gas.amount', 0.01); // accepted only on a closed surface
+    w.free();
   });
 
   it('placing fits the bounding-box diagonal and centres x and z', () => {
@@ -73,11 +77,12 @@ describe('models', () => {
   });
 
   it('the stable step shrinks with lighter vertices and stiffer springs', () => {
-    const b = loadModel('sphere');
-    defaultSettings(b);
-    const dt1 = stableDt(b);
-    b.set('stiffness', 1e5);
-    expect(stableDt(b)).toBeLessThan(dt1);
-    b.free();
+    const w = World.create();
+    addModel(w, 'sphere');
+    const dt1 = useDefaults(w, 0);
+    expect(w.params(0).dt).toBe(dt1);
+    w.setParam(0, 'stiffness', 1e5);
+    expect(stableDt(w, 0)).toBeLessThan(dt1);
+    w.free();
   });
 });

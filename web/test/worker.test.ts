@@ -5,6 +5,7 @@ import { readFileSync } from 'node:fs';
 import { loadEngine } from './setup';
 import { Service } from '../src/worker/service';
 import type { Command, Frame, Reply } from '../src/protocol';
+import type { AutosaveRecord } from '../src/storage';
 
 beforeAll(loadEngine);
 
@@ -15,7 +16,7 @@ const bytes = (s: string) => new TextEncoder().encode(s).buffer as ArrayBuffer;
 /** A service on a fake clock, its replies collected; the autosave goes to `saved`. */
 function harness() {
   const replies: Reply[] = [];
-  const saved: string[] = [];
+  const saved: AutosaveRecord[] = [];
   let clock = 0;
   const timers = new Map<number, () => void>();
   let timerId = 0;
@@ -63,7 +64,8 @@ describe('worker service', () => {
     expect(f.positions.every(Number.isFinite)).toBe(true);
     expect(f.body!.masses.length).toBe(362);
     expect(f.body!.pinned.some((p) => p === 1)).toBe(true); // rooted
-    expect(f.params!.groundOn).toBe(1);
+    expect(f.params!.ground).toBe(true);
+    expect(f.table!.find((p) => p.id === 'stiffness')).toMatchObject({ unit: 'N/m', scope: 'body' });
     expect(f.settings!.model).toBe('mushroom');
     expect(f.history).toEqual([0, 0]);
     expect(f.stats.time).toBeGreaterThan(6); // settled on load

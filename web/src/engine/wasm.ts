@@ -1,72 +1,50 @@
 // The only module that touches the WebAssembly engine (crates/softsculpt-wasm). It loads the
-// module, types its raw exports, and makes typed-array views over wasm memory.
+// module, types its raw exports, and reads its error and result slots. The calls are documented
+// in one place: the crate documentation of crates/softsculpt-wasm/src/lib.rs (and web/README.md).
+//
+// Conventions: fallible calls return 0 / an index ≥ 0, or −1 on failure (then `errorJson()`);
+// data comes back in the result slot (`resultBytes()`, `resultText()`). Any call may grow wasm
+// memory, which replaces `memory.buffer`: typed arrays over it must be re-made after every call.
 
 export interface RawEngine {
   memory: WebAssembly.Memory;
   ss_alloc(len: number): number;
   ss_dealloc(ptr: number, len: number): void;
-  ss_message_ptr(): number;
-  ss_message_len(): number;
-  ss_create_builtin(name: number, len: number, mass: number): number;
-  ss_create_obj(ptr: number, len: number, mass: number): number;
-  ss_create_mesh(pos: number, nVertices: number, idx: number, nIndices: number, mass: number, weld: number): number;
-  ss_free(h: number): void;
-  ss_vertex_count(h: number): number;
-  ss_face_count(h: number): number;
-  ss_spring_count(h: number): number;
-  ss_sync(h: number): number;
-  ss_render_positions(h: number): number;
-  ss_triangles(h: number): number;
-  ss_springs(h: number): number;
-  ss_positions(h: number): number;
-  ss_velocities(h: number): number;
-  ss_masses(h: number): number;
-  ss_rest_lengths(h: number): number;
-  ss_frozen_positions(h: number): number;
-  ss_bending_count(h: number): number;
-  ss_bending_rest_lengths(h: number): number;
-  ss_frozen_bending_rest_lengths(h: number): number;
-  ss_set_bending_rest(h: number, now: number, frozen: number): number;
-  ss_frozen_rest_lengths(h: number): number;
-  ss_pinned(h: number): number;
-  ss_user_forces(h: number): number;
-  ss_face_pressures(h: number): number;
-  ss_vertex_scratch(h: number): number;
-  ss_vector_scratch(h: number): number;
-  ss_get(h: number, id: number): number;
-  ss_set(h: number, id: number, value: number): number;
-  ss_step(h: number, dt: number, substeps: number): number;
-  ss_stats(h: number): number;
-  ss_freeze(h: number): number;
-  ss_reset(h: number): number;
-  ss_freeze_under_load(h: number): number;
-  ss_prestress(h: number): number;
-  ss_frozen_prestress(h: number): number;
-  ss_set_prestress(h: number, now: number, frozen: number): number;
-  ss_subdivide(h: number): number;
-  ss_scale_rest(h: number, factor: number): number;
-  ss_scale_rest_by_vertex(h: number): number;
-  ss_set_rest_lengths(h: number, ptr: number): number;
-  ss_set_masses(h: number): number;
-  ss_set_pinned(h: number, vertex: number, pinned: number): number;
-  ss_apply_user_forces(h: number): number;
-  ss_apply_face_pressures(h: number): number;
-  ss_set_state(h: number, ptr: number): number;
-  ss_set_frozen(h: number, pos: number, rest: number, ambient: number, volume: number): number;
-  ss_scene_add_file(name: number, nameLen: number, ptr: number, len: number): void;
-  ss_scene_open(ptr: number, len: number): number;
-  ss_scene_free(s: number): void;
-  ss_scene_body_count(s: number): number;
-  ss_scene_body(s: number, i: number): number;
-  ss_scene_names(s: number): number;
-  ss_scene_set_body(s: number, i: number, h: number): number;
-  ss_scene_step(s: number, dt: number, substeps: number): number;
-  ss_scene_time(s: number): number;
-  ss_scene_duration(s: number): number;
-  ss_scene_dt(s: number): number;
-  ss_scene_obstacles(s: number): number;
-  ss_scene_obstacles_len(s: number): number;
-  ss_scene_save(s: number, hs: number, n: number, dt: number, duration: number): number;
+  ss_error_ptr(): number;
+  ss_error_len(): number;
+  ss_result_ptr(): number;
+  ss_result_len(): number;
+  ss_world_new(): number;
+  ss_world_free(w: number): void;
+  ss_workload(level: number): number;
+  ss_add_builtin(w: number, name: number, len: number, mass: number): number;
+  ss_add_mesh(w: number, pos: number, nVertices: number, idx: number, nIndices: number, mass: number, prepare: number): number;
+  ss_add_obj(w: number, ptr: number, len: number, mass: number): number;
+  ss_clear(w: number): number;
+  ss_step(w: number, n: number): number;
+  ss_sync(w: number): number;
+  ss_body_count(w: number): number;
+  ss_body_views(w: number, b: number): number;
+  ss_param_table(): number;
+  ss_params(w: number, b: number): number;
+  ss_set_param(w: number, b: number, id: number, idLen: number, json: number, jsonLen: number): number;
+  ss_freeze(w: number, b: number, underLoad: number): number;
+  ss_reset(w: number, b: number): number;
+  ss_subdivide(w: number, b: number): number;
+  ss_scale_rest(w: number, b: number): number;
+  ss_set_masses(w: number, b: number): number;
+  ss_set_pins(w: number, b: number): number;
+  ss_apply_loads(w: number, b: number): number;
+  ss_snapshot(w: number): number;
+  ss_restore(w: number, ptr: number, len: number): number;
+  ss_scene_file(name: number, nameLen: number, ptr: number, len: number): number;
+  ss_open_scene(w: number, ptr: number, len: number): number;
+  ss_save_scene(w: number): number;
+  ss_obstacles(w: number): number;
+  ss_mark(w: number): number;
+  ss_delta(w: number, scope: number): number;
+  ss_apply_delta(w: number, ptr: number, len: number): number;
+  ss_open_project_v1(w: number, ptr: number, len: number): number;
 }
 
 let engine: RawEngine | null = null;
@@ -93,10 +71,27 @@ export const view = {
   u8: (ptr: number, len: number) => new Uint8Array(raw().memory.buffer, ptr, len),
 };
 
-/** The engine's last message (an error, or a load's warnings). */
-export function message(): string {
+/** The last error: `{kind, message, …}` (see the crate documentation). */
+export function errorJson(): Record<string, unknown> {
   const e = raw();
-  return new TextDecoder().decode(new Uint8Array(e.memory.buffer, e.ss_message_ptr(), e.ss_message_len()));
+  const text = new TextDecoder().decode(new Uint8Array(e.memory.buffer, e.ss_error_ptr(), e.ss_error_len()));
+  try {
+    return JSON.parse(text) as Record<string, unknown>;
+  } catch {
+    return { kind: 'usage', message: text || 'the engine gave no error' };
+  }
+}
+
+/** A copy of the last result's bytes. */
+export function resultBytes(): Uint8Array {
+  const e = raw();
+  return new Uint8Array(e.memory.buffer, e.ss_result_ptr(), e.ss_result_len()).slice();
+}
+
+/** The last result as text (JSON, TOML). */
+export function resultText(): string {
+  const e = raw();
+  return new TextDecoder().decode(new Uint8Array(e.memory.buffer, e.ss_result_ptr(), e.ss_result_len()));
 }
 
 /** Copy bytes into a temporary wasm buffer for the duration of `f`. */
@@ -112,7 +107,7 @@ export function withBytes<T>(bytes: Uint8Array, f: (ptr: number, len: number) =>
 }
 
 /** Copy typed arrays into temporary wasm buffers for the duration of `f`. */
-export function withArrays<T>(arrays: (Float64Array | Uint32Array)[], f: (...ptrs: number[]) => T): T {
+export function withArrays<T>(arrays: (Float64Array | Uint32Array | Uint8Array)[], f: (...ptrs: number[]) => T): T {
   const e = raw();
   const blocks = arrays.map((a) => ({ a, len: a.byteLength, ptr: e.ss_alloc(a.byteLength) }));
   try {

@@ -1,29 +1,33 @@
-// The document, in the worker: the body (or an open scene's bodies, the first one active), the
-// settings it runs with, undo/redo, and every modeling operation. This is the only module of
-// the page that calls the engine (src/engine/*): the rest of the worker and the whole main
-// thread see the body through the methods below (and strokes through `StrokeBody`), so a change
-// of the binding touches this module and src/engine/ only.
+// The document, in the worker: one engine world (engine/world.ts) — the body the tools shape is
+// body 0, an open scene's other bodies follow — the settings it runs with, undo/redo, and every
+// modeling operation. This is the only module of the page that calls the engine: the rest of
+// the worker and the whole main thread see the world through the methods below (and strokes
+// through `StrokeBody`).
+//
+// Undo keeps deltas (the engine's `mark` before an operation, `delta` after it): a brush stroke
+// keeps what it painted and the state of those vertices ('touched'), a drag or any other
+// operation the whole state ('all'; a topology change keeps the whole earlier world). Entries
+// are limited to HISTORY_STEPS and HISTORY_BYTES in all, the oldest dropped first.
 
 import { initEngine } from '../engine/wasm';
-import { SoftBody } from '../engine/softbody';
-import { Scene } from '../engine/scene';
-import { SceneSession, type SceneSource } from '../engine/session';
-import { Param, type ParamName } from '../engine/params';
-import { capture, restore, type BodyState } from '../engine/state';
-import { loadModel, defaultSettings, stableDt } from '../engine/models';
+import { EngineError, World, type DeltaScope, type ParamInfo, type ParamValue } from '../engine/world';
+import { addModel, stableDt, useDefaults } from '../engine/models';
 import { History, travel } from '../history';
-import { parse, serialize } from '../project';
+import { parse, ProjectError, serialize } from '../project';
+import type { Autosave, AutosaveRecord } from '../storage';
 import { MODELS, placeOnGround, type ModelName } from '../models';
 import { importModel } from '../io/import';
 import type { MessageKind, SceneInfo, Settings, Stats, Topology, UiState, Vec3 } from '../protocol';
-import { makeStroke, type Stroke, type StrokeStart } from './strokes';
+import { makeStroke, type Stroke, type StrokeBody, type StrokeStart } from './strokes';
 
-type Entry =
-  | { kind: 'body'; state: BodyState; settings: Settings }
-  | { kind: 'params'; params: Partial<Record<ParamName, number>> }
-  // Undo of opening a scene: back to the body before it; its inverse opens the scene again.
-  | { kind: 'before-scene'; state: BodyState; settings: Settings }
-  | { kind: 'reopen-scene'; source: SceneSource };
+export const HISTORY_STEPS = 200;
+export const HISTORY_BYTES = 512 * 1024 * 1024;
+
+/** What a scene was opened from, to restart it (and to bring it back on undo). */
+export interface SceneSource { name: string; text: string; files: Map<string, Uint8Array>; duration: number }
+
+/** One undo step: the engine delta, and the page's settings and open scene before it. */
+interface Entry { delta: Uint8Array; settings: Settings; scene: SceneSource | null }
 
 /** What the document tells its owner (worker/service.ts turns these into replies). */
 export interface DocumentHooks {
@@ -41,17 +45,19 @@ export async function loadEngine(source: BufferSource | string): Promise<void> {
   await initEngine(source);
 }
 
-export const ALL_PARAMS = Object.keys(Param) as ParamName[];
-
 export class Document {
-  private current: SoftBody | null = null;
-  /** The open scene (its first body is the active body), if any. */
-  private session: SceneSession | null = null;
-  readonly history = new History<Entry>(50);
+  private w: World | null = null;
+  /** An empty world's snapshot: what a new model starts from (no obstacles, default settings). */
+  private empty: Uint8Array | null = null;
+  /** The open scene, if any (its first body is the active body). */
+  private session: SceneSource | null = null;
+  readonly history = new History<Entry>({ limit: HISTORY_STEPS, maxBytes: HISTORY_BYTES, size: (e) => e.delta.byteLength });
   readonly settings: Settings = { dt: 1e-3, substeps: 16, realTime: true, playing: true, model: 'mushroom' };
   ui: UiState = { brush: { radius: 0.35 }, tool: 'grab', strengths: {} };
   private stroke: Stroke | null = null;
-  private pending: { label: string; state: BodyState } | null = null;
+  private strokeScope: DeltaScope = 'all';
+  /** The world's call count when it was last synced. */
+  private syncedAt = -1;
   /** Bumped when the meshes change shape (body replaced, subdivided, scene opened or closed). */
   topologyVersion = 0;
   /** Bumped when masses or pins may have changed. */
@@ -59,75 +65,93 @@ export class Document {
 
   constructor(private readonly hooks: DocumentHooks) {}
 
-  get loaded(): boolean { return this.current !== null; }
-  private get body(): SoftBody {
-    if (!this.current) throw new Error('no model is loaded yet');
-    return this.current;
+  get loaded(): boolean { return this.w !== null && this.w.bodyCount > 0; }
+  /** The engine world (for tests and the service; operations go through the methods below). */
+  get world(): World {
+    if (!this.w) {
+      this.w = World.create();
+      this.empty = this.w.snapshot();
+    }
+    return this.w;
   }
 
   // ----- what the page draws and reads ----------------------------------------------------------
 
-  get vertexCount(): number { return this.body.vertexCount; }
-  /** Floats the frame buffer holds: xyz of the active body, then of each other body. */
+  get vertexCount(): number { return this.world.body(0).vertexCount; }
+  /** Floats the frame buffer holds: xyz of every body, the active one first. */
   get renderLength(): number {
-    return 3 * (this.body.vertexCount + (this.session?.others ?? []).reduce((n, b) => n + b.vertexCount, 0));
+    let n = 0;
+    for (let i = 0; i < this.world.bodyCount; i++) n += 3 * this.world.body(i).vertexCount;
+    return n;
   }
-  /** Write every body's positions (f32) into `out` (renderLength floats). */
+  /** Every body's positions (f32) into `out` (renderLength floats); refreshes the stats. */
   renderInto(out: Float32Array): void {
-    out.set(this.body.syncRender(), 0);
-    let at = 3 * this.body.vertexCount;
-    for (const b of this.session?.others ?? []) { out.set(b.syncRender(), at); at += 3 * b.vertexCount; }
+    const w = this.world;
+    this.synced();
+    let at = 0;
+    for (let i = 0; i < w.bodyCount; i++) {
+      const r = w.body(i).render;
+      out.set(r, at);
+      at += r.length;
+    }
   }
-  stats(): Stats { return this.body.stats(); }
-  get sceneInfo(): SceneInfo | null { return this.session?.info ?? null; }
+  /** The active body's statistics now. */
+  stats(): Stats {
+    this.synced();
+    return this.world.body(0).stats;
+  }
+  /** Render positions, pins and stats up to date (synced unless nothing was called since). */
+  private synced(): void {
+    if (this.syncedAt === this.world.epoch) return;
+    this.world.sync();
+    this.syncedAt = this.world.epoch;
+  }
+  get sceneInfo(): SceneInfo | null {
+    if (!this.session) return null;
+    return { name: this.session.name, time: this.stats().time, duration: this.session.duration, bodies: this.world.bodyCount };
+  }
   topology(): Topology {
-    const b = this.body;
-    return {
-      vertexCount: b.vertexCount,
-      triangles: b.triangles().slice(),
-      springs: b.springs().slice(),
-      others: (this.session?.others ?? []).map((o) => ({ vertexCount: o.vertexCount, triangles: o.triangles().slice() })),
-      obstacles: this.session?.scene.obstacles() ?? [],
-    };
+    const w = this.world, b = w.body(0);
+    const others = [];
+    for (let i = 1; i < w.bodyCount; i++) others.push({ vertexCount: w.body(i).vertexCount, triangles: w.body(i).triangles.slice() });
+    return { vertexCount: b.vertexCount, triangles: b.triangles.slice(), springs: b.springs.slice(), others, obstacles: w.obstacles() };
   }
   bodyData(): { masses: Float64Array; pinned: Uint8Array } {
-    return { masses: this.body.masses().slice(), pinned: this.body.pinned().slice() };
+    this.synced();
+    const b = this.world.body(0);
+    return { masses: b.masses.slice(), pinned: b.pinned.slice() };
   }
-  params(): Record<ParamName, number> {
-    const b = this.body;
-    return Object.fromEntries(ALL_PARAMS.map((p) => [p, b.get(p)])) as Record<ParamName, number>;
-  }
+  /** Every parameter of the active body and the world, by the table's ids. */
+  params(): Record<string, ParamValue | null> { return this.world.params(0); }
+  /** The engine's parameter table (ids, units, ranges, help). */
+  paramTable(): ParamInfo[] { return this.world.paramTable(); }
 
-  // ----- bodies ---------------------------------------------------------------------------------
+  // ----- opening --------------------------------------------------------------------------------
 
-  private setBody(body: SoftBody): void {
-    const old = this.current;
-    this.current = body;
-    if (this.session && this.session.active !== body) {
-      const note = this.session.adopt(body);
-      if (note) this.hooks.message(note, 'warn');
-    }
-    if (old && old !== body) old.free();
-    this.topologyVersion++;
-    this.bodyVersion++;
-  }
-
-  /** Open on the autosaved project text if there is one (and it reads), else the default model. */
-  open(autosave: string | null): void {
+  /** Open on the autosave if there is one (and it reads), else the default model. */
+  open(autosave: Autosave | null): void {
     if (autosave) {
       try {
-        this.openProjectText(autosave, false);
+        if ('record' in autosave) this.openRecordOrThrow(autosave.record, false);
+        else this.openProjectText(autosave.legacyText, false);
         this.hooks.message('restored your last session (autosaved)');
         return;
       } catch (e) {
-        this.hooks.message(`could not read the autosaved project: ${errorText(e)}`, 'warn');
+        this.hooks.message(`the autosave could not be read (${errorText(e)}); opened the default model instead`, 'warn');
       }
     }
     this.loadBuiltin('mushroom', false);
   }
 
-  private useDefaults(body: SoftBody, model: string): void {
-    const { dt } = defaultSettings(body);
+  /** A fresh world: no bodies, no scene, no obstacles, the table's defaults. */
+  private fresh(): void {
+    this.world.clear();
+    this.world.restore(this.empty!);
+    this.session = null;
+  }
+
+  private useDefaults(model: string): void {
+    const dt = useDefaults(this.world, 0);
     this.settings.dt = dt;
     this.settings.substeps = Math.max(1, Math.round(1 / 60 / dt));
     this.settings.model = model;
@@ -139,50 +163,41 @@ export class Document {
     this.edit(`load ${name}`, undoable, () => {
       const label = `loading ${name}`;
       this.hooks.progress(label, 0);
-      const body = loadModel(name as ModelName);
-      try {
-        this.useDefaults(body, name);
-        // Let it settle on the ground (a few simulated seconds) so it opens at rest.
-        const dt = this.settings.dt;
-        for (let t = 0; t < 6; t += dt * 100) {
-          body.step(dt, 100);
-          this.hooks.progress(label, t / 6);
-        }
-      } catch (e) {
-        body.free();
-        throw e;
+      this.fresh();
+      addModel(this.world, name as ModelName);
+      this.useDefaults(name);
+      // Let it settle on the ground (a few simulated seconds) so it opens at rest.
+      const dt = this.settings.dt;
+      for (let t = 0; t < 6; t += dt * 100) {
+        this.world.step(100);
+        this.hooks.progress(label, t / 6);
       }
-      this.closeScene();
-      this.setBody(body);
     });
   }
 
   async importFile(name: string, data: ArrayBuffer): Promise<void> {
     this.hooks.progress(`importing ${name}`);
-    let body: SoftBody | null = null;
+    const scratch = World.create();
     try {
       const imported = await importModel(name, data);
-      const read = imported.kind === 'obj' ? SoftBody.fromObj(imported.bytes) : SoftBody.fromMesh(imported.positions, imported.indices);
-      const warnings = read.warnings;
-      const placed = placeOnGround(read.positions().slice(), 2.5);
-      try {
-        body = SoftBody.fromMesh(placed.positions, read.triangles().slice(), 1, false);
-      } finally {
-        read.free();
-      }
-      const b = body;
+      if (imported.kind === 'obj') scratch.addObj(imported.bytes); else scratch.addMesh(imported.positions, imported.indices);
+      const read = scratch.body(0);
+      const placed = placeOnGround(read.positions.slice(), 2.5);
+      const triangles = read.triangles.slice();
+      const warnings = scratch.warnings;
       const ok = this.edit(`import ${name}`, true, () => {
-        this.closeScene();
-        this.useDefaults(b, name);
-        this.setBody(b);
+        this.fresh();
+        this.world.addMesh(placed.positions, triangles, 1, false);
+        this.useDefaults(name);
       });
       if (!ok) return;
+      const b = this.world.body(0);
       this.hooks.message(`imported ${name}: ${b.vertexCount} vertices, ${b.faceCount} faces (scaled ×${placed.scale.toPrecision(3)} to fit)`);
-      if (warnings) this.hooks.message(warnings, 'warn');
+      if (warnings.length) this.hooks.message(warnings.join('\n'), 'warn');
     } catch (e) {
-      if (body && body !== this.current) body.free();
-      this.hooks.message(`could not import ${name}: ${errorText(e).replace(/^(OBJ|mesh): /, '')} — the current model is unchanged`, 'error');
+      this.hooks.message(`could not import ${name}: ${errorText(e)} — the current model is unchanged`, 'error');
     } finally {
+      scratch.free();
       this.hooks.progress(null);
     }
   }
@@ -190,89 +205,85 @@ export class Document {
   // ----- editing and undo -----------------------------------------------------------------------
 
   /**
-   * Run a modeling operation as one undoable step. If it fails, it is reported and the model
-   * goes back to how it was before. Returns whether it succeeded.
+   * Run a modeling operation as one undoable step (a delta of `scope` against the world before
+   * it). If it fails, it is reported and the world goes back to how it was. Returns whether it
+   * succeeded.
    */
-  edit(label: string, undoable: boolean, op: () => void): boolean {
-    const before = this.current && undoable ? capture(this.current) : null;
-    const settings = { ...this.settings };
-    const body = this.current;
+  edit(label: string, undoable: boolean, op: () => void, scope: DeltaScope = 'all', failText?: (why: string) => string): boolean {
+    if (this.stroke) this.strokeEnd();
+    const w = this.world;
+    const settings = { ...this.settings }, scene = this.session;
+    const hadModel = w.bodyCount > 0;
+    w.mark();
     try {
       op();
     } catch (e) {
-      // The engine refuses an operation without changing the body; if the body had been
-      // replaced already (and the old one freed), the captured state comes back.
       Object.assign(this.settings, settings);
-      if (before && this.current !== body) {
-        try { this.setBody(restore(before)); } catch { /* keep what there is */ }
-      }
-      this.hooks.message(`${label}: ${errorText(e)}${body ? ' — the model is as it was before' : ''}`, 'error');
+      this.session = scene;
+      // Back to the mark: the same meshes, masses and pins as the page has.
+      try { w.applyDelta(w.delta('all')); } catch { /* the engine left it as it was */ }
+      const why = errorText(e);
+      this.hooks.message(failText ? failText(why) : `${label}: ${why}${hadModel ? ' — the model is as it was before' : ''}`, 'error');
       return false;
     } finally {
       this.hooks.progress(null);
     }
-    if (before) this.history.push(label, { kind: 'body', state: before, settings });
+    if (undoable && hadModel) this.history.push(label, { delta: w.delta(scope), settings, scene });
+    this.touched();
     this.hooks.changed();
     return true;
   }
 
-  /** Change a parameter (undoable); a refused value is reported and leaves the old one. */
-  setParam(name: ParamName, value: number): boolean {
-    const body = this.body;
-    const before = { [name]: body.get(name) };
-    try {
-      body.set(name, value);
-    } catch (e) {
-      this.hooks.message(errorText(e), 'error');
-      return false;
-    }
-    this.history.push(`set ${name}`, { kind: 'params', params: before });
-    this.shareWorld([name]);
-    this.hooks.changed();
-    return true;
-  }
-
-  setMass(total: number): void {
-    this.edit('set mass', true, () => this.body.set('totalMass', total));
+  /** Anything may have changed: send topology, masses and pins again. */
+  private touched(): void {
+    this.topologyVersion++;
     this.bodyVersion++;
   }
 
+  /** Change a parameter by its table id (undoable); a refused value is reported and leaves the old one. */
+  setParam(id: string, value: ParamValue): boolean {
+    const ok = this.edit(`set ${id}`, true, () => this.world.setParam(0, id, value), 'none');
+    if (ok && id === 'dt') this.settings.dt = value as number;
+    return ok;
+  }
+
+  setMass(total: number): void { this.setParam('mass', total); }
+
   /** Wind along `direction` at `strength` m/s (0: calm); undoable. */
   wind(direction: Vec3, strength: number): void {
-    this.edit('wind', true, () => {
-      this.body.set('windX', direction[0] * strength);
-      this.body.set('windY', direction[1] * strength);
-      this.body.set('windZ', direction[2] * strength);
-      this.shareWorld(['windX', 'windY', 'windZ']);
-    });
+    this.setParam('wind', [direction[0] * strength, direction[1] * strength, direction[2] * strength]);
+  }
+
+  /** The time step (s), from the panel (not an undo step). */
+  setDt(dt: number): void {
+    try {
+      this.world.setParam(0, 'dt', dt);
+      this.settings.dt = dt;
+    } catch (e) {
+      this.hooks.message(errorText(e), 'error');
+    }
   }
 
   private apply(entry: Entry): Entry {
-    if (entry.kind === 'params') {
-      const now: Partial<Record<ParamName, number>> = {};
-      for (const [k, v] of Object.entries(entry.params) as [ParamName, number][]) {
-        now[k] = this.body.get(k);
-        this.body.set(k, v);
-      }
-      this.shareWorld(Object.keys(entry.params) as ParamName[]);
-      return { kind: 'params', params: now };
-    }
-    if (entry.kind === 'before-scene') {
-      const source = this.session?.source;
-      this.closeScene();
-      Object.assign(this.settings, entry.settings);
-      this.setBody(restore(entry.state));
-      return { kind: 'reopen-scene', source: source! };
-    }
-    if (entry.kind === 'reopen-scene') {
-      const now: Entry = { kind: 'before-scene', state: capture(this.body), settings: { ...this.settings } };
-      this.enterScene(SceneSession.open(entry.source));
-      return now;
-    }
-    const now: Entry = { kind: 'body', state: capture(this.body), settings: { ...this.settings } };
+    const w = this.world;
+    const now: Entry = { delta: new Uint8Array(0), settings: { ...this.settings }, scene: this.session };
+    now.delta = w.applyDelta(entry.delta);
+    if (entry.scene !== this.session) this.rejoinScene(entry.scene);
     Object.assign(this.settings, entry.settings);
-    this.setBody(restore(entry.state));
+    this.touched();
     return now;
+  }
+
+  /**
+   * Undo or redo crossed a scene's opening: the world is back, but the engine's record of the
+   * scene (names, obstacles and events as written, for saving) is the other one. Re-open the
+   * scene (or forget it) and put the world back into it.
+   */
+  private rejoinScene(scene: SceneSource | null): void {
+    const w = this.world, snap = w.snapshot();
+    if (scene) w.openScene(scene.text, scene.files); else w.clear();
+    w.restore(snap);
+    this.session = scene;
   }
 
   undo(): void { this.travel('undo'); }
@@ -294,22 +305,19 @@ export class Document {
 
   /** Freeze: under gravity the body keeps carrying its weight (no sag), otherwise a plain freeze. */
   freeze(): void {
-    if (this.edit('freeze', true, () => (this.body.get('gravity') !== 0 ? this.body.freezeUnderLoad() : this.body.freeze()))) {
+    if (this.edit('freeze', true, () => this.world.freeze(0, this.world.params(0).gravity !== 0))) {
       this.hooks.message('frozen: this shape is the new rest shape');
     }
   }
-  reset(): void { this.edit('reset', true, () => this.body.reset()); }
+  reset(): void { this.edit('reset', true, () => this.world.reset(0)); }
   subdivide(): void {
-    if (this.body.vertexCount > 200_000) { this.hooks.message('the mesh is already very fine; not subdividing', 'warn'); return; }
+    if (this.vertexCount > 200_000) { this.hooks.message('the mesh is already very fine; not subdividing', 'warn'); return; }
     this.edit('subdivide', true, () => {
       this.hooks.progress('subdividing');
-      const body = this.body;
-      body.subdivide();
-      const note = this.session?.adopt(body);
-      if (note) this.hooks.message(note, 'warn');
-      this.settings.dt = Math.min(this.settings.dt, stableDt(body));
+      const dropped = this.world.subdivide(0);
+      if (dropped > 0) this.hooks.message(`${dropped} pending scene events of the body no longer fit its mesh and were dropped`, 'warn');
+      this.setDt(Math.min(this.settings.dt, stableDt(this.world, 0)));
       this.settings.substeps = Math.max(1, Math.round(1 / 60 / this.settings.dt));
-      this.setBody(body);
     });
   }
 
@@ -317,43 +325,62 @@ export class Document {
 
   strokeStart(s: StrokeStart): void {
     if (this.stroke) this.strokeEnd();
-    this.pending = { label: s.tool, state: capture(this.body) };
+    this.world.mark();
     this.stroke = makeStroke(s);
-    this.stroke.start(this.body);
+    // A brush keeps what it painted and the state of those vertices; a drag moves everything.
+    this.strokeScope = s.tool === 'grab' || s.tool === 'press' ? 'all' : 'touched';
+    this.stroke.start(this.strokeBody());
     if (this.stroke.paintsBodyData) this.bodyVersion++;
   }
-  strokeMove(point: Vec3 | null, inverted: boolean): void { this.stroke?.move(point, inverted, this.body); }
+  strokeMove(point: Vec3 | null, inverted: boolean): void { this.stroke?.move(point, inverted, this.strokeBody()); }
   strokeEnd(): void {
     if (!this.stroke) return;
-    this.stroke.end(this.body);
+    const stroke = this.stroke;
     this.stroke = null;
-    if (this.pending) this.history.push(this.pending.label, { kind: 'body', state: this.pending.state, settings: { ...this.settings } });
-    this.pending = null;
+    stroke.end(this.strokeBody());
+    this.history.push(stroke.label, { delta: this.world.delta(this.strokeScope), settings: { ...this.settings }, scene: this.session });
     this.hooks.changed();
   }
   get stroking(): boolean { return this.stroke !== null; }
+
+  /** Body 0 as the strokes see it. */
+  private strokeBody(): StrokeBody {
+    const w = this.world;
+    return {
+      get view() { return w.body(0); },
+      applyLoads: () => w.applyLoads(0),
+      scaleRest: (f) => w.scaleRest(0, f),
+      setMasses: (m) => w.setMasses(0, m),
+      setPins: () => w.setPins(0),
+    };
+  }
 
   // ----- stepping -------------------------------------------------------------------------------
 
   /** The stroke acts for `dt` simulated seconds (before the steps of a tick). */
   updateStroke(dt: number): void {
     if (!this.stroke) return;
-    this.stroke.update(this.body, dt);
+    this.stroke.update(this.strokeBody(), dt);
     if (this.stroke.paintsBodyData) this.bodyVersion++;
   }
 
   /**
-   * `n` steps of `dt`: the whole scene (contacts, events) if one is open, else the body. On a
-   * blow-up the engine rolls the step back; the simulation pauses and says so. False then.
+   * `n` steps of the world (contacts and scene events included). On a blow-up the engine rolls
+   * the whole world back (clock and events too); the simulation pauses and says so. False then.
    */
   advance(dt: number, n: number): boolean {
     try {
-      if (this.session) this.session.scene.step(dt, n);
-      else this.body.step(dt, n);
+      if (dt !== this.settings.dt) this.setDt(dt);
+      this.world.step(n);
       return true;
     } catch (e) {
       this.settings.playing = false;
-      this.hooks.message(`${errorText(e)}. Paused. Try a smaller dt (now ${this.settings.dt} s) or another integrator.`, 'error');
+      if (e instanceof EngineError && e.kind === 'step') {
+        this.hooks.message(`the simulation blew up at t = ${fmt(e.time)} s; the whole world was rolled back to t = ${fmt(e.rolledBackTo)} s. Paused. ` +
+          `Try a smaller dt (now ${this.settings.dt} s), more damping, or another integrator.`, 'error');
+      } else {
+        this.hooks.message(`${errorText(e)}. Paused.`, 'error');
+      }
       return false;
     }
   }
@@ -362,83 +389,93 @@ export class Document {
 
   /** Open a scene file (with the mesh files it names); undoable. False if it could not be read. */
   openScene(name: string, text: string, files: Map<string, Uint8Array> = new Map()): boolean {
-    let session: SceneSession;
     this.hooks.progress(`opening ${name}`);
-    try {
-      session = SceneSession.open({ name, text, files });
-    } catch (e) {
-      this.hooks.progress(null);
-      this.hooks.message(`could not open ${name}: ${errorText(e).replace(/^scene: /, '')} — the current model is unchanged`, 'error');
-      return false;
-    }
-    const before: Entry = { kind: 'before-scene', state: capture(this.body), settings: { ...this.settings } };
-    this.enterScene(session);
-    this.hooks.progress(null);
-    this.history.push(`open ${name}`, before);
-    const n = session.scene.bodies.length;
-    this.hooks.message(`opened scene ${name}: ${n} ${n === 1 ? 'body' : 'bodies'}, ${session.scene.duration} s of events — play to run it`);
-    this.hooks.changed();
+    let opened = { names: [] as string[], dt: 0, duration: 0 };
+    const ok = this.edit(`open ${name}`, true, () => {
+      opened = this.world.openScene(text, files);
+      this.session = { name, text, files, duration: opened.duration };
+      this.settings.dt = opened.dt;
+      this.settings.substeps = Math.max(1, Math.round(1 / 60 / opened.dt));
+      this.settings.model = name;
+    }, 'all', (why) => `could not open ${name}: ${why} — the current model is unchanged`);
+    if (!ok) return false;
+    const n = opened.names.length;
+    this.hooks.message(`opened scene ${name}: ${n} ${n === 1 ? 'body' : 'bodies'}, ${opened.duration} s of events — play to run it`);
     return true;
-  }
-
-  private enterScene(session: SceneSession): void {
-    this.closeScene();
-    this.settings.dt = session.scene.dt;
-    this.settings.substeps = Math.max(1, Math.round(1 / 60 / session.scene.dt));
-    this.settings.model = session.source.name;
-    this.session = session;
-    this.setBody(session.active);
   }
 
   /** Play the open scene again from its start (undoable like opening it). */
   restartScene(): void {
     if (!this.session) { this.hooks.message('no scene is open (Files › Open scene…)', 'warn'); return; }
-    const s = this.session.source;
+    const s = this.session;
     this.openScene(s.name, s.text, s.files);
   }
 
-  /** The open scene (or the body alone) as scene file text, the shapes as they are now. */
-  sceneText(): string {
-    const scene = this.session?.scene ?? null;
-    return Scene.save(scene ? scene.bodies : [this.body], this.settings.dt, scene?.duration ?? 10, scene);
-  }
+  /** The world as scene file text, the shapes as they are now (an open scene's obstacles and events kept). */
+  sceneText(): string { return this.world.saveScene(); }
 
-  /** Leave the scene: its other bodies go; the active body stays (until replaced). */
-  private closeScene(): void {
-    if (!this.session) return;
-    this.session.close();
-    this.session = null;
-    this.topologyVersion++;
-  }
-
-  private shareWorld(names: ParamName[]): void { if (this.session) this.session.shareWorld(this.body, names); }
-
-  // ----- project files --------------------------------------------------------------------------
+  // ----- project files and the autosave -----------------------------------------------------------
 
   projectText(): string {
-    return serialize({ name: this.settings.model, state: capture(this.body), ui: { ...this.settings, ...this.ui } });
+    return serialize({ name: this.settings.model, ui: { ...this.settings, ...this.ui }, snapshot: this.world.snapshot() });
   }
 
+  /** The autosave's record of the world as it is now. */
+  autosaveRecord(now: number): AutosaveRecord {
+    return { name: this.settings.model, ui: { ...this.settings, ...this.ui }, snapshot: this.world.snapshot(), savedAt: now };
+  }
+
+  private openRecord(r: { name: string; ui: Record<string, unknown>; snapshot: Uint8Array }, undoable: boolean, label?: string): void {
+    const ok = this.edit(`open ${label ?? r.name}`, undoable, () => {
+      this.fresh();
+      this.world.restore(r.snapshot);
+      this.takeUi(r.name, r.ui);
+    });
+    if (!ok) throw new ProjectError('it was not opened');
+  }
+
+  /** Open project text (version 2, or a version-1 file migrated by the engine); throws what is wrong. */
   openProjectText(text: string, undoable = true, label?: string): void {
     const p = parse(text);
-    const body = restore(p.state);
-    const ok = this.edit(`open ${label ?? p.name}`, undoable, () => {
-      const ui = p.ui as Partial<Settings & UiState>;
-      if (typeof ui.dt === 'number' && ui.dt > 0) this.settings.dt = ui.dt;
-      if (typeof ui.substeps === 'number' && ui.substeps >= 1) this.settings.substeps = ui.substeps;
-      if (typeof ui.playing === 'boolean') this.settings.playing = ui.playing;
-      if (typeof ui.realTime === 'boolean') this.settings.realTime = ui.realTime;
-      this.settings.model = p.name;
-      const page: Partial<UiState> = {};
-      if (ui.brush && typeof ui.brush.radius === 'number') page.brush = { radius: ui.brush.radius };
-      if (typeof ui.tool === 'string') page.tool = ui.tool;
-      if (ui.strengths && typeof ui.strengths === 'object') page.strengths = ui.strengths;
-      this.ui = { ...this.ui, ...page };
-      this.hooks.ui(page);
-      this.closeScene();
-      this.setBody(body);
-    });
-    if (!ok) body.free();
+    if (p.version === 2) { this.openRecordOrThrow(p, undoable, label); return; }
+    const w = this.world;
+    w.mark();
+    let meta: { name: string; ui: Record<string, unknown> };
+    try {
+      meta = w.openProjectV1(p.text);
+    } catch (e) {
+      throw new ProjectError(errorText(e));
+    }
+    // Opened: record it as one undo step like any other.
+    const settings = { ...this.settings }, scene = this.session;
+    this.session = null;
+    this.takeUi(meta.name, meta.ui);
+    if (undoable) this.history.push(`open ${label ?? meta.name}`, { delta: w.delta('all'), settings, scene });
+    this.touched();
+    this.hooks.changed();
+  }
+
+  /** A version-2 project: its snapshot must restore, or nothing changes and this throws why. */
+  private openRecordOrThrow(p: { name: string; ui: Record<string, unknown>; snapshot: Uint8Array }, undoable: boolean, label?: string): void {
+    // Check the snapshot in a scratch world first, so a bad file says exactly what is wrong.
+    const scratch = World.create();
+    try { scratch.restore(p.snapshot); } catch (e) { throw new ProjectError(`the project's model: ${errorText(e)}`); } finally { scratch.free(); }
+    this.openRecord(p, undoable, label);
+  }
+
+  private takeUi(name: string, ui: Record<string, unknown>): void {
+    const u = ui as Partial<Settings & UiState>;
+    this.settings.dt = this.world.params(0).dt as number;
+    if (typeof u.substeps === 'number' && u.substeps >= 1) this.settings.substeps = u.substeps;
+    if (typeof u.playing === 'boolean') this.settings.playing = u.playing;
+    if (typeof u.realTime === 'boolean') this.settings.realTime = u.realTime;
+    this.settings.model = name;
+    const page: Partial<UiState> = {};
+    if (u.brush && typeof u.brush.radius === 'number') page.brush = { radius: u.brush.radius };
+    if (typeof u.tool === 'string') page.tool = u.tool;
+    if (u.strengths && typeof u.strengths === 'object') page.strengths = u.strengths;
+    this.ui = { ...this.ui, ...page };
+    this.hooks.ui(page);
   }
 
   openProject(name: string, text: string): void {
@@ -449,6 +486,10 @@ export class Document {
       this.hooks.message(`could not open ${name}: ${errorText(e)} — the current model is unchanged`, 'error');
     }
   }
+}
+
+function fmt(t: number | undefined): string {
+  return t === undefined ? '?' : t.toPrecision(3);
 }
 
 export function errorText(e: unknown): string {

@@ -1,6 +1,7 @@
 // Frames for the page: the positions in a recycled Float32Array (two per mesh size: one being
 // drawn by the page, one being filled here), the statistics every time, and what else changed
-// since the last frame (topology, masses and pins, parameters, settings, history sizes).
+// since the last frame (topology, masses and pins, parameters, settings, history sizes); the
+// engine's parameter table with the first frame (and after a resync).
 
 import type { Frame } from '../protocol';
 import type { Document } from './document';
@@ -10,7 +11,7 @@ export class FramePublisher {
   /** Buffers of the current length in existence (free here or out with the page). */
   private owned = 0;
   private length = -1;
-  private sent = { topology: -1, body: -1, params: '', settings: '', history: '' };
+  private sent = { topology: -1, body: -1, params: '', settings: '', history: '', table: false };
 
   constructor(private readonly buffers = 2) {}
 
@@ -22,7 +23,7 @@ export class FramePublisher {
 
   /** Send everything again with the next frame. */
   resync(): void {
-    this.sent = { topology: -1, body: -1, params: '', settings: '', history: '' };
+    this.sent = { topology: -1, body: -1, params: '', settings: '', history: '', table: false };
   }
 
   /** Send the parameters again with the next frame (a refused value: the page shows the old one again). */
@@ -56,6 +57,7 @@ export class FramePublisher {
     if (doc.topologyVersion !== this.sent.topology) { frame.topology = doc.topology(); this.sent.topology = doc.topologyVersion; }
     if (doc.bodyVersion !== this.sent.body) { frame.body = doc.bodyData(); this.sent.body = doc.bodyVersion; }
     if (paramsKey !== this.sent.params) { frame.params = params; this.sent.params = paramsKey; }
+    if (!this.sent.table) { frame.table = doc.paramTable(); this.sent.table = true; }
     if (settingsKey !== this.sent.settings) { frame.settings = { ...doc.settings }; this.sent.settings = settingsKey; }
     if (historyKey !== this.sent.history) { frame.history = doc.history.sizes; this.sent.history = historyKey; }
     return frame;

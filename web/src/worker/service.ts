@@ -7,6 +7,7 @@ import type { Command, MessageKind, Reply, Settings, UiState } from '../protocol
 import { transferables } from '../protocol';
 import { Document, errorText, loadEngine } from './document';
 import { baseName } from '../project';
+import type { Autosave, AutosaveRecord } from '../storage';
 import { FramePublisher } from './frames';
 import { Stepper } from './stepper';
 
@@ -14,7 +15,7 @@ export interface ServiceHost {
   post(reply: Reply, transfer: Transferable[]): void;
   now(): number;
   /** Where the autosave lives (IndexedDB in the browser; absent: no autosave). */
-  storage?: { load(): Promise<string | null>; save(text: string): Promise<void> };
+  storage?: { load(): Promise<Autosave | null>; save(record: AutosaveRecord): Promise<void> };
   /** Defer `f` by `ms` (the autosave's debounce). */
   later?(f: () => void, ms: number): unknown;
   cancel?(timer: unknown): void;
@@ -102,20 +103,20 @@ export class Service {
       this.post({ type: 'fatal', text: `SoftSculpt could not start its engine: ${errorText(e)}` });
       return;
     }
-    let text: string | null = null;
+    let saved: Autosave | null = null;
     if (restore && this.host.storage) {
       try {
-        text = await this.host.storage.load();
+        saved = await this.host.storage.load();
       } catch (e) {
-        this.message(`could not read the autosaved project: ${errorText(e)}`, 'warn');
+        this.message(`could not read the autosave: ${errorText(e)}; opened the default model instead`, 'warn');
       }
     }
-    this.doc.open(text);
+    this.doc.open(saved);
   }
 
   private settings(patch: Partial<Settings>): void {
     const s = this.doc.settings;
-    if (typeof patch.dt === 'number' && Number.isFinite(patch.dt) && patch.dt > 0) s.dt = patch.dt;
+    if (typeof patch.dt === 'number' && Number.isFinite(patch.dt) && patch.dt > 0) this.doc.setDt(patch.dt);
     if (typeof patch.substeps === 'number' && patch.substeps >= 1) s.substeps = Math.round(patch.substeps);
     if (typeof patch.realTime === 'boolean') s.realTime = patch.realTime;
     if (typeof patch.playing === 'boolean') s.playing = patch.playing;
@@ -137,7 +138,7 @@ export class Service {
     }
   }
 
-  /** Write the project to the autosave a moment after the last change. */
+  /** Write the world's snapshot (and the page's state) to the autosave a moment after the last change. */
   autosave(): void {
     const { storage, later, cancel } = this.host;
     if (!storage || !later) return;
@@ -145,7 +146,7 @@ export class Service {
     this.saveTimer = later(() => {
       this.saveTimer = null;
       if (!this.doc.loaded) return;
-      storage.save(this.doc.projectText()).catch((e) => this.message(`autosave failed: ${errorText(e)}`, 'warn'));
+      storage.save(this.doc.autosaveRecord(Date.now())).catch((e) => this.message(`autosave failed: ${errorText(e)}`, 'warn'));
     }, 250);
   }
 

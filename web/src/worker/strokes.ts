@@ -7,25 +7,20 @@
 // - pin: vertices under the brush are pinned (Shift: unpinned).
 
 import type { StrokeTool, Vec3 } from '../protocol';
+import type { BodyView } from '../engine/world';
 import { facesAround, grabForce, inflateFactor, verticesAround, type Weighted } from '../tools/brush';
 
 /** What a stroke needs from the body (the document hands over its active body). */
 export interface StrokeBody {
-  readonly vertexCount: number;
-  positions(): Float64Array;
-  velocities(): Float64Array;
-  masses(): Float64Array;
-  triangles(): Uint32Array;
-  pinned(): Uint8Array;
-  /** Staging array of user forces (N, xyz per vertex); then applyUserForces(). */
-  userForces(): Float64Array;
-  applyUserForces(): void;
-  /** Staging array of face pressures (Pa); then applyFacePressures(). */
-  facePressures(): Float64Array;
-  applyFacePressures(): void;
-  scaleRestByVertex(factors: ArrayLike<number>): void;
+  /** The body's arrays (engine/world.ts): positions, masses, pins, the staging arrays. */
+  readonly view: BodyView;
+  /** User forces and face pressures from the staging arrays. */
+  applyLoads(): void;
+  /** Rest lengths × per-vertex factors. */
+  scaleRest(factors: ArrayLike<number>): void;
   setMasses(masses: ArrayLike<number>): void;
-  setPinned(vertex: number, pinned: boolean): void;
+  /** Pins from the `pinned` view as written. */
+  setPins(): void;
 }
 
 export interface StrokeStart { tool: StrokeTool; point: Vec3; radius: number; strength: number; inverted: boolean }
@@ -37,6 +32,8 @@ export abstract class Stroke {
     this.point = s.point;
     this.inverted = s.inverted;
   }
+  /** The undo step's name. */
+  get label(): string { return this.s.tool; }
   /** The stroke begins (the document has remembered the state for undo). */
   abstract start(body: StrokeBody): void;
   move(point: Vec3 | null, inverted: boolean, _body: StrokeBody): void { this.point = point; this.inverted = inverted; }
@@ -51,15 +48,15 @@ class Grab extends Stroke {
   private picked: Weighted = { indices: [], weights: [] };
   private offsets: number[] = [];
   start(body: StrokeBody): void {
-    const x = body.positions(), p = this.s.point;
+    const x = body.view.positions, p = this.s.point;
     this.picked = verticesAround(x, p, this.s.radius);
     this.offsets = this.picked.indices.flatMap((i) => [x[3 * i] - p[0], x[3 * i + 1] - p[1], x[3 * i + 2] - p[2]]);
   }
   /** The cursor moved: `point` is its point on the grab plane (null keeps the last one). */
   move(point: Vec3 | null): void { if (point) this.point = point; }
   update(body: StrokeBody): void {
-    const x = body.positions(), v = body.velocities(), m = body.masses();
-    const f = body.userForces();
+    const b = body.view, x = b.positions, v = b.velocities, m = b.masses;
+    const f = b.userForces;
     f.fill(0);
     const c = this.point ?? this.s.point;
     this.picked.indices.forEach((i, k) => {
@@ -67,11 +64,11 @@ class Grab extends Stroke {
         f[3 * i + d] = grabForce(m[i], this.picked.weights[k], this.s.strength, c[d] + this.offsets[3 * k + d], x[3 * i + d], v[3 * i + d]);
       }
     });
-    body.applyUserForces();
+    body.applyLoads();
   }
   end(body: StrokeBody): void {
-    body.userForces().fill(0);
-    body.applyUserForces();
+    body.view.userForces.fill(0);
+    body.applyLoads();
   }
 }
 
@@ -83,15 +80,15 @@ class Press extends Stroke {
     this.apply(body);
   }
   private apply(body: StrokeBody): void {
-    const p = body.facePressures();
+    const p = body.view.facePressures;
     p.fill(0);
-    const faces = facesAround(body.positions(), body.triangles(), this.point!, this.s.radius);
+    const faces = facesAround(body.view.positions, body.view.triangles, this.point!, this.s.radius);
     faces.indices.forEach((f, k) => (p[f] = this.s.strength * faces.weights[k]));
-    body.applyFacePressures();
+    body.applyLoads();
   }
   end(body: StrokeBody): void {
-    body.facePressures().fill(0);
-    body.applyFacePressures();
+    body.view.facePressures.fill(0);
+    body.applyLoads();
   }
 }
 
@@ -101,7 +98,7 @@ abstract class Paint extends Stroke {
   start(body: StrokeBody): void { this.update(body, 0); }
   update(body: StrokeBody, dt: number): void {
     if (!this.point) return;
-    const w = verticesAround(body.positions(), this.point, this.s.radius);
+    const w = verticesAround(body.view.positions, this.point, this.s.radius);
     if (w.indices.length > 0) this.paint(body, w, dt);
   }
   end(): void {}
@@ -111,10 +108,10 @@ class Inflate extends Paint {
   private factors = new Float64Array(0);
   protected paint(body: StrokeBody, w: Weighted, dt: number): void {
     if (dt <= 0) return;
-    if (this.factors.length !== body.vertexCount) this.factors = new Float64Array(body.vertexCount);
+    if (this.factors.length !== body.view.vertexCount) this.factors = new Float64Array(body.view.vertexCount);
     const factors = this.factors.fill(1);
     w.indices.forEach((i, k) => (factors[i] = inflateFactor(w.weights[k], this.s.strength, dt, this.inverted)));
-    body.scaleRestByVertex(factors);
+    body.scaleRest(factors);
   }
 }
 
@@ -122,7 +119,7 @@ class Mass extends Paint {
   get paintsBodyData(): boolean { return true; }
   protected paint(body: StrokeBody, w: Weighted, dt: number): void {
     if (dt <= 0) return;
-    const m = body.masses().slice();
+    const m = body.view.masses.slice();
     w.indices.forEach((i, k) => {
       const f = inflateFactor(w.weights[k], this.s.strength, dt, this.inverted);
       m[i] = Math.min(Math.max(m[i] * f, 1e-9), 1e9);
@@ -134,8 +131,12 @@ class Mass extends Paint {
 class Pin extends Paint {
   get paintsBodyData(): boolean { return true; }
   protected paint(body: StrokeBody, w: Weighted): void {
-    const pinned = body.pinned();
-    for (const i of w.indices) if ((pinned[i] === 1) === this.inverted) body.setPinned(i, !this.inverted);
+    const pinned = body.view.pinned;
+    let changed = false;
+    for (const i of w.indices) {
+      if ((pinned[i] === 1) === this.inverted) { pinned[i] = this.inverted ? 0 : 1; changed = true; }
+    }
+    if (changed) body.setPins();
   }
 }
 

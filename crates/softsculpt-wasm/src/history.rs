@@ -1,0 +1,87 @@
+//! Undo deltas and old project files: thin calls over `softsculpt::delta` and
+//! `softsculpt::compat`.
+//!
+//! `ss_mark(w)` remembers a copy of the world as it is now (replacing the last mark);
+//! `ss_delta(w, scope)` writes the bytes of the delta that takes the world back to the mark
+//! (`Delta::between(mark, world, scope)`, scope 0 none, 1 touched, 2 all) and keeps the mark;
+//! `ss_apply_delta(w, ptr, len)` applies delta bytes (world untouched on error, kind `delta`) and
+//! writes the inverse delta's bytes (what redoes the change).
+//!
+//! `ss_open_project_v1(w, ptr, len)`: a version-1 project file of the modeler (a body's arrays as
+//! JSON) becomes the world (`softsculpt::compat::project_v1`: a one-body world); the result is
+//! `{"name": …, "ui": {…}}` as the file had them. On error (kind `project`, the core's message)
+//! the world is untouched. Like `ss_clear`, it forgets an open scene.
+
+use crate::world::with_world;
+use crate::{bytes, set_result, status, Fail};
+use softsculpt::delta::{Delta, DeltaError, StateScope};
+
+/// Remember the world as it is now, for `ss_delta`.
+#[no_mangle]
+pub extern "C" fn ss_mark(w: u32) -> i32 {
+    status(|| {
+        with_world(w, |h| {
+            h.mark = Some(h.world.clone());
+            Ok(())
+        })
+    })
+}
+
+fn delta_fail(e: DeltaError) -> Fail {
+    Fail::new("delta", e.to_string())
+}
+
+/// The bytes of the delta that takes the world back to the mark, in the result (scope 0 none:
+/// positions and velocities are not kept, 1 touched: of the vertices whose state changed, 2 all).
+#[no_mangle]
+pub extern "C" fn ss_delta(w: u32, scope: u32) -> i32 {
+    status(|| {
+        let scope = match scope {
+            0 => StateScope::None,
+            1 => StateScope::Touched,
+            2 => StateScope::All,
+            _ => return Err(Fail::usage(format!("scope {scope} is not 0 (none), 1 (touched) or 2 (all)"))),
+        };
+        with_world(w, |h| {
+            let mark = h.mark.as_ref().ok_or_else(|| Fail::usage("there is no mark (call ss_mark first)"))?;
+            set_result(Delta::between(mark, &h.world, scope).to_bytes());
+            Ok(())
+        })
+    })
+}
+
+/// Apply delta bytes; the result holds the inverse delta's bytes. On error (kind `delta`) the
+/// world is untouched. Every body's views change.
+///
+/// # Safety
+/// `ptr` must point to `len` readable bytes.
+#[no_mangle]
+pub unsafe extern "C" fn ss_apply_delta(w: u32, ptr: *const u8, len: usize) -> i32 {
+    status(|| {
+        let delta = Delta::from_bytes(bytes(ptr, len)).map_err(delta_fail)?;
+        with_world(w, |h| {
+            let inverse = delta.apply(&mut h.world).map_err(delta_fail)?;
+            h.rebuild_views();
+            set_result(inverse.to_bytes());
+            Ok(())
+        })
+    })
+}
+
+/// A version-1 project file becomes the world; result `{name, ui}`.
+///
+/// # Safety
+/// `ptr` must point to `len` readable bytes.
+#[no_mangle]
+pub unsafe extern "C" fn ss_open_project_v1(w: u32, ptr: *const u8, len: usize) -> i32 {
+    status(|| {
+        let (world, meta) = softsculpt::compat::project_v1(bytes(ptr, len)).map_err(|m| Fail::new("project", m))?;
+        with_world(w, |h| {
+            set_result(serde_json::json!({ "name": meta.name, "ui": meta.ui }).to_string().into_bytes());
+            h.world = world;
+            h.scene = None;
+            h.rebuild_views();
+            Ok(())
+        })
+    })
+}

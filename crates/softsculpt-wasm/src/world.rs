@@ -1,0 +1,401 @@
+//! The table of world handles, and the calls on a world and its bodies. Each call checks its
+//! arguments, delegates to the core, and turns the core's error into a [`Fail`].
+//! Single-threaded (wasm32 without threads).
+
+use crate::scene::SceneInfo;
+use crate::views::BodyViews;
+use crate::{bytes, index, set_result, status, text, Fail, Res};
+use softsculpt::body::BodyError;
+use softsculpt::mesh::{self, builtin, LoadedMesh, ObjData, TriMesh};
+use softsculpt::params::{self, ParamError, Scope, Value};
+use softsculpt::snapshot::SnapshotError;
+use softsculpt::{Material, MeshError, SimError, SoftBody, StepError, World, WorldSettings};
+use std::cell::RefCell;
+
+/// A world and what the binding keeps beside it.
+pub struct Handle {
+    pub world: World,
+    /// One per body, in body order (`views.rs`).
+    pub views: Vec<BodyViews>,
+    /// The world as `ss_mark` saw it (`ss_delta` compares with it).
+    pub mark: Option<World>,
+    /// The open scene's names, file and length, for `ss_save_scene` (`scene.rs`).
+    pub scene: Option<SceneInfo>,
+}
+
+impl Handle {
+    fn new(world: World) -> Self {
+        let mut h = Handle { world, views: Vec::new(), mark: None, scene: None };
+        h.rebuild_views();
+        h
+    }
+    /// New views for every body (after bodies were replaced).
+    pub fn rebuild_views(&mut self) {
+        self.views = (0..self.world.bodies.len()).map(|i| BodyViews::new(&self.world, i)).collect();
+    }
+    /// Body `b`'s index, checked.
+    pub fn body(&self, b: u32) -> Res<usize> {
+        let n = self.world.bodies.len();
+        if (b as usize) < n {
+            Ok(b as usize)
+        } else {
+            Err(Fail::usage(format!("there is no body {b} (the world has {n})")))
+        }
+    }
+    fn add(&mut self, body: SoftBody) -> usize {
+        let i = self.world.add_body(body);
+        self.views.push(BodyViews::new(&self.world, i));
+        i
+    }
+}
+
+thread_local! {
+    static WORLDS: RefCell<Vec<Option<Handle>>> = const { RefCell::new(Vec::new()) };
+}
+
+fn insert(world: World) -> usize {
+    WORLDS.with(|t| {
+        let mut t = t.borrow_mut();
+        t.push(Some(Handle::new(world)));
+        t.len()
+    })
+}
+
+/// Run `f` on the world of handle `w`.
+pub fn with_world<R>(w: u32, f: impl FnOnce(&mut Handle) -> Res<R>) -> Res<R> {
+    WORLDS.with(|t| {
+        let mut t = t.borrow_mut();
+        match (w as usize).checked_sub(1).and_then(|i| t.get_mut(i)).and_then(Option::as_mut) {
+            Some(h) => f(h),
+            None => Err(Fail::usage(format!("there is no world with handle {w}"))),
+        }
+    })
+}
+
+/// Run `f` on body `b` of world `w` (its index checked).
+pub fn with_body<R>(w: u32, b: u32, f: impl FnOnce(&mut Handle, usize) -> Res<R>) -> Res<R> {
+    with_world(w, |h| {
+        let i = h.body(b)?;
+        f(h, i)
+    })
+}
+
+// ----- the core's errors as `Fail` --------------------------------------------------------------
+
+pub fn mesh_fail(e: MeshError) -> Fail {
+    let line = if let MeshError::Parse { line, .. } = e { Some(line) } else { None };
+    let f = Fail::new("mesh", e.to_string());
+    match line {
+        Some(l) => f.with("line", l),
+        None => f,
+    }
+}
+
+/// A simulation error: a parameter refused, a wrong length (usage), or a blow-up (step).
+pub fn sim_fail(e: SimError) -> Fail {
+    match &e {
+        SimError::BadParameter { name, .. } => Fail::new("parameter", e.to_string()).with("parameter", *name),
+        SimError::Length { .. } => Fail::usage(e.to_string()),
+        SimError::NonFinite { step } | SimError::Collapsed { step, .. } => Fail::new("step", e.to_string()).with("step", *step),
+    }
+}
+
+fn body_fail(e: BodyError) -> Fail {
+    match e {
+        BodyError::Mesh(m) => mesh_fail(m),
+        BodyError::Sim(s) => sim_fail(s),
+    }
+}
+
+/// Names the parameter and its unit.
+pub fn param_fail(e: ParamError) -> Fail {
+    let unit = params::find(&e.id).map(|p| p.unit).unwrap_or("");
+    Fail::new("parameter", e.to_string()).with("parameter", e.id).with("unit", unit)
+}
+
+fn step_fail(e: StepError) -> Fail {
+    let mut f = Fail::new("step", e.to_string()).with("time", e.time).with("step", e.step);
+    if let Some(l) = e.line {
+        f = f.with("line", l);
+    }
+    if let Some(t) = e.rolled_back_to {
+        f = f.with("rolled_back_to", t);
+    }
+    f
+}
+
+pub fn snapshot_fail(e: SnapshotError) -> Fail {
+    Fail::new("snapshot", e.to_string())
+}
+
+// ----- the world ----------------------------------------------------------------------------------
+
+/// An empty world with the parameter table's defaults.
+#[no_mangle]
+pub extern "C" fn ss_world_new() -> i32 {
+    index(|| Ok(insert(World::new(Vec::new(), WorldSettings::default()))))
+}
+
+#[no_mangle]
+pub extern "C" fn ss_world_free(w: u32) {
+    WORLDS.with(|t| {
+        if let Some(slot) = (w as usize).checked_sub(1).and_then(|i| t.borrow_mut().get_mut(i).map(Option::take)) {
+            drop(slot);
+        }
+    });
+}
+
+/// The standard benchmark workload at an icosphere level (see `softsculpt::workload`).
+#[no_mangle]
+pub extern "C" fn ss_workload(level: u32) -> i32 {
+    index(|| {
+        if level > 8 {
+            return Err(Fail::usage(format!("level {level} is too large (at most 8)")));
+        }
+        Ok(insert(softsculpt::workload::world(level)))
+    })
+}
+
+fn add(w: u32, mesh: &TriMesh, mass: f64, warnings: &[String]) -> Res<usize> {
+    with_world(w, |h| {
+        let body = SoftBody::new(mesh, mass, Material::default()).map_err(body_fail)?;
+        set_result(serde_json::to_vec(warnings).unwrap_or_default());
+        Ok(h.add(body))
+    })
+}
+
+/// A built-in model by name, of total mass `mass` (kg), with the default material.
+///
+/// # Safety
+/// `name` must point to `len` readable bytes.
+#[no_mangle]
+pub unsafe extern "C" fn ss_add_builtin(w: u32, name: *const u8, len: usize, mass: f64) -> i32 {
+    index(|| {
+        let name = text(name, len, "the model name")?;
+        let loaded = builtin::builtin(name).map(LoadedMesh::from_trimesh).map_err(mesh_fail)?;
+        add(w, &loaded.mesh, mass, &[])
+    })
+}
+
+/// A body from OBJ bytes (welded, checked, oriented, reordered); warnings in the result.
+///
+/// # Safety
+/// `ptr` must point to `len` readable bytes.
+#[no_mangle]
+pub unsafe extern "C" fn ss_add_obj(w: u32, ptr: *const u8, len: usize, mass: f64) -> i32 {
+    index(|| {
+        let loaded = mesh::load_obj(bytes(ptr, len)).map_err(mesh_fail)?;
+        add(w, &loaded.mesh, mass, &loaded.report.warnings)
+    })
+}
+
+/// A body from an indexed triangle mesh (f64 xyz, u32 indices): `prepare` = 1 prepares it like
+/// a file (weld, check, orient, reorder), 0 takes it exactly as given.
+///
+/// # Safety
+/// `pos` must point to `3 n_vertices` f64 and `idx` to `n_indices` u32.
+#[no_mangle]
+pub unsafe extern "C" fn ss_add_mesh(w: u32, pos: *const f64, n_vertices: usize, idx: *const u32, n_indices: usize, mass: f64, prepare: u32) -> i32 {
+    index(|| {
+        if pos.is_null() || idx.is_null() || !n_indices.is_multiple_of(3) {
+            return Err(Fail::usage("a mesh needs positions and a multiple of 3 indices"));
+        }
+        let positions = std::slice::from_raw_parts(pos, 3 * n_vertices).to_vec();
+        let indices = std::slice::from_raw_parts(idx, n_indices).to_vec();
+        if let Some(bad) = indices.iter().find(|&&i| i as usize >= n_vertices) {
+            return Err(mesh_fail(MeshError::Invalid(format!("index {bad} out of range ({n_vertices} vertices)"))));
+        }
+        if prepare == 0 {
+            let triangles = indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
+            return add(w, &TriMesh { positions, triangles }, mass, &[]);
+        }
+        let data = ObjData { positions, arities: vec![3; n_indices / 3], indices };
+        let loaded = mesh::prepare(data).map_err(mesh_fail)?;
+        add(w, &loaded.mesh, mass, &loaded.report.warnings)
+    })
+}
+
+/// Drop every body, the events and loads, and forget the open scene (names, file); keep the
+/// settings (obstacles included). The clock starts again at 0.
+#[no_mangle]
+pub extern "C" fn ss_clear(w: u32) -> i32 {
+    status(|| {
+        with_world(w, |h| {
+            h.world = World::new(Vec::new(), h.world.settings.clone());
+            h.views.clear();
+            h.scene = None;
+            Ok(())
+        })
+    })
+}
+
+/// `n` steps (`World::step_n`), or none: on failure the whole world is as before the call and
+/// the error (kind `step`) has `time` (s), `step`, `rolled_back_to` (s) and an event's `line`.
+#[no_mangle]
+pub extern "C" fn ss_step(w: u32, n: u32) -> i32 {
+    status(|| with_world(w, |h| h.world.step_n(n as u64).map_err(step_fail)))
+}
+
+// ----- parameters -----------------------------------------------------------------------------
+
+/// Every body and world parameter of body `b` and its world, as a JSON object in the result
+/// (`null` for the ground's when there is no ground).
+#[no_mangle]
+pub extern "C" fn ss_params(w: u32, b: u32) -> i32 {
+    status(|| {
+        with_body(w, b, |h, i| {
+            let mut out = serde_json::Map::new();
+            for p in params::TABLE.iter().filter(|p| matches!(p.scope, Scope::Body | Scope::World)) {
+                let v = h.world.param(i, p.id).ok().and_then(|v| serde_json::to_value(v).ok()).unwrap_or(serde_json::Value::Null);
+                out.insert(p.id.to_string(), v);
+            }
+            set_result(serde_json::Value::Object(out).to_string().into_bytes());
+            Ok(())
+        })
+    })
+}
+
+/// A JSON value as the parameter `id` takes it: a number, `[x, y, z]`, a choice's name, or a flag.
+fn value_of(id: &str, v: &serde_json::Value) -> Result<Value, ParamError> {
+    let refuse = || ParamError { id: id.to_string(), message: format!("cannot take the value {v}") };
+    Ok(match v {
+        serde_json::Value::Number(n) => Value::Number(n.as_f64().ok_or_else(refuse)?),
+        serde_json::Value::Bool(f) => Value::Flag(*f),
+        serde_json::Value::String(s) => params::choice(params::find(id)?.id, s)?,
+        serde_json::Value::Array(a) if a.len() == 3 => {
+            let c = |k: usize| a[k].as_f64().ok_or_else(refuse);
+            Value::Vector([c(0)?, c(1)?, c(2)?])
+        }
+        _ => return Err(refuse()),
+    })
+}
+
+/// Set parameter `id` (body parameters on body `b`, world parameters on the world) from a JSON
+/// value; refused with an error naming the parameter and its unit.
+///
+/// # Safety
+/// `id` must point to `id_len` bytes and `json` to `json_len` bytes.
+#[no_mangle]
+pub unsafe extern "C" fn ss_set_param(w: u32, b: u32, id: *const u8, id_len: usize, json: *const u8, json_len: usize) -> i32 {
+    status(|| {
+        let id = text(id, id_len, "the parameter id")?;
+        let v: serde_json::Value = serde_json::from_slice(bytes(json, json_len))
+            .map_err(|e| param_fail(ParamError { id: id.to_string(), message: format!("the value is not JSON ({e})") }))?;
+        let value = value_of(id, &v).map_err(param_fail)?;
+        with_world(w, |h| h.world.set_param(b as usize, id, value).map_err(param_fail))
+    })
+}
+
+// ----- operations on a body --------------------------------------------------------------------
+
+/// Rest shape := current shape; `under_load` = 1 keeps the current loads balanced.
+#[no_mangle]
+pub extern "C" fn ss_freeze(w: u32, b: u32, under_load: u32) -> i32 {
+    status(|| {
+        with_body(w, b, |h, i| {
+            let body = &mut h.world.bodies[i];
+            if under_load != 0 {
+                body.freeze_under_load()
+            } else {
+                body.freeze()
+            }
+            Ok(())
+        })
+    })
+}
+
+/// Back to the last frozen shape.
+#[no_mangle]
+pub extern "C" fn ss_reset(w: u32, b: u32) -> i32 {
+    status(|| {
+        with_body(w, b, |h, i| {
+            h.world.bodies[i].reset();
+            Ok(())
+        })
+    })
+}
+
+/// Replace body `b` by its Loop subdivision (frozen); result `{"dropped_events": n}` (its
+/// pending scene events no longer fit). Its views change.
+#[no_mangle]
+pub extern "C" fn ss_subdivide(w: u32, b: u32) -> i32 {
+    status(|| {
+        with_body(w, b, |h, i| {
+            let finer = h.world.bodies[i].subdivided().map_err(sim_fail)?;
+            let (_, dropped) = h.world.replace_body(i, finer);
+            h.views[i] = BodyViews::new(&h.world, i);
+            set_result(serde_json::json!({ "dropped_events": dropped }).to_string().into_bytes());
+            Ok(())
+        })
+    })
+}
+
+/// Multiply rest lengths by the per-vertex factors in the vertex scratch (a spring takes the
+/// mean of its ends).
+#[no_mangle]
+pub extern "C" fn ss_scale_rest(w: u32, b: u32) -> i32 {
+    status(|| with_body(w, b, |h, i| h.world.bodies[i].scale_rest_lengths_by_vertex(&h.views[i].scratch).map_err(sim_fail)))
+}
+
+/// Vertex masses (kg) from the vertex scratch.
+#[no_mangle]
+pub extern "C" fn ss_set_masses(w: u32, b: u32) -> i32 {
+    status(|| with_body(w, b, |h, i| h.world.bodies[i].set_masses(&h.views[i].scratch).map_err(sim_fail)))
+}
+
+/// Pins from the pinned view (1 pinned, 0 free); only vertices that change are touched.
+#[no_mangle]
+pub extern "C" fn ss_set_pins(w: u32, b: u32) -> i32 {
+    status(|| {
+        with_body(w, b, |h, i| {
+            let body = &mut h.world.bodies[i];
+            for (v, &p) in h.views[i].pinned.iter().enumerate() {
+                if body.is_pinned(v) != (p != 0) {
+                    body.set_pinned(v, p != 0).map_err(sim_fail)?;
+                }
+            }
+            Ok(())
+        })
+    })
+}
+
+/// User forces (N, 3 per vertex) and face pressures (Pa, 1 per face) from the staging views.
+#[no_mangle]
+pub extern "C" fn ss_apply_loads(w: u32, b: u32) -> i32 {
+    status(|| {
+        with_body(w, b, |h, i| {
+            let (body, v) = (&mut h.world.bodies[i], &h.views[i]);
+            body.set_user_forces(&v.user_forces).map_err(sim_fail)?;
+            body.set_face_pressures(&v.face_pressures).map_err(sim_fail)
+        })
+    })
+}
+
+// ----- snapshots ------------------------------------------------------------------------------
+
+/// The whole world as snapshot bytes (`docs/snapshot.md`) in the result.
+#[no_mangle]
+pub extern "C" fn ss_snapshot(w: u32) -> i32 {
+    status(|| {
+        with_world(w, |h| {
+            set_result(h.world.snapshot());
+            Ok(())
+        })
+    })
+}
+
+/// The world from snapshot bytes; on error (kind `snapshot`, the core's message) the world is
+/// untouched. Every body's views change.
+///
+/// # Safety
+/// `ptr` must point to `len` readable bytes.
+#[no_mangle]
+pub unsafe extern "C" fn ss_restore(w: u32, ptr: *const u8, len: usize) -> i32 {
+    status(|| {
+        with_world(w, |h| {
+            h.world.restore_from(bytes(ptr, len)).map_err(snapshot_fail)?;
+            h.rebuild_views();
+            Ok(())
+        })
+    })
+}

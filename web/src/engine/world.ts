@@ -1,0 +1,304 @@
+// World: one small class over one engine world (a handle of crates/softsculpt-wasm). The world
+// owns its bodies, settings, clock and an open scene's events; bodies are indices 0, 1, ….
+// `body(i)` gives a BodyView whose getters are typed arrays over wasm memory.
+//
+// Views: a typed array from a BodyView is valid until the next call on any World (a call may grow
+// wasm memory, which detaches every view, or replace bodies: add, clear, subdivide, restore,
+// openScene, applyDelta, openProjectV1). Get it again after a call — the getters re-make
+// the arrays when needed and are cheap otherwise — and never keep one across calls.
+
+import { errorJson, raw, resultBytes, resultText, view, withArrays, withBytes } from './wasm';
+
+/** What the engine refused, and why: `kind` is one of the binding's error kinds. */
+export class EngineError extends Error {
+  readonly kind: 'mesh' | 'parameter' | 'step' | 'snapshot' | 'scene' | 'delta' | 'project' | 'usage';
+  /** Every field of the engine's error JSON (time, step, line, parameter, unit, key, …). */
+  readonly fields: Record<string, unknown>;
+  readonly parameter?: string;
+  readonly unit?: string;
+  /** Simulated time (s) of the failing step. */
+  readonly time?: number;
+  readonly step?: number;
+  /** Time (s) the world was rolled back to. */
+  readonly rolledBackTo?: number;
+  /** Scene-file line (a scene error, or the event at fault in a step). */
+  readonly line?: number;
+  readonly key?: string;
+
+  constructor(fields: Record<string, unknown>) {
+    super(String(fields.message ?? 'engine error'));
+    this.name = 'EngineError';
+    this.fields = fields;
+    this.kind = (fields.kind ?? 'usage') as EngineError['kind'];
+    const s = (k: string) => (typeof fields[k] === 'string' ? (fields[k] as string) : undefined);
+    const n = (k: string) => (typeof fields[k] === 'number' ? (fields[k] as number) : undefined);
+    this.parameter = s('parameter');
+    this.unit = s('unit');
+    this.time = n('time');
+    this.step = n('step');
+    this.rolledBackTo = n('rolled_back_to');
+    this.line = n('line');
+    this.key = s('key');
+  }
+}
+
+/** −1 is failure (the error slot says why); anything else is returned. */
+function check(r: number): number {
+  if (r < 0) throw new EngineError(errorJson());
+  return r;
+}
+
+const encode = (s: string) => new TextEncoder().encode(s);
+
+export interface Stats {
+  step: number; time: number; volume: number; pressure: number;
+  kinetic: number; elastic: number; gas: number; gravity: number; total: number;
+  momentum: [number, number, number]; centerOfMass: [number, number, number]; maxSpeed: number;
+}
+
+export type ParamValue = number | boolean | string | [number, number, number];
+
+/** One row of the engine's parameter table (softsculpt::params). */
+export interface ParamInfo {
+  id: string;
+  scope: 'body' | 'world' | 'scene' | 'obstacle';
+  unit: string;
+  default: ParamValue;
+  min: number | null;
+  max: number | null;
+  min_open: boolean;
+  choices: string[];
+  help: string;
+}
+
+/** A rigid obstacle as the engine describes it (m). */
+export type Obstacle =
+  | { kind: 'sphere'; friction: number; center: number[]; radius: number }
+  | { kind: 'box'; friction: number; center: number[]; half: number[]; axes: number[][] }
+  | { kind: 'capsule'; friction: number; a: number[]; b: number[]; radius: number }
+  | { kind: 'mesh'; friction: number; positions: Float64Array; indices: Uint32Array };
+
+export type DeltaScope = 'none' | 'touched' | 'all';
+const SCOPES: Record<DeltaScope, number> = { none: 0, touched: 1, all: 2 };
+
+// Slots of the layout table (crates/softsculpt-wasm/src/views.rs).
+const L = {
+  n: 0, f: 1, s: 2, k: 3, positions: 4, velocities: 5, render: 6, triangles: 7, springs: 8, masses: 9,
+  pinned: 10, rest: 11, bendingRest: 12, userForces: 13, facePressures: 14, scratch: 15, stats: 16,
+} as const;
+const LAYOUT_LEN = 17;
+
+/** Body `index` of a world: counts and typed-array views (see the file comment). */
+export class BodyView {
+  private layoutCopy = new Uint32Array(LAYOUT_LEN);
+  private epoch = -1;
+  private buffer: ArrayBuffer | SharedArrayBuffer | null = null;
+  private cache = new Map<string, ArrayBufferView>();
+
+  constructor(private readonly world: World, readonly index: number) {}
+
+  /** The layout table, read again after a call on the world or a memory growth. */
+  private layout(): Uint32Array {
+    const buffer = raw().memory.buffer;
+    if (this.epoch !== this.world.epoch || this.buffer !== buffer) {
+      const p = raw().ss_body_views(this.world.handle, this.index);
+      if (p === 0) throw new EngineError(errorJson());
+      this.layoutCopy.set(view.u32(p, LAYOUT_LEN));
+      this.epoch = this.world.epoch;
+      this.buffer = raw().memory.buffer;
+      this.cache.clear();
+    }
+    return this.layoutCopy;
+  }
+
+  private get<T extends ArrayBufferView>(slot: keyof typeof L, make: (ptr: number, len: number) => T, len: number): T {
+    const l = this.layout();
+    let a = this.cache.get(slot) as T | undefined;
+    if (!a) {
+      a = make(l[L[slot]], len);
+      this.cache.set(slot, a);
+    }
+    return a;
+  }
+
+  get vertexCount(): number { return this.layout()[L.n]; }
+  get faceCount(): number { return this.layout()[L.f]; }
+  get springCount(): number { return this.layout()[L.s]; }
+  get bendingCount(): number { return this.layout()[L.k]; }
+
+  /** The engine's positions (m, xyz per vertex): read only. */
+  get positions(): Float64Array { return this.get('positions', view.f64, 3 * this.vertexCount); }
+  get velocities(): Float64Array { return this.get('velocities', view.f64, 3 * this.vertexCount); }
+  /** f32 positions for drawing, as of the last `sync()`. */
+  get render(): Float32Array { return this.get('render', view.f32, 3 * this.vertexCount); }
+  get triangles(): Uint32Array { return this.get('triangles', view.u32, 3 * this.faceCount); }
+  get springs(): Uint32Array { return this.get('springs', view.u32, 2 * this.springCount); }
+  get masses(): Float64Array { return this.get('masses', view.f64, this.vertexCount); }
+  /** 1 pinned, 0 free, as of the last `sync()`; write it, then `World.setPins`. */
+  get pinned(): Uint8Array { return this.get('pinned', view.u8, this.vertexCount); }
+  get rest(): Float64Array { return this.get('rest', view.f64, this.springCount); }
+  get bendingRest(): Float64Array { return this.get('bendingRest', view.f64, this.bendingCount); }
+  /** Staging (N, xyz per vertex): write, then `World.applyLoads`. */
+  get userForces(): Float64Array { return this.get('userForces', view.f64, 3 * this.vertexCount); }
+  /** Staging (Pa, per face, inward): write, then `World.applyLoads`. */
+  get facePressures(): Float64Array { return this.get('facePressures', view.f64, this.faceCount); }
+  /** Staging (per vertex): factors for `scaleRest`, masses for `setMasses`. */
+  get scratch(): Float64Array { return this.get('scratch', view.f64, this.vertexCount); }
+
+  /** Statistics as of the last `sync()`. */
+  get stats(): Stats {
+    const s = this.get('stats', view.f64, 16);
+    return {
+      step: s[0], time: s[1], volume: s[2], pressure: s[3], kinetic: s[4], elastic: s[5], gas: s[6],
+      gravity: s[7], total: s[8], momentum: [s[9], s[10], s[11]], centerOfMass: [s[12], s[13], s[14]], maxSpeed: s[15],
+    };
+  }
+}
+
+export class World {
+  private h: number;
+  /** Counts calls that may replace bodies or arrays; BodyViews re-read their layout when it moves. */
+  epoch = 0;
+  /** Warnings of the last `add*` (welded seams, dropped faces…). */
+  warnings: string[] = [];
+
+  private constructor(handle: number) { this.h = handle; }
+
+  /** An empty world with the parameter table's defaults. */
+  static create(): World { return new World(check(raw().ss_world_new())); }
+  /** The standard benchmark workload (softsculpt::workload) at an icosphere level. */
+  static workload(level: number): World { return new World(check(raw().ss_workload(level))); }
+
+  get handle(): number {
+    if (this.h === 0) throw new EngineError({ kind: 'usage', message: 'the world was freed' });
+    return this.h;
+  }
+  get alive(): boolean { return this.h !== 0; }
+
+  /** Every call goes through here: the views are re-made after it. */
+  private call(f: (w: number) => number): number {
+    const w = this.handle;
+    this.epoch++;
+    return check(f(w));
+  }
+
+  free(): void {
+    if (this.h !== 0) raw().ss_world_free(this.h);
+    this.h = 0;
+  }
+
+  private added(b: number): number {
+    this.warnings = JSON.parse(resultText()) as string[];
+    return b;
+  }
+  /** A built-in model (`sphere`, `mushroom`, `octopus`, …) of `mass` kg; its body index. */
+  addBuiltin(name: string, mass = 1): number {
+    return this.added(this.call((w) => withBytes(encode(name), (p, n) => raw().ss_add_builtin(w, p, n, mass))));
+  }
+  /** An OBJ file (welded, checked, oriented); warnings in `warnings`. */
+  addObj(bytes: Uint8Array, mass = 1): number {
+    return this.added(this.call((w) => withBytes(bytes, (p, n) => raw().ss_add_obj(w, p, n, mass))));
+  }
+  /** An indexed triangle mesh; `prepare` makes it ready like a file (weld, orient, reorder). */
+  addMesh(positions: Float64Array, indices: Uint32Array, mass = 1, prepare = true): number {
+    return this.added(this.call((w) => withArrays([positions, indices], (p, i) =>
+      raw().ss_add_mesh(w, p, positions.length / 3, i, indices.length, mass, prepare ? 1 : 0))));
+  }
+  /** Drop bodies, events and loads; keep the settings. */
+  clear(): void { this.call((w) => raw().ss_clear(w)); }
+
+  get bodyCount(): number { return check(raw().ss_body_count(this.handle)); }
+  body(i: number): BodyView { return new BodyView(this, i); }
+
+  /** `n` steps or none: on a blow-up the whole world is rolled back and this throws (kind 'step'). */
+  step(n = 1): void { this.call((w) => raw().ss_step(w, n)); }
+  /** Refresh every body's render positions, pins and stats. */
+  sync(): void { this.call((w) => raw().ss_sync(w)); }
+
+  paramTable(): ParamInfo[] {
+    check(raw().ss_param_table());
+    return JSON.parse(resultText()) as ParamInfo[];
+  }
+  /** Every body and world parameter of body `b` (null: not set, e.g. the ground's without ground). */
+  params(b = 0): Record<string, ParamValue | null> {
+    this.call((w) => raw().ss_params(w, b));
+    return JSON.parse(resultText()) as Record<string, ParamValue | null>;
+  }
+  /** Set a parameter by its table id (body parameters on body `b`); throws kind 'parameter'. */
+  setParam(b: number, id: string, value: ParamValue): void {
+    const json = JSON.stringify(value) ?? 'null';
+    this.call((w) => withBytes(encode(id), (ip, il) => withBytes(encode(json), (jp, jl) => raw().ss_set_param(w, b, ip, il, jp, jl))));
+  }
+
+  freeze(b: number, underLoad = false): void { this.call((w) => raw().ss_freeze(w, b, underLoad ? 1 : 0)); }
+  reset(b: number): void { this.call((w) => raw().ss_reset(w, b)); }
+  /** Loop subdivision of body `b`; returns how many of its pending scene events were dropped. */
+  subdivide(b: number): number {
+    this.call((w) => raw().ss_subdivide(w, b));
+    return (JSON.parse(resultText()) as { dropped_events: number }).dropped_events;
+  }
+  /** Rest lengths × per-vertex factors (given, or already in the body's scratch). */
+  scaleRest(b: number, factors?: ArrayLike<number>): void {
+    if (factors) this.body(b).scratch.set(factors);
+    this.call((w) => raw().ss_scale_rest(w, b));
+  }
+  /** Vertex masses (kg), given or already in the body's scratch. */
+  setMasses(b: number, masses?: ArrayLike<number>): void {
+    if (masses) this.body(b).scratch.set(masses);
+    this.call((w) => raw().ss_set_masses(w, b));
+  }
+  /** Pins (1/0 per vertex), given or already written into the body's `pinned` view. */
+  setPins(b: number, pinned?: ArrayLike<number>): void {
+    if (pinned) this.body(b).pinned.set(pinned);
+    this.call((w) => raw().ss_set_pins(w, b));
+  }
+  /** User forces and face pressures from the body's staging views. */
+  applyLoads(b: number): void { this.call((w) => raw().ss_apply_loads(w, b)); }
+
+  /** The whole world as snapshot bytes (docs/snapshot.md). */
+  snapshot(): Uint8Array {
+    this.call((w) => raw().ss_snapshot(w));
+    return resultBytes();
+  }
+  /** The world from snapshot bytes; throws kind 'snapshot' and leaves the world as it was. */
+  restore(bytes: Uint8Array): void { this.call((w) => withBytes(bytes, (p, n) => raw().ss_restore(w, p, n))); }
+
+  /** The world becomes a scene file's; `files` holds the mesh files it names (by file name). */
+  openScene(text: string, files: Map<string, Uint8Array> = new Map()): { names: string[]; dt: number; duration: number } {
+    for (const [name, bytes] of files) {
+      check(withBytes(encode(name), (np, nl) => withBytes(bytes, (p, l) => raw().ss_scene_file(np, nl, p, l))));
+    }
+    this.call((w) => withBytes(encode(text), (p, n) => raw().ss_open_scene(w, p, n)));
+    return JSON.parse(resultText()) as { names: string[]; dt: number; duration: number };
+  }
+  /** The world as scene text (TOML), with the open scene's obstacles and events. */
+  saveScene(): string {
+    this.call((w) => raw().ss_save_scene(w));
+    return resultText();
+  }
+  obstacles(): Obstacle[] {
+    this.call((w) => raw().ss_obstacles(w));
+    const list = JSON.parse(resultText()) as (Obstacle & { positions?: number[]; indices?: number[] })[];
+    return list.map((o) => (o.kind === 'mesh'
+      ? { ...o, positions: Float64Array.from(o.positions as ArrayLike<number>), indices: Uint32Array.from(o.indices as ArrayLike<number>) }
+      : o));
+  }
+
+  /** Remember the world as it is now, for `delta`. */
+  mark(): void { this.call((w) => raw().ss_mark(w)); }
+  /** Bytes of a delta that takes the world back to the mark. */
+  delta(scope: DeltaScope): Uint8Array {
+    this.call((w) => raw().ss_delta(w, SCOPES[scope]));
+    return resultBytes();
+  }
+  /** Apply a delta; returns its inverse (to redo what it undid). Throws kind 'delta' (world untouched). */
+  applyDelta(bytes: Uint8Array): Uint8Array {
+    this.call((w) => withBytes(bytes, (p, n) => raw().ss_apply_delta(w, p, n)));
+    return resultBytes();
+  }
+  /** A version-1 project file of the modeler becomes the world; its name and ui settings. */
+  openProjectV1(text: string): { name: string; ui: Record<string, unknown> } {
+    this.call((w) => withBytes(encode(text), (p, n) => raw().ss_open_project_v1(w, p, n)));
+    return JSON.parse(resultText()) as { name: string; ui: Record<string, unknown> };
+  }
+}
