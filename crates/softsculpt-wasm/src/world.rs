@@ -97,6 +97,7 @@ pub fn sim_fail(e: SimError) -> Fail {
         SimError::BadParameter { name, .. } => Fail::new("parameter", e.to_string()).with("parameter", *name),
         SimError::Length { .. } => Fail::usage(e.to_string()),
         SimError::NonFinite { step } | SimError::Collapsed { step, .. } => Fail::new("step", e.to_string()).with("step", *step),
+        SimError::NotConverged { step, time, .. } => Fail::new("step", e.to_string()).with("step", *step).with("time", *time).with("converged", false),
     }
 }
 

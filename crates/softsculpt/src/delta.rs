@@ -180,6 +180,8 @@ enum Kind {
         ext: Option<snapshot::ExtensionV2>,
         timeline: Option<Timeline>,
         bodies: Vec<Option<BodyDelta>>,
+        /// Each body's mesh it was made for: vertex count and a hash of the triangles.
+        meshes: Vec<(u32, u64)>,
     },
 }
 
@@ -294,7 +296,18 @@ fn diff(before2: &WorldV2, after2: &WorldV2, scope: StateScope) -> Delta {
     let ext = (encoded(&before2.ext) != encoded(&after2.ext)).then(|| before2.ext.clone());
     let timeline = (scope == StateScope::All && encoded(&timeline(before)) != encoded(&timeline(after))).then(|| timeline(before));
     let bodies = before.bodies.iter().zip(&after.bodies).map(|(b, a)| body_delta(b, a, scope)).collect();
-    Delta { scope, kind: Kind::Parts { settings, ext, timeline, bodies } }
+    Delta { scope, kind: Kind::Parts { settings, ext, timeline, bodies, meshes: meshes(before) } }
+}
+
+/// Each body's vertex count and an FNV-1a hash of its triangles: which meshes a delta fits.
+fn meshes(w: &WorldV1) -> Vec<(u32, u64)> {
+    w.bodies
+        .iter()
+        .map(|b| {
+            let h = b.triangles.iter().flatten().fold(0xcbf2_9ce4_8422_2325u64, |h, &i| (h ^ i as u64).wrapping_mul(0x100_0000_01b3));
+            (b.mass.len() as u32, h)
+        })
+        .collect()
 }
 
 fn patch(w: &mut WorldV1, settings: &Option<snapshot::SettingsV1>, timeline: &Option<Timeline>, bodies: &[Option<BodyDelta>]) -> Result<(), DeltaError> {
@@ -361,8 +374,13 @@ impl Delta {
                 *world = earlier;
                 Ok(inverse)
             }
-            Kind::Parts { settings, ext, timeline, bodies } => {
+            Kind::Parts { settings, ext, timeline, bodies, meshes: made_for } => {
                 let now = snapshot::payload_v2(world);
+                let here = meshes(&now.base);
+                if made_for.len() == here.len() && made_for != &here {
+                    let k = (0..here.len()).find(|&k| made_for[k] != here[k]).unwrap_or(0);
+                    return Err(DeltaError::DoesNotFit(format!("body {k} has another mesh ({} vertices) than it was made for ({})", here[k].0, made_for[k].0)));
+                }
                 let mut earlier = now.clone();
                 patch(&mut earlier.base, settings, timeline, bodies)?;
                 if let Some(e) = ext {
@@ -391,7 +409,7 @@ impl Delta {
     pub fn is_empty(&self) -> bool {
         match &self.kind {
             Kind::Whole(_) => false,
-            Kind::Parts { settings, ext, timeline, bodies } => settings.is_none() && ext.is_none() && timeline.is_none() && bodies.iter().all(Option::is_none),
+            Kind::Parts { settings, ext, timeline, bodies, .. } => settings.is_none() && ext.is_none() && timeline.is_none() && bodies.iter().all(Option::is_none),
         }
     }
 

@@ -241,6 +241,15 @@ fn foreign_or_damaged_deltas_are_refused_and_change_nothing() {
     let e = Delta::from_bytes(&bytes).unwrap().apply(&mut other).err().unwrap();
     assert!(matches!(e, DeltaError::DoesNotFit(_)), "{e}");
     assert!(other.snapshot() == snap);
+    // Made for a body of the same size but another mesh (its triangles flipped): refused too.
+    let mut flipped = balloon(1);
+    let tris: Vec<[u32; 3]> = flipped.bodies[0].triangles().iter().map(|t| [t[0], t[2], t[1]]).collect();
+    let x = flipped.bodies[0].positions().to_vec();
+    flipped.bodies[0] = SoftBody::new(&softsculpt::TriMesh { positions: x, triangles: tris }, 1.0, Material::default()).unwrap();
+    let snap = flipped.snapshot();
+    let e = Delta::from_bytes(&bytes).unwrap().apply(&mut flipped).err().unwrap();
+    assert!(matches!(e, DeltaError::DoesNotFit(_)), "{e}");
+    assert!(flipped.snapshot() == snap);
     // Made for two bodies, applied to one.
     let mut two = balloon(1);
     two.add_body(SoftBody::new(&icosphere(1, 0.2), 1.0, Material::default()).unwrap());
