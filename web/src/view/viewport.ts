@@ -89,6 +89,9 @@ export class Viewport {
     s.setIndex(new THREE.BufferAttribute(springs, 1));
     s.setAttribute('position', position);
     this.update(positions);
+    // The material's shader may have been built before the surface had vertex normals (the page
+    // draws before the worker's first frame): without this it keeps shading flat, by facets.
+    this.surface.material.needsUpdate = true;
   }
 
   /** New positions (a frame's buffer, same length): drawn as they are, no copy. */
