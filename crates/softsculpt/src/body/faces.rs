@@ -39,6 +39,44 @@ impl Faces {
     }
 }
 
+impl Faces {
+    /// The faces stage for one chunk of vertices (`parforces.rs`): faces `ids` (their smallest
+    /// corner in `vr`) add n_f into `g`, the chunk's accumulator (vertex `vr.start` at 0), when
+    /// `normals`; n_f for a corner past the chunk goes to the next 3 values of `cross`, in face
+    /// then corner order. Returns their part of 6V.
+    pub(crate) fn volume6_and_normals_part(&self, ids: &[u32], x: &[f64], vr: std::ops::Range<usize>, g: &mut [f64], cross: &mut [f64], normals: bool) -> f64 {
+        let (base, end) = (vr.start, vr.end);
+        let mut six_v = 0.0;
+        let mut slot = 0;
+        for &f in ids {
+            let t = self.tris[f as usize];
+            let (a, b, c) = (3 * t[0] as usize, 3 * t[1] as usize, 3 * t[2] as usize);
+            let (ax, ay, az) = (x[a], x[a + 1], x[a + 2]);
+            let (e1x, e1y, e1z) = (x[b] - ax, x[b + 1] - ay, x[b + 2] - az);
+            let (e2x, e2y, e2z) = (x[c] - ax, x[c + 1] - ay, x[c + 2] - az);
+            let nx = e1y * e2z - e1z * e2y;
+            let ny = e1z * e2x - e1x * e2z;
+            let nz = e1x * e2y - e1y * e2x;
+            six_v += ax * nx + ay * ny + az * nz;
+            if normals {
+                for &v in &t {
+                    let v = v as usize;
+                    if v < end {
+                        let k = 3 * (v - base);
+                        g[k] += nx;
+                        g[k + 1] += ny;
+                        g[k + 2] += nz;
+                    } else {
+                        cross[slot..slot + 3].copy_from_slice(&[nx, ny, nz]);
+                        slot += 3;
+                    }
+                }
+            }
+        }
+        six_v
+    }
+}
+
 /// SAFETY contract: every index in `tris` is below `x.len() / 3` and `g.len() / 3` (guaranteed
 /// by [`Faces::new`] and the assertion in [`Faces::volume6_and_normals`]).
 #[inline(always)]

@@ -1,8 +1,10 @@
 //! The force stages: everything that turns a state (x, v) into accelerations.
 
 use super::{external, gas, Material, Model};
-use crate::world::WorldSettings;
+use super::parforces::ParForces;
 use crate::error::SimError;
+use crate::par::{Out, Threads};
+use crate::world::WorldSettings;
 
 /// A failure inside a step, before the step number is known.
 #[derive(Debug, Clone, Copy)]
@@ -42,12 +44,20 @@ pub(crate) struct Gathered {
 const SCALE_MIN: f64 = 1e-200;
 
 /// Stages faces, gas, springs and external: fill `f` (zero on entry) with force / scale.
-pub(crate) fn gather(p: &Material, w: &WorldSettings, m: &Model, x: &[f64], v: &[f64], f: &mut [f64]) -> Result<Gathered, Fault> {
+///
+/// With `par` (several threads) the faces and springs stages run on the pool in chunks of
+/// vertices (`parforces.rs`); the rare stages (wind, face pressures, targets) stay on this thread.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn gather(th: &Threads, mut par: Option<&mut ParForces>, p: &Material, w: &WorldSettings, m: &Model, x: &[f64], v: &[f64], f: &mut [f64]) -> Result<Gathered, Fault> {
     let nrt = p.nrt();
     let gas_active = nrt != 0.0 || m.gas.ambient_pressure != 0.0;
 
     // Stage faces: the exact volume, plus Σ n_f per vertex into f when a gas will use it.
-    let six_v = if gas_active { m.faces.volume6_and_normals(x, f) } else { m.faces.volume6(x) };
+    let six_v = match par.as_deref_mut() {
+        Some(par) => par.faces(th, m, x, f, gas_active),
+        None if gas_active => m.faces.volume6_and_normals(x, f),
+        None => m.faces.volume6(x),
+    };
     if !six_v.is_finite() {
         return Err(Fault::NonFinite);
     }
@@ -70,9 +80,14 @@ pub(crate) fn gather(p: &Material, w: &WorldSettings, m: &Model, x: &[f64], v: &
     let inv = 1.0 / scale;
 
     // Stage springs.
-    m.springs.accumulate(p.stiffness * inv, p.spring_damping * inv, x, v, f);
-    if p.bending_stiffness > 0.0 {
-        m.bending.accumulate(p.bending_stiffness * inv, p.spring_damping * inv, x, v, f);
+    if let Some(par) = par {
+        let kb = (p.bending_stiffness > 0.0).then_some(p.bending_stiffness * inv);
+        par.springs(th, m, p.stiffness * inv, kb, p.spring_damping * inv, x, v, f);
+    } else {
+        m.springs.accumulate(p.stiffness * inv, p.spring_damping * inv, x, v, f);
+        if p.bending_stiffness > 0.0 {
+            m.bending.accumulate(p.bending_stiffness * inv, p.spring_damping * inv, x, v, f);
+        }
     }
 
     // Stage external: wind and user face pressures.
@@ -130,25 +145,39 @@ macro_rules! dispatch {
     }};
 }
 
-/// Stage vertices (generic): write accelerations into `a` and clear the accumulators.
-pub(crate) fn accelerations(p: &Material, w: &WorldSettings, m: &Model, gathered: Gathered, v: &[f64], f: &mut [f64], a: &mut [f64]) {
-    dispatch!(m, p, w, accelerations_impl(p, w.gravity, m, gathered.scale, v, f, a))
+/// Stage vertices (generic): write accelerations into `a` and clear the accumulators; the
+/// vertices in chunks on the pool when `par` is given.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn accelerations(th: &Threads, par: Option<&mut ParForces>, p: &Material, w: &WorldSettings, m: &Model, gathered: Gathered, v: &[f64], f: &mut [f64], a: &mut [f64]) {
+    let Some(par) = par else {
+        return dispatch!(m, p, w, accelerations_impl(p, w.gravity, &m.inv_mass, &m.external, gathered.scale, v, f, a));
+    };
+    let (fo, ao) = (Out::new(f), Out::new(a));
+    par.vertices(th, |vr| {
+        let r3 = 3 * vr.start..3 * vr.end;
+        // SAFETY: every chunk writes its own vertices only.
+        let (f, a) = unsafe { (fo.range(r3.clone()), ao.range(r3.clone())) };
+        dispatch!(m, p, w, accelerations_impl(p, w.gravity, &m.inv_mass[vr.clone()], &m.external[r3.clone()], gathered.scale, &v[r3.clone()], f, a))
+    });
 }
 
+/// On the vertices of `inv_mass` (a range of the body's, with the matching slices).
+#[allow(clippy::too_many_arguments)]
 fn accelerations_impl<const USER: bool, const UNIFORM: bool>(
     p: &Material,
     gravity: f64,
-    m: &Model,
+    inv_mass: &[f64],
+    user: &[f64],
     scale: f64,
     v: &[f64],
     f: &mut [f64],
     a: &mut [f64],
 ) {
-    let n = m.inv_mass.len();
-    let (v, f, a, user) = (&v[..3 * n], &mut f[..3 * n], &mut a[..3 * n], &m.external[..3 * n]);
+    let n = inv_mass.len();
+    let (v, f, a, user) = (&v[..3 * n], &mut f[..3 * n], &mut a[..3 * n], &user[..3 * n]);
     let grav = [0.0, -gravity, 0.0];
     for i in 0..n {
-        let im = m.inv_mass[i];
+        let im = inv_mass[i];
         for d in 0..3 {
             let k = 3 * i + d;
             a[k] = accel::<USER, UNIFORM>(k, im, f, user, scale, v[k], p.damping, grav[d]);
@@ -157,28 +186,40 @@ fn accelerations_impl<const USER: bool, const UNIFORM: bool>(
     }
 }
 
-/// Stage vertices fused with symplectic Euler: v += dt a; x += dt v; clear the accumulators.
+/// Stage vertices fused with symplectic Euler: v += dt a; x += dt v; clear the accumulators;
+/// the vertices in chunks on the pool when `par` is given.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn symplectic_update(p: &Material, w: &WorldSettings, m: &Model, gathered: Gathered, dt: f64, x: &mut [f64], v: &mut [f64], f: &mut [f64]) {
-    dispatch!(m, p, w, symplectic_impl(p, w.gravity, m, gathered.scale, dt, x, v, f))
+pub(crate) fn symplectic_update(th: &Threads, par: Option<&mut ParForces>, p: &Material, w: &WorldSettings, m: &Model, gathered: Gathered, dt: f64, x: &mut [f64], v: &mut [f64], f: &mut [f64]) {
+    let Some(par) = par else {
+        return dispatch!(m, p, w, symplectic_impl(p, w.gravity, &m.inv_mass, &m.external, gathered.scale, dt, x, v, f));
+    };
+    let (xo, vo, fo) = (Out::new(x), Out::new(v), Out::new(f));
+    par.vertices(th, |vr| {
+        let r3 = 3 * vr.start..3 * vr.end;
+        // SAFETY: every chunk writes its own vertices only.
+        let (x, v, f) = unsafe { (xo.range(r3.clone()), vo.range(r3.clone()), fo.range(r3.clone())) };
+        dispatch!(m, p, w, symplectic_impl(p, w.gravity, &m.inv_mass[vr.clone()], &m.external[r3.clone()], gathered.scale, dt, x, v, f))
+    });
 }
 
+/// On the vertices of `inv_mass` (a range of the body's, with the matching slices).
 #[allow(clippy::too_many_arguments)]
 fn symplectic_impl<const USER: bool, const UNIFORM: bool>(
     p: &Material,
     gravity: f64,
-    m: &Model,
+    inv_mass: &[f64],
+    user: &[f64],
     scale: f64,
     dt: f64,
     x: &mut [f64],
     v: &mut [f64],
     f: &mut [f64],
 ) {
-    let n = m.inv_mass.len();
-    let (x, v, f, user) = (&mut x[..3 * n], &mut v[..3 * n], &mut f[..3 * n], &m.external[..3 * n]);
+    let n = inv_mass.len();
+    let (x, v, f, user) = (&mut x[..3 * n], &mut v[..3 * n], &mut f[..3 * n], &user[..3 * n]);
     let grav = [0.0, -gravity, 0.0];
     for i in 0..n {
-        let im = m.inv_mass[i];
+        let im = inv_mass[i];
         for d in 0..3 {
             let k = 3 * i + d;
             let acc = accel::<USER, UNIFORM>(k, im, f, user, scale, v[k], p.damping, grav[d]);

@@ -24,6 +24,7 @@ pub mod implicit;
 mod integrate;
 pub mod material;
 mod modeling;
+mod parforces;
 mod persist;
 mod springs;
 mod stats;
@@ -89,6 +90,8 @@ pub(crate) struct Work {
     pub a: [Vec<f64>; 4],
     /// The implicit integrator's system and vectors, built on its first step.
     pub implicit: Option<Box<implicit::Implicit>>,
+    /// The explicit stages' partition for several threads, built on the first threaded step.
+    pub par: Option<Box<parforces::ParForces>>,
     /// Iterations of the last step (reported in the statistics; not state).
     pub iterations: SolverIterations,
 }

@@ -98,44 +98,53 @@ impl Springs {
         self.accumulate_blocks(k, cs, x, v, f);
     }
 
+    /// Forces fs·u of springs e0..e0 + m (m ≤ BLOCK) into lanes 0..m, coordinate-major.
+    #[inline(always)]
+    fn block(&self, e0: usize, m: usize, k: f64, cs: f64, x: &[f64], v: &[f64]) -> [[f64; BLOCK]; 3] {
+        let (ii, jj, rest) = (&self.i[..], &self.j[..self.i.len()], &self.rest[..self.i.len()]);
+        assert!(e0 + m <= ii.len());
+        let mut d = [[0.0f64; BLOCK]; 3];
+        let mut dv = [[0.0f64; BLOCK]; 3];
+        let mut l0 = [1.0f64; BLOCK];
+        // Gather.
+        for t in 0..m {
+            let e = e0 + t;
+            // SAFETY: every index is below `vertex_count` (checked in `new`, never changed)
+            // and the arrays hold at least 3 · vertex_count values (asserted by the callers).
+            unsafe {
+                let a = 3 * *ii.get_unchecked(e) as usize;
+                let b = 3 * *jj.get_unchecked(e) as usize;
+                for c in 0..3 {
+                    d[c][t] = *x.get_unchecked(b + c) - *x.get_unchecked(a + c);
+                    dv[c][t] = *v.get_unchecked(b + c) - *v.get_unchecked(a + c);
+                }
+                l0[t] = *rest.get_unchecked(e);
+            }
+        }
+        // Compute: s = [k (l − L) + cs (dv · u)] u with u = d / l. Padding lanes (t ≥ m) hold
+        // d = 0 and are never scattered; their NaN is harmless.
+        let mut s = [[0.0f64; BLOCK]; 3];
+        for t in 0..BLOCK {
+            let len = (d[0][t] * d[0][t] + d[1][t] * d[1][t] + d[2][t] * d[2][t]).sqrt();
+            let inv = 1.0 / len;
+            let (ux, uy, uz) = (d[0][t] * inv, d[1][t] * inv, d[2][t] * inv);
+            let dvn = dv[0][t] * ux + dv[1][t] * uy + dv[2][t] * uz;
+            let fs = k * (len - l0[t]) + cs * dvn;
+            s[0][t] = fs * ux;
+            s[1][t] = fs * uy;
+            s[2][t] = fs * uz;
+        }
+        s
+    }
+
     #[inline(always)]
     fn accumulate_blocks(&self, k: f64, cs: f64, x: &[f64], v: &[f64], f: &mut [f64]) {
-        let (ii, jj, rest) = (&self.i[..], &self.j[..self.i.len()], &self.rest[..self.i.len()]);
+        let (ii, jj) = (&self.i[..], &self.j[..self.i.len()]);
         let ne = ii.len();
         let mut e0 = 0;
         while e0 < ne {
             let m = BLOCK.min(ne - e0);
-            let mut d = [[0.0f64; BLOCK]; 3];
-            let mut dv = [[0.0f64; BLOCK]; 3];
-            let mut l0 = [1.0f64; BLOCK];
-            // Gather.
-            for t in 0..m {
-                let e = e0 + t;
-                // SAFETY: every index is below `vertex_count` (checked in `new`, never changed)
-                // and the arrays hold at least 3 · vertex_count values (asserted by the caller).
-                unsafe {
-                    let a = 3 * *ii.get_unchecked(e) as usize;
-                    let b = 3 * *jj.get_unchecked(e) as usize;
-                    for c in 0..3 {
-                        d[c][t] = *x.get_unchecked(b + c) - *x.get_unchecked(a + c);
-                        dv[c][t] = *v.get_unchecked(b + c) - *v.get_unchecked(a + c);
-                    }
-                    l0[t] = *rest.get_unchecked(e);
-                }
-            }
-            // Compute: s = [k (l − L) + cs (dv · u)] u with u = d / l. Padding lanes (t ≥ m) hold
-            // d = 0 and are never scattered; their NaN is harmless.
-            let mut s = [[0.0f64; BLOCK]; 3];
-            for t in 0..BLOCK {
-                let len = (d[0][t] * d[0][t] + d[1][t] * d[1][t] + d[2][t] * d[2][t]).sqrt();
-                let inv = 1.0 / len;
-                let (ux, uy, uz) = (d[0][t] * inv, d[1][t] * inv, d[2][t] * inv);
-                let dvn = dv[0][t] * ux + dv[1][t] * uy + dv[2][t] * uz;
-                let fs = k * (len - l0[t]) + cs * dvn;
-                s[0][t] = fs * ux;
-                s[1][t] = fs * uy;
-                s[2][t] = fs * uz;
-            }
+            let s = self.block(e0, m, k, cs, x, v);
             // Scatter: +s on i, −s on j.
             for t in 0..m {
                 let e = e0 + t;
@@ -147,6 +156,66 @@ impl Springs {
                         *f.get_unchecked_mut(a + c) += s[c][t];
                         *f.get_unchecked_mut(b + c) -= s[c][t];
                     }
+                }
+            }
+            e0 += m;
+        }
+    }
+}
+
+impl Springs {
+    /// The springs stage for one chunk of vertices (`parforces.rs`): springs `e` (whose first
+    /// ends are all in `vr`) add their forces into `f`, the chunk's accumulator (vertex
+    /// `vr.start` at 0); a force on a second end past the chunk goes to the next 3 values of
+    /// `cross` instead, in spring order. Same arithmetic as [`Springs::accumulate`].
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn accumulate_part(&self, k: f64, cs: f64, x: &[f64], v: &[f64], e: std::ops::Range<usize>, vr: std::ops::Range<usize>, f: &mut [f64], cross: &mut [f64]) {
+        let n = 3 * self.vertex_count;
+        assert!(x.len() >= n && v.len() >= n && f.len() == 3 * vr.len() && e.end <= self.i.len());
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
+                // SAFETY: the CPU supports the features the function is compiled for.
+                unsafe { self.part_avx2(k, cs, x, v, e, vr, f, cross) };
+                return;
+            }
+        }
+        self.part_blocks(k, cs, x, v, e, vr, f, cross);
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    #[allow(clippy::too_many_arguments)]
+    unsafe fn part_avx2(&self, k: f64, cs: f64, x: &[f64], v: &[f64], e: std::ops::Range<usize>, vr: std::ops::Range<usize>, f: &mut [f64], cross: &mut [f64]) {
+        self.part_blocks(k, cs, x, v, e, vr, f, cross);
+    }
+
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn part_blocks(&self, k: f64, cs: f64, x: &[f64], v: &[f64], e: std::ops::Range<usize>, vr: std::ops::Range<usize>, f: &mut [f64], cross: &mut [f64]) {
+        let (ii, jj) = (&self.i[..], &self.j[..self.i.len()]);
+        let (base, end) = (3 * vr.start, vr.end as u32);
+        let mut slot = 0;
+        let mut e0 = e.start;
+        while e0 < e.end {
+            let m = BLOCK.min(e.end - e0);
+            let s = self.block(e0, m, k, cs, x, v);
+            // Scatter: +s on i (in the chunk), −s on j when in the chunk, else into `cross`.
+            for t in 0..m {
+                let e = e0 + t;
+                let a = 3 * ii[e] as usize - base;
+                let j = jj[e];
+                for c in 0..3 {
+                    f[a + c] += s[c][t];
+                }
+                if j < end {
+                    let b = 3 * j as usize - base;
+                    for c in 0..3 {
+                        f[b + c] -= s[c][t];
+                    }
+                } else {
+                    cross[slot..slot + 3].copy_from_slice(&[s[0][t], s[1][t], s[2][t]]);
+                    slot += 3;
                 }
             }
             e0 += m;

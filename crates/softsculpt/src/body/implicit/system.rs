@@ -83,6 +83,13 @@ pub(crate) struct System {
     pub faces: FaceRows,
     pub eb: SpringBlocks,
     pub bb: SpringBlocks,
+    /// Per CSR entry of `edges` (and of `bends`), in row order: the spring's (a, b, d) as the
+    /// product reads them. The vertex pass copies them there once per Newton evaluation, so
+    /// that each of the many products of the conjugate gradient streams one array in order
+    /// instead of gathering `eb` through the spring index (measured: the product was 63 % of
+    /// the step, bound by those indirect loads).
+    pub ecoef: Vec<[f64; 5]>,
+    pub bcoef: Vec<[f64; 5]>,
     /// Bending springs take part (k_b > 0), as in the explicit stages.
     pub bending: bool,
     /// n_f = (x_b − x_a) × (x_c − x_a) per face (m², xyz).
@@ -120,6 +127,8 @@ impl System {
             faces: FaceRows::new(n, m.faces.triangles()),
             eb: SpringBlocks::new(m.springs.len()),
             bb: SpringBlocks::new(m.bending.len()),
+            ecoef: vec![[0.0; 5]; 2 * m.springs.len()],
+            bcoef: vec![[0.0; 5]; 2 * m.bending.len()],
             bending: false,
             nf: vec![0.0; 3 * nf],
             g: vec![0.0; 3 * n],
@@ -199,13 +208,17 @@ impl System {
         };
         let (g, diag, pre) = (Out::new(&mut self.g), Out::new(&mut self.diag), Out::new(&mut self.pre));
         let ro = Out::new(r);
+        let (ec, bc) = (Out::new(&mut self.ecoef), Out::new(&mut self.bcoef));
+        let (es, bs) = (&self.edges.start, &self.bends.start);
         let n = m.mass.len();
         let mut slots = std::mem::take(&mut self.vslots);
         th.each(&mut slots, |c, slot| {
             let vr = chunk(c, VCHUNK, n);
             // SAFETY: chunk c writes vertices vr only; chunks are disjoint.
+            // (The CSR entries of rows vr are start[vr.start]..start[vr.end]: also disjoint.)
             unsafe {
-                *slot = rows.run(vr.clone(), vp, xt, ro.range(3 * vr.start..3 * vr.end), g.range(3 * vr.start..3 * vr.end), diag.range(vr.clone()), pre.range(6 * vr.start..6 * vr.end));
+                let coef = (ec.range(es[vr.start] as usize..es[vr.end] as usize), bc.range(bs[vr.start] as usize..bs[vr.end] as usize));
+                *slot = rows.run(vr.clone(), vp, xt, ro.range(3 * vr.start..3 * vr.end), g.range(3 * vr.start..3 * vr.end), diag.range(vr.clone()), pre.range(6 * vr.start..6 * vr.end), coef);
             }
         });
         let (mut res2, mut noise2) = (0.0, 0.0);
@@ -238,9 +251,11 @@ struct Rows<'a> {
     fext: &'a [f64],
 }
 
-/// Add row `i` of a spring kind: Σ ±fs d into `f`, Σ (a I + b d dᵀ) into `blk`, Σ|fs d| into `abs`.
+/// Add row `i` of a spring kind: Σ ±fs d into `f`, Σ (a I + b d dᵀ) into `blk`, Σ|fs d| into
+/// `abs`; each entry's (a, b, d) into `coef[k − base]`.
 #[inline(always)]
-fn gather_springs(rows: &SpringRows, sb: &SpringBlocks, i: usize, f: &mut [f64; 3], blk: &mut [f64; 6], abs: &mut f64) {
+#[allow(clippy::too_many_arguments)]
+fn gather_springs(rows: &SpringRows, sb: &SpringBlocks, i: usize, f: &mut [f64; 3], blk: &mut [f64; 6], abs: &mut f64, coef: &mut [[f64; 5]], base: usize) {
     for k in rows.start[i] as usize..rows.start[i + 1] as usize {
         let e = rows.spring[k] as usize;
         let sign = if rows.other[k] as usize > i { 1.0 } else { -1.0 };
@@ -251,6 +266,7 @@ fn gather_springs(rows: &SpringRows, sb: &SpringBlocks, i: usize, f: &mut [f64; 
         *abs += fx.abs() + fy.abs() + fz.abs();
         let (a, b) = (sb.a[e], sb.b[e]);
         let (dx, dy, dz) = (sb.d[3 * e], sb.d[3 * e + 1], sb.d[3 * e + 2]);
+        coef[k - base] = [a, b, dx, dy, dz];
         blk[0] += a + b * dx * dx;
         blk[1] += a + b * dy * dy;
         blk[2] += a + b * dz * dz;
@@ -273,21 +289,23 @@ fn inverse_sym(m: &[f64; 6]) -> [f64; 6] {
 
 impl Rows<'_> {
     #[allow(clippy::too_many_arguments)]
-    fn run(&self, vr: std::ops::Range<usize>, vp: &[f64], xt: &[f64], r: &mut [f64], g: &mut [f64], diag: &mut [f64], pre: &mut [f64]) -> [f64; 4] {
+    fn run(&self, vr: std::ops::Range<usize>, vp: &[f64], xt: &[f64], r: &mut [f64], g: &mut [f64], diag: &mut [f64], pre: &mut [f64], coef: (&mut [[f64; 5]], &mut [[f64; 5]])) -> [f64; 4] {
         let Frame { p, w, m, v, dt, .. } = *self.fr;
         let sys = self;
         let grav = [0.0, -w.gravity, 0.0];
         let c = p.damping;
         let targets = &m.targets;
         let (mut res2, mut noise2) = (0.0, 0.0);
+        let (ecoef, bcoef) = coef;
+        let (ebase, bbase) = (sys.edges.start[vr.start] as usize, if sys.bending { sys.bends.start[vr.start] as usize } else { 0 });
         for (li, i) in vr.enumerate() {
             let mi = m.mass[i];
             let mut f = [0.0; 3];
             let mut blk = [0.0; 6];
             let mut abs = 0.0;
-            gather_springs(&sys.edges, &sys.eb, i, &mut f, &mut blk, &mut abs);
+            gather_springs(&sys.edges, &sys.eb, i, &mut f, &mut blk, &mut abs, ecoef, ebase);
             if sys.bending {
-                gather_springs(&sys.bends, &sys.bb, i, &mut f, &mut blk, &mut abs);
+                gather_springs(&sys.bends, &sys.bb, i, &mut f, &mut blk, &mut abs, bcoef, bbase);
             }
             if self.gas {
                 let mut gi = [0.0; 3];
@@ -420,36 +438,62 @@ impl System {
     /// rows are 0 (p is 0 there too).
     pub fn product(&self, th: &Threads, m: &Model, p: &[f64], gp: f64, out: &mut [f64], slots: &mut [[f64; 4]]) -> f64 {
         let n = m.mass.len();
+        assert!(p.len() >= 3 * n && self.diag.len() >= n && self.g.len() >= 3 * n && m.inv_mass.len() >= n);
         let o = Out::new(out);
         let gg = self.gamma * gp;
         th.each(slots, |c, slot| {
             let vr = chunk(c, VCHUNK, n);
             // SAFETY: chunk c writes vertices vr only.
             let out = unsafe { o.range(3 * vr.start..3 * vr.end) };
-            let mut pq = 0.0;
-            for (li, i) in vr.enumerate() {
-                if m.inv_mass[i] == 0.0 {
-                    out[3 * li..3 * li + 3].fill(0.0);
-                    continue;
-                }
-                let pi = [p[3 * i], p[3 * i + 1], p[3 * i + 2]];
-                let dg = self.diag[i];
-                let mut q = [dg * pi[0], dg * pi[1], dg * pi[2]];
-                row_product(&self.edges, &self.eb, i, p, &pi, &mut q);
-                if self.bending {
-                    row_product(&self.bends, &self.bb, i, p, &pi, &mut q);
-                }
-                if gg != 0.0 {
-                    for d in 0..3 {
-                        q[d] += gg * self.g[3 * i + d];
-                    }
-                }
-                out[3 * li..3 * li + 3].copy_from_slice(&q);
-                pq += q[0] * pi[0] + q[1] * pi[1] + q[2] * pi[2];
-            }
-            slot[0] = pq;
+            slot[0] = self.product_rows(m, vr, p, gg, out);
         });
         slots.iter().map(|s| s[0]).sum()
+    }
+
+    /// Rows `vr` of the product into `out`; returns their part of p · A p. On x86-64 with AVX2
+    /// the same code is compiled a second time for it (VEX encoding; no FMA contraction, so the
+    /// bits are the same either way) and chosen at run time, as in `springs.rs`.
+    fn product_rows(&self, m: &Model, vr: std::ops::Range<usize>, p: &[f64], gg: f64, out: &mut [f64]) -> f64 {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::arch::is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU supports the feature the function is compiled for.
+                return unsafe { self.product_rows_avx2(m, vr, p, gg, out) };
+            }
+        }
+        self.product_rows_plain(m, vr, p, gg, out)
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn product_rows_avx2(&self, m: &Model, vr: std::ops::Range<usize>, p: &[f64], gg: f64, out: &mut [f64]) -> f64 {
+        self.product_rows_plain(m, vr, p, gg, out)
+    }
+
+    #[inline(always)]
+    fn product_rows_plain(&self, m: &Model, vr: std::ops::Range<usize>, p: &[f64], gg: f64, out: &mut [f64]) -> f64 {
+        let mut pq = 0.0;
+        for (li, i) in vr.enumerate() {
+            if m.inv_mass[i] == 0.0 {
+                out[3 * li..3 * li + 3].fill(0.0);
+                continue;
+            }
+            let pi = [p[3 * i], p[3 * i + 1], p[3 * i + 2]];
+            let dg = self.diag[i];
+            let mut q = [dg * pi[0], dg * pi[1], dg * pi[2]];
+            row_product(&self.edges, &self.ecoef, i, p, &pi, &mut q);
+            if self.bending {
+                row_product(&self.bends, &self.bcoef, i, p, &pi, &mut q);
+            }
+            if gg != 0.0 {
+                for d in 0..3 {
+                    q[d] += gg * self.g[3 * i + d];
+                }
+            }
+            out[3 * li..3 * li + 3].copy_from_slice(&q);
+            pq += q[0] * pi[0] + q[1] * pi[1] + q[2] * pi[2];
+        }
+        pq
     }
 
     /// z_i = P_i⁻¹ r_i.
@@ -461,13 +505,15 @@ impl System {
 }
 
 #[inline(always)]
-fn row_product(rows: &SpringRows, sb: &SpringBlocks, i: usize, p: &[f64], pi: &[f64; 3], q: &mut [f64; 3]) {
-    for k in rows.start[i] as usize..rows.start[i + 1] as usize {
-        let e = rows.spring[k] as usize;
-        let o = 3 * rows.other[k] as usize;
-        let dl = [pi[0] - p[o], pi[1] - p[o + 1], pi[2] - p[o + 2]];
-        let (dx, dy, dz) = (sb.d[3 * e], sb.d[3 * e + 1], sb.d[3 * e + 2]);
-        let (a, b) = (sb.a[e], sb.b[e]);
+fn row_product(rows: &SpringRows, coef: &[[f64; 5]], i: usize, p: &[f64], pi: &[f64; 3], q: &mut [f64; 3]) {
+    let (k0, k1) = (rows.start[i] as usize, rows.start[i + 1] as usize);
+    for (&other, c) in rows.other[k0..k1].iter().zip(&coef[k0..k1]) {
+        let o = 3 * other as usize;
+        // SAFETY: `other` is a vertex of the body (the springs' indices are checked against the
+        // vertex count when built) and `product` asserts p.len() ≥ 3 n.
+        let pj = unsafe { [*p.get_unchecked(o), *p.get_unchecked(o + 1), *p.get_unchecked(o + 2)] };
+        let dl = [pi[0] - pj[0], pi[1] - pj[1], pi[2] - pj[2]];
+        let [a, b, dx, dy, dz] = *c;
         let t = b * (dx * dl[0] + dy * dl[1] + dz * dl[2]);
         q[0] += a * dl[0] + t * dx;
         q[1] += a * dl[1] + t * dy;
