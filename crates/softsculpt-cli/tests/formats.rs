@@ -240,6 +240,14 @@ fn a_z_up_file_comes_out_y_up_with_up_z() {
         let (lo, hi) = read(Path::new(&out)).mesh.bounds();
         assert_eq!((lo[1], hi[1]), (0.0, 3.0), "{out}: the height axis is Y");
     }
+    let text = String::from_utf8_lossy(&softsculpt(&["info", &f, "--up", "z"]).stdout).into_owned();
+    assert!(text.contains("format:              OBJ") && text.contains("up axis:             z (given by --up; rotated to Y-up)"), "{text}");
+    // glTF says Y-up: --up z still rotates, with a warning.
+    let g = d.file("t.gltf", tetra_gltf([0.0; 3]).as_bytes());
+    let o = softsculpt(&["info", &g, "--up", "z", "--json"]);
+    ok(&o);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(v["warnings"][0].as_str().unwrap().contains("Y-up by specification"), "{v}");
     let o = softsculpt(&["info", &f, "--up", "x"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("--up"), "{}", stderr(&o));
