@@ -6,9 +6,8 @@
 //! blend of the two — exactly how the frames were sampled. (Blender imports morph targets as
 //! shape keys and the weights as their animation.)
 //!
-//! Layout (glTF 2.0 §4.4 GLB): 12-byte header, a JSON chunk padded with spaces, a BIN chunk
-//! padded with zeros; every accessor has its own buffer view; POSITION accessors carry min/max
-//! as the specification requires.
+//! Layout: the core's GLB container ([`softsculpt::mesh::gltf::glb_container`]); every accessor
+//! has its own buffer view; POSITION accessors carry min/max as the specification requires.
 
 use serde_json::{json, Value};
 
@@ -112,20 +111,5 @@ pub fn animation_glb(tracks: &[Track], times: &[f64]) -> Vec<u8> {
         "bufferViews": b.views,
         "accessors": b.accessors,
     });
-    let mut text = serde_json::to_vec(&doc).expect("JSON of plain values");
-    while text.len() % 4 != 0 {
-        text.push(b' ');
-    }
-    let total = 12 + 8 + text.len() + 8 + b.bin.len();
-    let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&(total as u32).to_le_bytes());
-    out.extend_from_slice(&(text.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&text);
-    out.extend_from_slice(&(b.bin.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(&b.bin);
-    out
+    softsculpt::mesh::gltf::glb_container(&doc, b.bin)
 }

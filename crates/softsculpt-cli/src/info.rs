@@ -6,15 +6,19 @@ use serde_json::json;
 
 #[derive(Args, Debug)]
 pub struct InfoArgs {
-    /// Mesh: an .obj file or builtin:NAME.
+    /// Mesh: an .obj, .ply, .stl, .gltf or .glb file, or builtin:NAME.
     pub input: String,
+    /// The file's up axis: z rotates a Z-up file to Y-up (x, y, z → x, z, −y); y keeps it.
+    /// Units are never changed.
+    #[arg(long, value_parser = input::parse_up, value_name = "y|z")]
+    pub up: Option<softsculpt::mesh::UpAxis>,
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
 }
 
 pub fn run(a: InfoArgs) -> Result<(), String> {
-    let loaded = input::load(&a.input)?;
+    let loaded = input::load(&a.input, a.up)?;
     let m = &loaded.mesh;
     let r = &loaded.report;
     let (lo, hi) = m.bounds();
@@ -22,9 +26,11 @@ pub fn run(a: InfoArgs) -> Result<(), String> {
     if a.json {
         let v = json!({
             "input": a.input,
+            "format": r.format.map_or("builtin", |f| f.name()),
             "vertices": m.vertex_count(),
             "faces": m.triangles.len(),
             "edges": r.edges.edges,
+            "pieces": r.pieces,
             "source_vertices": r.source_vertices,
             "source_polygons": r.source_polygons,
             "welded_vertices": r.welded,
@@ -37,16 +43,20 @@ pub fn run(a: InfoArgs) -> Result<(), String> {
             "volume": m.volume(),
             "bounds_min": lo,
             "bounds_max": hi,
+            "up_axis": r.up_axis.name(),
+            "rotated_to_y_up": r.up_rotated,
             "warnings": r.warnings,
         });
         println!("{v}");
         return Ok(());
     }
     println!("input:               {}", a.input);
+    println!("format:              {}", r.format.map_or("built-in model", |f| f.name()));
     println!("vertices:            {} (source {})", m.vertex_count(), r.source_vertices);
     println!("faces:               {} triangles (source {} polygons)", m.triangles.len(), r.source_polygons);
     println!("edges:               {}", r.edges.edges);
-    println!("welded vertices:     {}", r.welded);
+    println!("pieces:              {}", r.pieces);
+    println!("welded vertices:     {} (seams)", r.welded);
     println!("unused vertices:     {}", r.unreferenced);
     println!("degenerate faces:    {}", r.degenerate_faces);
     println!("re-oriented faces:   {}", r.flipped_faces);
@@ -54,6 +64,7 @@ pub fn run(a: InfoArgs) -> Result<(), String> {
     println!("non-manifold edges:  {}", r.edges.non_manifold);
     println!("closed:              {}", if closed { "yes" } else { "no (gas cannot be used)" });
     println!("volume:              {} m^3{}", m.volume(), if closed { "" } else { " (not meaningful: open surface)" });
+    println!("up axis:             {}", input::up_text(&loaded));
     println!("bounding box:        [{}, {}, {}] .. [{}, {}, {}] m", lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
     Ok(())
 }

@@ -1,33 +1,81 @@
-//! Reading the INPUT argument: an `.obj` file or `builtin:NAME`.
+//! Reading the INPUT argument: a mesh file (OBJ, PLY, STL, glTF, GLB) or `builtin:NAME`.
 
-use softsculpt::mesh::{builtin, LoadedMesh};
+use softsculpt::mesh::format::READ_EXTENSIONS;
+use softsculpt::mesh::{builtin, LoadedMesh, MeshFormat, UpAxis};
 use std::path::Path;
 
-/// Load and prepare a mesh; errors name the input and what is wrong with it.
-pub fn load(input: &str) -> Result<LoadedMesh, String> {
+/// `--up y|z`.
+pub fn parse_up(s: &str) -> Result<UpAxis, String> {
+    UpAxis::from_name(s).ok_or_else(|| format!("unknown up axis '{s}' (use y or z)"))
+}
+
+/// Load and prepare a mesh, rotated to Y-up if `up` is Z; errors name the input and what is
+/// wrong with it.
+pub fn load(input: &str, up: Option<UpAxis>) -> Result<LoadedMesh, String> {
+    let mut loaded = read(input)?;
+    if let Some(up) = up {
+        if let Some(w) = loaded.set_up_axis(up) {
+            loaded.report.warnings.push(w);
+        }
+    }
+    Ok(loaded)
+}
+
+fn read(input: &str) -> Result<LoadedMesh, String> {
     if let Some(name) = input.strip_prefix("builtin:") {
-        return builtin::builtin(name).map(LoadedMesh::from_trimesh).map_err(|e| format!("{input}: {e}"));
+        let mut m = builtin::builtin(name).map(LoadedMesh::from_trimesh).map_err(|e| format!("{input}: {e}"))?;
+        m.report.up_axis = UpAxis::Y; // built-in models are made Y-up
+        return Ok(m);
     }
     let path = Path::new(input);
-    let ext = path.extension().map(|e| e.to_string_lossy().to_lowercase());
     if path.is_dir() {
         return Err(format!("{input}: is a directory, not a mesh file"));
     }
     if !path.exists() {
-        return Err(format!("{input}: no such file (give an .obj file or builtin:NAME, NAME one of {})", builtin::NAMES.join(", ")));
+        return Err(format!("{input}: no such file (give a {READ_EXTENSIONS} file or builtin:NAME, NAME one of {})", builtin::NAMES.join(", ")));
     }
-    match ext.as_deref() {
-        Some("obj") => {}
-        Some(other) => return Err(format!("{input}: unsupported file type '.{other}' (only .obj is read)")),
-        None => return Err(format!("{input}: no file extension (only .obj is read)")),
-    }
+    let ext = path.extension().map(|e| e.to_string_lossy().to_lowercase());
+    let format = match ext.as_deref() {
+        Some(e) => Some(MeshFormat::from_extension(e).ok_or_else(|| format!("{input}: unsupported file type '.{e}' (read: {READ_EXTENSIONS})"))?),
+        None => None,
+    };
     let bytes = std::fs::read(path).map_err(|e| format!("{input}: cannot read: {e}"))?;
-    softsculpt::mesh::load_obj(&bytes).map_err(|e| format!("{input}: {e}"))
+    let format = match format.or_else(|| MeshFormat::sniff(&bytes)) {
+        Some(f) => f,
+        None => return Err(format!("{input}: no file extension, and the first bytes are not those of a PLY, STL, glTF or GLB file (name it {READ_EXTENSIONS})")),
+    };
+    softsculpt::mesh::load(&bytes, Some(format)).map_err(|e| format!("{input}: {e}"))
+}
+
+/// The output format of `--out`, from its extension: one clear error before anything runs.
+pub fn out_format(out: &Path) -> Result<MeshFormat, String> {
+    use softsculpt::mesh::format::WRITE_EXTENSIONS;
+    let ext = out.extension().map(|e| e.to_string_lossy().to_lowercase());
+    match ext.as_deref().and_then(MeshFormat::from_extension) {
+        Some(f) if f.writable() => Ok(f),
+        Some(_) => Err(format!("--out {}: .gltf text is not written; use .glb ({WRITE_EXTENSIONS})", out.display())),
+        None => Err(format!(
+            "--out {}: unknown output type {} (the extension chooses the format: {WRITE_EXTENSIONS})",
+            out.display(),
+            ext.map_or("(no extension)".to_string(), |e| format!("'.{e}'"))
+        )),
+    }
 }
 
 /// Print the loader's warnings on stderr.
 pub fn warn(input: &str, mesh: &LoadedMesh) {
     for w in &mesh.report.warnings {
         eprintln!("warning: {input}: {w}");
+    }
+}
+
+/// How the up axis was found, for `info`.
+pub fn up_text(mesh: &LoadedMesh) -> String {
+    let r = &mesh.report;
+    match r.up_axis {
+        UpAxis::Z => "z (given by --up; rotated to Y-up)".into(),
+        UpAxis::Y if matches!(r.format, Some(MeshFormat::Gltf | MeshFormat::Glb)) => "y (glTF is Y-up by specification)".into(),
+        UpAxis::Y => "y".into(),
+        UpAxis::Unknown => "unknown (the file does not say; taken as Y-up; --up z rotates a Z-up file)".into(),
     }
 }

@@ -26,7 +26,7 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Simulate a body and write its final shape as OBJ.
+    /// Simulate a body and write its final shape (OBJ, PLY, STL or GLB).
     #[command(allow_negative_numbers = true)]
     Simulate(simulate::SimulateArgs),
     /// Play a scene file (bodies, obstacles, timed events) and write the results.
@@ -55,6 +55,8 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {
+            // One line, whatever a library's message holds.
+            let message = message.lines().map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>().join("; ");
             eprintln!("error: {message}");
             ExitCode::from(1)
         }

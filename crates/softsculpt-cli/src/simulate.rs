@@ -12,11 +12,17 @@ use std::path::PathBuf;
 
 #[derive(Args, Debug)]
 pub struct SimulateArgs {
-    /// Mesh to simulate: an .obj file or builtin:NAME (sphere, mushroom, octopus).
+    /// Mesh to simulate: an .obj, .ply, .stl, .gltf or .glb file, or builtin:NAME (sphere,
+    /// mushroom, octopus).
     pub input: String,
-    /// Where to write the final shape (.obj), atomically.
+    /// Where to write the final shape, atomically; the extension chooses the format: .obj,
+    /// .ply, .stl or .glb.
     #[arg(long, value_name = "OUT.obj")]
     pub out: PathBuf,
+    /// The input's up axis: z rotates a Z-up file to Y-up (x, y, z → x, z, −y) before the
+    /// run, and the output stays Y-up; y keeps it. Units are never changed.
+    #[arg(long, value_parser = input::parse_up, value_name = "y|z")]
+    pub up: Option<softsculpt::mesh::UpAxis>,
     /// Number of steps.
     #[arg(long, allow_hyphen_values = true, default_value = "1000", value_parser = args::count, value_name = "N")]
     pub steps: u64,
@@ -105,11 +111,8 @@ pub fn stats_json(s: &softsculpt::Stats) -> serde_json::Value {
 }
 
 pub fn run(a: SimulateArgs) -> Result<(), String> {
-    match a.out.extension().map(|e| e.to_string_lossy().to_lowercase()) {
-        Some(e) if e == "obj" => {}
-        _ => return Err(format!("--out {}: the output must be an .obj file", a.out.display())),
-    }
-    let loaded = input::load(&a.input)?;
+    let out_format = input::out_format(&a.out)?;
+    let loaded = input::load(&a.input, a.up)?;
     input::warn(&a.input, &loaded);
 
     let mut material = Material {
@@ -212,7 +215,8 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         a.dt,
         a.integrator.name()
     );
-    output::write_atomic(&a.out, &loaded.write_obj(body.positions(), &header)).map_err(|e| format!("--out {e}"))?;
+    let bytes = loaded.write(out_format, body.positions(), &header).map_err(|e| format!("--out {}: {e}", a.out.display()))?;
+    output::write_atomic(&a.out, &bytes).map_err(|e| format!("--out {e}"))?;
     let rest = if stopped_at_rest { " (at rest)" } else { "" };
     eprintln!(
         "wrote {} after {} steps, t = {:.4} s{rest}, volume {:.6} m^3",

@@ -1,15 +1,10 @@
 //! The `softsculpt` command as other tools call it: flags, outputs, and every bad input.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn softsculpt(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_softsculpt")).args(args).output().expect("runs")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+use common::{softsculpt, stderr, Dir};
+use std::path::Path;
+use std::process::Output;
 
 /// Failed with exactly one line on stderr that starts with `error:` and contains `needle`.
 fn assert_clean_error(o: &Output, needle: &str) {
@@ -20,21 +15,6 @@ fn assert_clean_error(o: &Output, needle: &str) {
     assert_eq!(lines.len(), 1, "one error line expected, got: {e}");
     assert!(lines[0].starts_with("error:"), "{e}");
     assert!(lines[0].contains(needle), "'{}' lacks '{needle}'", lines[0]);
-}
-
-struct Dir(tempfile::TempDir);
-impl Dir {
-    fn new() -> Self {
-        Dir(tempfile::tempdir().unwrap())
-    }
-    fn file(&self, name: &str, bytes: &[u8]) -> String {
-        let p = self.0.path().join(name);
-        std::fs::write(&p, bytes).unwrap();
-        p.to_string_lossy().into_owned()
-    }
-    fn path(&self, name: &str) -> PathBuf {
-        self.0.path().join(name)
-    }
 }
 
 const TETRA: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
@@ -51,7 +31,8 @@ fn every_malformed_input_file_is_one_clear_error() {
         (d.file("inf.obj", b"v 0 0 0\nv 1 0 inf\nv 0 1 0\nf 1 2 3\n"), "not finite"),
         (d.file("missing.obj", b"v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n"), "3 coordinates"),
         (d.file("binary.obj", &[0x7f, 0x45, 0x4c, 0x46, 0, 1, 2, 3, 0xff]), "not a text"),
-        (d.file("mesh.stl", TETRA.as_bytes()), "unsupported file type"),
+        (d.file("mesh.stl", TETRA.as_bytes()), "not a valid STL file"),
+        (d.file("mesh.fbx", TETRA.as_bytes()), "unsupported file type"),
         (d.file("noext", TETRA.as_bytes()), "no file extension"),
         (d.path("does-not-exist.obj").to_string_lossy().into_owned(), "no such file"),
         (d.0.path().to_string_lossy().into_owned(), "is a directory"),

@@ -17,6 +17,8 @@ pub enum MeshError {
     NonOrientable { edges: usize },
     /// A builtin name that does not exist.
     UnknownBuiltin(String),
+    /// A file of another format (PLY, STL, glTF, GLB) is malformed.
+    Format { format: &'static str, message: String },
     /// Anything else about the mesh that makes it unusable.
     Invalid(String),
 }
@@ -53,6 +55,7 @@ impl fmt::Display for MeshError {
                 "unknown built-in model '{name}' (available: {})",
                 crate::mesh::builtin::NAMES.join(", ")
             ),
+            MeshError::Format { format, message } => write!(f, "not a valid {format} file: {message}"),
             MeshError::Invalid(m) => write!(f, "{m}"),
         }
     }

@@ -1,14 +1,19 @@
 //! Triangle meshes: reading, checking, welding, orienting, built-in models.
 
 pub mod builtin;
+pub mod format;
+pub mod gltf;
 pub mod obj;
+pub mod ply;
 pub mod reorder;
+pub mod stl;
 pub mod subdivide;
 pub mod topology;
 pub mod weld;
 
 use crate::error::MeshError;
 use crate::vec3::{cross, get, norm, sub};
+pub use format::{load, MeshFormat, UpAxis};
 pub use obj::ObjData;
 pub use topology::EdgeCounts;
 
@@ -78,6 +83,15 @@ pub struct MeshReport {
     pub flipped_faces: usize,
     /// Edge statistics of the final mesh.
     pub edges: EdgeCounts,
+    /// Connected pieces (shells) of the final mesh: separate surfaces sharing no vertex.
+    pub pieces: usize,
+    /// The file's format (`None` for a generated mesh).
+    pub format: Option<MeshFormat>,
+    /// The up axis: what the format says (glTF: Y), else unknown (taken as Y-up), or what
+    /// [`LoadedMesh::set_up_axis`] was told.
+    pub up_axis: UpAxis,
+    /// The mesh was rotated from Z-up to Y-up.
+    pub up_rotated: bool,
     /// Human-readable warnings (one line each).
     pub warnings: Vec<String>,
 }
@@ -94,18 +108,6 @@ pub struct LoadedMesh {
 }
 
 impl LoadedMesh {
-    /// OBJ text in the source's vertex order and polygons, with positions taken from `positions`
-    /// (the simulated vertices, flat `xyz…`). Unused source vertices keep their position.
-    pub fn write_obj(&self, positions: &[f64], header: &str) -> Vec<u8> {
-        let mut out = self.source.positions.clone();
-        for (s, &m) in self.source_to_mesh.iter().enumerate() {
-            if m != u32::MAX {
-                out[3 * s..3 * s + 3].copy_from_slice(&positions[3 * m as usize..3 * m as usize + 3]);
-            }
-        }
-        obj::write(&out, &self.source, header)
-    }
-
     /// A generated mesh (its own source: written back in its own vertex order).
     pub fn from_trimesh(mesh: TriMesh) -> Self {
         let (ordered, old_to_new) = reorder::by_locality(&mesh);
@@ -118,6 +120,7 @@ impl LoadedMesh {
             source_vertices: mesh.vertex_count(),
             source_polygons: mesh.triangles.len(),
             edges: mesh.edge_counts(),
+            pieces: topology::count_pieces(&mesh.triangles, mesh.vertex_count()),
             ..Default::default()
         };
         LoadedMesh { mesh: ordered, report, source, source_to_mesh: old_to_new }
@@ -186,6 +189,7 @@ pub fn prepare(source: ObjData) -> Result<LoadedMesh, MeshError> {
     let before = topology::count_edges(&tris);
     report.flipped_faces = topology::orient_outward(&mut tris, &positions)?;
     report.edges = topology::count_edges(&tris);
+    report.pieces = topology::count_pieces(&tris, positions.len() / 3);
 
     if report.welded > 0 {
         report.warnings.push(format!("welded {} duplicated vertices (seams)", report.welded));
@@ -201,6 +205,9 @@ pub fn prepare(source: ObjData) -> Result<LoadedMesh, MeshError> {
             "re-oriented {} faces ({} edges had inconsistent winding) so that normals point outward",
             report.flipped_faces, before.inconsistent
         ));
+    }
+    if report.pieces > 1 {
+        report.warnings.push(format!("the mesh is {} separate pieces (sharing no vertex), simulated as one body", report.pieces));
     }
     if report.edges.boundary > 0 {
         report.warnings.push(format!("the surface is open: {} boundary edges", report.edges.boundary));

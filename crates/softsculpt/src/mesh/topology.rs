@@ -179,6 +179,32 @@ pub fn orient_outward(tris: &mut [[u32; 3]], positions: &[f64]) -> Result<usize,
     Ok(flipped)
 }
 
+/// Connected pieces of a surface of `n` vertices: sets of triangles linked through shared
+/// vertices. Vertices no triangle uses are not pieces.
+pub fn count_pieces(tris: &[[u32; 3]], n: usize) -> usize {
+    fn find(parent: &mut [u32], mut i: u32) -> u32 {
+        while parent[i as usize] != i {
+            parent[i as usize] = parent[parent[i as usize] as usize];
+            i = parent[i as usize];
+        }
+        i
+    }
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    let mut used = vec![false; n];
+    for t in tris {
+        for &v in t {
+            used[v as usize] = true;
+        }
+        for k in 1..3 {
+            let (a, b) = (find(&mut parent, t[0]), find(&mut parent, t[k]));
+            if a != b {
+                parent[a.max(b) as usize] = a.min(b);
+            }
+        }
+    }
+    (0..n as u32).filter(|&i| used[i as usize] && find(&mut parent, i) == i).count()
+}
+
 /// Signed volume `Σ xa · (xb × xc) / 6` (m³), exact for a closed outward mesh.
 pub fn signed_volume(tris: &[[u32; 3]], positions: &[f64]) -> f64 {
     let mut six_v = 0.0;

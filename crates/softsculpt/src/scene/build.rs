@@ -7,7 +7,7 @@ use super::{line_of, SceneError};
 use crate::body::{GasReference, Material, SoftBody, VolumeMode, DEFAULT_TEMPERATURE, GAS_CONSTANT};
 use crate::geometry::rotate;
 use crate::world::{ContactSettings, Ground, Integrator, Obstacle, WorldSettings};
-use crate::mesh::{builtin, load_obj, LoadedMesh};
+use crate::mesh::{builtin, load, load_obj, LoadedMesh, MeshFormat};
 use crate::vec3::{add, dot, normalize, scale, V3};
 
 /// Reads a mesh file named in the scene (a path relative to the scene file) as bytes.
@@ -216,8 +216,7 @@ fn body(cx: &Ctx, b: &BodySpec, ground: Option<Ground>, index: usize, resolve: R
     let mut mesh = match (&b.model, &b.mesh, &b.obj) {
         (Some(m), None, None) => LoadedMesh::from_trimesh(builtin::builtin(m).map_err(|e| cx.err("model", e.to_string()))?),
         (None, Some(path), None) => {
-            let bytes = resolve(path).map_err(|e| cx.err("mesh", format!("cannot read '{path}': {e}")))?;
-            load_obj(&bytes).map_err(|e| cx.err("mesh", format!("{path}: {e}")))?
+            load_file(cx, path, resolve)?
         }
         (None, None, Some(text)) => load_obj(text.as_bytes()).map_err(|e| cx.err("obj", e.to_string()))?,
         (None, None, None) => return Err(cx.err("", "needs a surface: `model`, `mesh` or `obj`")),
@@ -287,6 +286,14 @@ fn body(cx: &Ctx, b: &BodySpec, ground: Option<Ground>, index: usize, resolve: R
     Ok(BuiltBody { name, body, mesh })
 }
 
+/// A mesh file named in the scene, in the format its extension says, else its first bytes
+/// say, else OBJ (as scenes always read).
+fn load_file(cx: &Ctx, path: &str, resolve: Resolver) -> Result<LoadedMesh, SceneError> {
+    let bytes = resolve(path).map_err(|e| cx.err("mesh", format!("cannot read '{path}': {e}")))?;
+    let format = MeshFormat::from_path(path).or_else(|| MeshFormat::sniff(&bytes)).unwrap_or(MeshFormat::Obj);
+    load(&bytes, Some(format)).map_err(|e| cx.err("mesh", format!("{path}: {e}")))
+}
+
 fn obstacle(cx: &Ctx, o: &ObstacleSpec, resolve: Resolver) -> Result<Obstacle, SceneError> {
     let need = |v: Option<[f64; 3]>, key: &str| -> Result<V3, SceneError> {
         cx.vec(key, v.ok_or_else(|| cx.err(key, format!("a {} obstacle needs `{key}`", o.shape)))?)
@@ -336,8 +343,7 @@ fn obstacle(cx: &Ctx, o: &ObstacleSpec, resolve: Resolver) -> Result<Obstacle, S
         _ => {
             let mut mesh = match (&o.mesh, &o.model) {
                 (Some(path), None) => {
-                    let bytes = resolve(path).map_err(|e| cx.err("mesh", format!("cannot read '{path}': {e}")))?;
-                    load_obj(&bytes).map_err(|e| cx.err("mesh", format!("{path}: {e}")))?.mesh
+                    load_file(cx, path, resolve)?.mesh
                 }
                 (None, Some(m)) => builtin::builtin(m).map_err(|e| cx.err("model", e.to_string()))?,
                 _ => return Err(cx.err("mesh", "a mesh obstacle needs exactly one of `mesh` (a file) and `model`")),
