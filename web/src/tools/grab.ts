@@ -8,7 +8,7 @@ import { BaseTool, point } from './tool';
 import { verticesAround } from './brush';
 
 /** Default pull: stiff enough that the grabbed point stays within a few pixels of the cursor. */
-export const GRAB_OMEGA = 300;
+export const GRAB_OMEGA = 600;
 /** The strongest setting (stable too: the springs are in the implicit system). */
 export const GRAB_OMEGA_MAX = 3000;
 

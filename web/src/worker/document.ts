@@ -324,7 +324,16 @@ export class Document {
     if (this.vertexCount > 200_000) { this.hooks.message('the mesh is already very fine; not subdividing', 'warn'); return; }
     this.edit('subdivide', true, () => {
       this.hooks.progress('subdividing');
+      const before = this.world.params(0);
       const dropped = this.world.subdivide(0);
+      // The subdivided body comes plainly frozen at its current shape: springs at rest, the
+      // ambient pressure raised to the gas pressure. Under gravity nothing would then carry the
+      // weight and it would sag (the mushroom to half its height). As Freeze does under gravity:
+      // the gas as it was, and the rest shape frozen under load, so the shape holds.
+      if (before.gravity !== 0) {
+        this.world.setParam(0, 'gas.ambient', before['gas.ambient'] as number);
+        this.world.freeze(0, true);
+      }
       if (dropped > 0) this.hooks.message(`${dropped} pending scene events of the body no longer fit its mesh and were dropped`, 'warn');
       // Implicit steps keep dt (the parameters do not depend on the resolution); an explicit
       // integrator needs the finer mesh's stable step.

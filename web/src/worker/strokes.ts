@@ -75,7 +75,7 @@ class Grab extends Stroke {
 }
 
 /** Stiffness of the press's springs as an angular frequency (1/s): the dent forms in ~1/ω s. */
-export const PRESS_OMEGA = 60;
+export const PRESS_OMEGA = 200;
 
 class Press extends Stroke {
   /** Anchor and weight of every vertex the brush has touched, by vertex. */
