@@ -3,7 +3,9 @@
 // time the simulation keeps up with, at each implicit tolerance asked for (set in the panel's
 // field, as a user would), with the body's volume and height at the end (the result the
 // tolerance buys).
-//   node bench/realtime.mjs [levels=3,4,5] [tolerances=default|1e-3,1e-4,1e-6] [DIST…]
+//   node bench/realtime.mjs [levels=3,4,5] [configs=default|1e-3,1e-4,1e-6,symplectic] [DIST…]
+// (a config is an implicit tolerance, or an explicit integrator's name chosen in the panel,
+// which then takes the stable dt the modeler picks for it)
 // (needs web/dist built; several builds, e.g. `dist /tmp/softsculpt-main-dist` from
 // bench/baseline.sh, are measured side by side, level by level, in one run)
 import { mkdtempSync } from 'node:fs';
@@ -29,7 +31,10 @@ for (const level of levels) {
       const { page, ctx } = await openModeler(browser, url);
       await page.locator('input[data-picker=import]').setInputFiles(file);
       await page.waitForFunction((v) => window.softsculpt.vertexCount() === v && !window.softsculpt.busy?.(), n, { timeout: 120000 });
-      if (tol !== 'default') {
+      if (/^[a-z]+$/.test(tol) && tol !== 'default') {
+        await page.locator('.lil-controller', { hasText: 'integrator' }).locator('select').selectOption(tol);
+        await page.waitForFunction((t) => window.softsculpt.param('integrator') === t, tol);
+      } else if (tol !== 'default') {
         const field = page.locator('.lil-controller', { hasText: 'implicit tolerance' }).locator('input').first();
         await field.fill(tol);
         await field.press('Enter');
