@@ -12,7 +12,7 @@
 import { initEngine } from '../engine/wasm';
 import { EngineError, World, type DeltaScope, type ParamInfo, type ParamValue } from '../engine/world';
 import { addModel, dtFor, stableDt, useDefaults } from '../engine/models';
-import { stepSplitting } from './split';
+import { notConverged, stepSplitting } from './split';
 import { History, travel } from '../history';
 import { parse, ProjectError, serialize } from '../project';
 import type { Autosave, AutosaveRecord } from '../storage';
@@ -398,7 +398,9 @@ export class Document {
       return true;
     } catch (e) {
       this.settings.playing = false;
-      if (e instanceof EngineError && e.kind === 'step') {
+      if (notConverged(e)) {
+        this.hooks.message(`an implicit step did not converge even as 8 steps of dt/8 (${errorText(e)}). Paused.`, 'error');
+      } else if (e instanceof EngineError && e.kind === 'step') {
         this.hooks.message(`the simulation blew up at t = ${fmt(e.time)} s; the whole world was rolled back to t = ${fmt(e.rolledBackTo)} s. Paused. ` +
           `Try a smaller dt (now ${this.settings.dt} s), more damping, or another integrator.`, 'error');
       } else {
