@@ -146,6 +146,10 @@ fn step_fail(e: StepError) -> Fail {
     let mut f = Fail::new("step", e.to_string())
         .with("time", e.time)
         .with("step", e.step);
+    // An implicit step that did not converge (not a blow-up): a shorter step may succeed.
+    if matches!(e.error, SimError::NotConverged { .. }) {
+        f = f.with("converged", false);
+    }
     if let Some(l) = e.line {
         f = f.with("line", l);
     }
