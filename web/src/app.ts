@@ -129,7 +129,12 @@ export class App implements ToolContext {
 
   private applyUi(ui: Partial<UiState>): void {
     if (ui.brush) this.brush.radius = ui.brush.radius;
-    for (const t of this.tools.tools) if (typeof ui.strengths?.[t.name] === 'number') t.strength = ui.strengths[t.name];
+    // Clamped to the slider's range: an older project's strength may be in another unit (the
+    // press was a pressure in Pa before it was a depth in m).
+    for (const t of this.tools.tools) {
+      const v = ui.strengths?.[t.name];
+      if (typeof v === 'number' && t.strengthInfo) t.strength = Math.min(Math.max(v, t.strengthInfo.min), t.strengthInfo.max);
+    }
     if (ui.tool) this.tools.select(ui.tool);
     this.changed();
   }

@@ -12,6 +12,7 @@ interface Shown { folder: string; label: string; slider?: [number, number, numbe
 
 export const SHOWN: Record<string, Shown> = {
   integrator: { folder: 'sim', label: 'integrator' },
+  tolerance: { folder: 'sim', label: 'implicit tolerance' },
   stiffness: { folder: 'sim', label: 'stiffness k', slider: [0, 5000] },
   spring_damping: { folder: 'sim', label: 'spring damping', slider: [0, 5] },
   bending: { folder: 'sim', label: 'bending k_b', slider: [0, 5000] },

@@ -208,4 +208,19 @@ describe('autosave', () => {
     expect(fresh.vertexCount).toBe(362);
     expect(fresh.history.sizes).toEqual([0, 0]);
   });
+
+  it('an implicit step that cannot converge is split, then pauses with the reason, the state untouched', () => {
+    const { doc, messages } = opened();
+    // One Newton iteration to a relative residual of 1e-12: no step of any length gets there.
+    doc.world.setParam(0, 'newton_iterations', 1);
+    doc.world.setParam(0, 'tolerance', 1e-12);
+    const before = state(doc);
+    expect(doc.advance(1 / 60, 1)).toBe(false);
+    expect(doc.settings.playing).toBe(false);
+    expect(messages.at(-1)).toMatch(/did not converge even as 8 steps of dt\/8.*Paused/);
+    // Rolled back by the engine at every try; the world's dt is the settings' again.
+    expect(state(doc)).toEqual(before);
+    expect(doc.world.params(0).dt).toBe(1 / 60);
+  });
 });
+

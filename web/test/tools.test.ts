@@ -1,6 +1,6 @@
 import { beforeAll, describe, expect, it } from 'vitest';
 import { loadEngine } from './setup';
-import { falloff, facesAround, grabForce, inflateFactor, verticesAround } from '../src/tools/brush';
+import { falloff, facesAround, inflateFactor, targetSpring, vertexNormals, verticesAround } from '../src/tools/brush';
 import { placeOnGround, MODELS } from '../src/models';
 import { addModel, stableDt, useDefaults } from '../src/engine/models';
 import { World } from '../src/engine/world';
@@ -28,10 +28,22 @@ describe('brush maths', () => {
     expect(f.indices).toEqual([0]); // centroid at x = 0.8333
   });
 
-  it('pulls with m ω² per metre and damps with m ω per m/s', () => {
-    // F = m w (ω² (target − x) − ω v): m = 2, w = 0.5, ω = 10.
-    expect(grabForce(2, 0.5, 10, 1, 0, 0)).toBeCloseTo(100, 12);
-    expect(grabForce(2, 0.5, 10, 0, 0, 1)).toBeCloseTo(-10, 12);
+  it('gives a target spring of stiffness m w ω² and critical damping 2 m w ω', () => {
+    // m = 2 kg, w = 0.5, ω = 10 1/s: k = 100 N/m, c = 20 N·s/m (c² = 4 m w k: critical).
+    const t = targetSpring(2, 0.5, 10);
+    expect(t.stiffness).toBeCloseTo(100, 12);
+    expect(t.damping).toBeCloseTo(20, 12);
+  });
+
+  it('points vertex normals out of a closed mesh', () => {
+    // A tetrahedron wound outward: each vertex normal points away from the centroid.
+    const x = [0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1];
+    const n = vertexNormals(x, [0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3]);
+    for (let i = 0; i < 4; i++) {
+      const out = [0, 1, 2].map((d) => x[3 * i + d] - 0.25);
+      expect(out.reduce((s, o, d) => s + o * n[3 * i + d], 0)).toBeGreaterThan(0);
+      expect(Math.hypot(n[3 * i], n[3 * i + 1], n[3 * i + 2])).toBeCloseTo(1, 12);
+    }
   });
 
   it('inflates and deflates by inverse factors', () => {

@@ -30,8 +30,8 @@ function harness() {
   const send = (c: Command) => service.handle(c);
   const frames = () => replies.filter((r): r is Reply & { type: 'frame' } => r.type === 'frame').map((r) => r.frame);
   const messages = () => replies.filter((r) => r.type === 'message').map((r) => (r as { text: string }).text);
-  /** A tick `ms` later; returns the frame it posted, if any. */
-  const tick = (ms = 16): Frame | undefined => {
+  /** A tick `ms` later (default a 60 Hz frame, 1/60 s: one implicit step); returns the frame it posted, if any. */
+  const tick = (ms = 1000 / 60): Frame | undefined => {
     clock += ms;
     const n = replies.length;
     service.tick();
@@ -84,7 +84,7 @@ describe('worker service', () => {
     expect(a.positions.buffer).not.toBe(b.positions.buffer);
     expect(h.tick()).toBeUndefined(); // both out with the page: it keeps stepping, publishes nothing
     const t = h.service.doc.stats().time;
-    h.tick();
+    h.tick(34); // two frames' time: at least one step of 1/60 s
     expect(h.service.doc.stats().time).toBeGreaterThan(t);
     h.giveBack(a);
     const c = h.tick()!;
@@ -154,6 +154,8 @@ describe('worker service', () => {
 
   it('a blow-up rolls the step back, pauses and says so', async () => {
     const h = await started();
+    // An explicit integrator (the implicit default is stable at any step) far above its limit.
+    await h.send({ type: 'setParam', name: 'integrator', value: 'symplectic' });
     await h.send({ type: 'setParam', name: 'stiffness', value: 1e7 });
     await h.send({ type: 'settings', patch: { dt: 0.005 } });
     for (let i = 0; i < 50 && h.service.doc.settings.playing; i++) { const f = h.tick(100); if (f) h.giveBack(f); }

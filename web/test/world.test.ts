@@ -426,4 +426,30 @@ describe('undo deltas and version-1 projects through the world binding', () => {
     expect(Array.from(b.body(0).positions)).toEqual(Array.from(a.body(0).positions));
     a.free(); b.free();
   });
+
+  it('target springs hold a vertex at its anchor in implicit steps of 1/60 s, any stiffness, and clear', () => {
+    const w = World.create();
+    w.addBuiltin('sphere', 1);
+    w.setParam(0, 'integrator', 'implicit');
+    w.setParam(0, 'dt', 1 / 60);
+    w.setParam(0, 'damping', 2);
+    w.setParam(0, 'tolerance', 1e-3); // the modeler's
+    const x0 = w.body(0).positions.slice();
+    const anchor = [x0[0] + 0.3, x0[1], x0[2]];
+    // Stiffness 1e5 N/m on a vertex of 1/642 kg: ω dt ≈ 130, far past any explicit limit.
+    w.setTargets(0, Float64Array.from([0, ...anchor, 1e5, 10]));
+    w.step(120);
+    const x = w.body(0).positions;
+    // At rest the target spring balances the springs pulling back (k = 100 N/m, a few of them
+    // stretched by 0.3 m: tens of N), so the vertex is within 1e-3 m of the anchor.
+    expect(Math.hypot(x[0] - anchor[0], x[1] - anchor[1], x[2] - anchor[2])).toBeLessThan(1e-3);
+    expect(Array.from(x).every(Number.isFinite)).toBe(true);
+    w.setTargets(0, new Float64Array(0));
+    w.step(300);
+    // Cleared: the vertex is no longer held (the stretched springs pull it off the anchor).
+    expect(Math.abs(w.body(0).positions[0] - anchor[0])).toBeGreaterThan(0.01);
+    expect(Array.from(w.body(0).positions).every(Number.isFinite)).toBe(true);
+    expect(thrown(() => w.setTargets(0, Float64Array.from([999, 0, 0, 0, 1, 0]))).message).toMatch(/out of range/);
+    w.free();
+  });
 });

@@ -40,10 +40,17 @@ pub extern "C" fn ss_delta(w: u32, scope: u32) -> i32 {
             0 => StateScope::None,
             1 => StateScope::Touched,
             2 => StateScope::All,
-            _ => return Err(Fail::usage(format!("scope {scope} is not 0 (none), 1 (touched) or 2 (all)"))),
+            _ => {
+                return Err(Fail::usage(format!(
+                    "scope {scope} is not 0 (none), 1 (touched) or 2 (all)"
+                )))
+            }
         };
         with_world(w, |h| {
-            let mark = h.mark.as_ref().ok_or_else(|| Fail::usage("there is no mark (call ss_mark first)"))?;
+            let mark = h
+                .mark
+                .as_ref()
+                .ok_or_else(|| Fail::usage("there is no mark (call ss_mark first)"))?;
             set_result(Delta::between(mark, &h.world, scope).to_bytes());
             Ok(())
         })
@@ -75,9 +82,14 @@ pub unsafe extern "C" fn ss_apply_delta(w: u32, ptr: *const u8, len: usize) -> i
 #[no_mangle]
 pub unsafe extern "C" fn ss_open_project_v1(w: u32, ptr: *const u8, len: usize) -> i32 {
     status(|| {
-        let (world, meta) = softsculpt::compat::project_v1(bytes(ptr, len)).map_err(|m| Fail::new("project", m))?;
+        let (world, meta) =
+            softsculpt::compat::project_v1(bytes(ptr, len)).map_err(|m| Fail::new("project", m))?;
         with_world(w, |h| {
-            set_result(serde_json::json!({ "name": meta.name, "ui": meta.ui }).to_string().into_bytes());
+            set_result(
+                serde_json::json!({ "name": meta.name, "ui": meta.ui })
+                    .to_string()
+                    .into_bytes(),
+            );
             h.world = world;
             h.scene = None;
             h.rebuild_views();

@@ -10,7 +10,8 @@
 //! - **Errors** (`ss_error_ptr`/`ss_error_len`): after a failure, UTF-8 JSON
 //!   `{"kind": K, "message": "…", …}` with K one of `mesh`, `parameter`, `step`, `snapshot`,
 //!   `scene`, `delta`, `project`, `usage`, and optional fields: `parameter` and `unit`
-//!   (parameter errors), `time` (s), `step`, `line` and `rolled_back_to` (s) (step errors),
+//!   (parameter errors), `time` (s), `step`, `line` and `rolled_back_to` (s) (step errors;
+//!   `converged: false` when an implicit step did not converge: a shorter step may succeed),
 //!   `line` and `key` (scene errors). The error slot holds only errors.
 //! - **Results** (`ss_result_ptr`/`ss_result_len`): data a call returns — JSON, TOML, snapshot
 //!   or delta bytes, load warnings — valid until the next call that writes a result.
@@ -48,6 +49,7 @@
 //! | `ss_set_masses(w, b)` | vertex masses (kg) from the vertex scratch |
 //! | `ss_set_pins(w, b)` | pins from the pinned view (u8, 1 pinned), which the page writes |
 //! | `ss_apply_loads(w, b)` | user forces (N) and face pressures (Pa) from the staging views |
+//! | `ss_set_targets(w, b, ptr, count)` | `SoftBody::set_targets`: target springs from `count` f64 records (vertex, anchor xyz (m), stiffness (N/m), damping (N·s/m)); 0 clears |
 //! | `ss_snapshot(w)`, `ss_restore(w, ptr, len)` | result: snapshot bytes; the world from snapshot bytes (untouched on error) |
 //! | `ss_scene_file(name, len, bytes, len)` | a mesh file the next `ss_open_scene` may name |
 //! | `ss_open_scene(w, text, len)` | the world becomes the scene's; result `{names, dt, duration}` |
@@ -75,7 +77,11 @@ pub struct Fail {
 
 impl Fail {
     pub fn new(kind: &'static str, message: impl Into<String>) -> Self {
-        Fail { kind, message: message.into(), extra: serde_json::Map::new() }
+        Fail {
+            kind,
+            message: message.into(),
+            extra: serde_json::Map::new(),
+        }
     }
     pub fn usage(message: impl Into<String>) -> Self {
         Fail::new("usage", message)
@@ -140,7 +146,12 @@ pub(crate) unsafe fn bytes<'a>(ptr: *const u8, len: usize) -> &'a [u8] {
 /// # Safety
 /// `ptr` must point to `len` readable bytes.
 pub(crate) unsafe fn text<'a>(ptr: *const u8, len: usize, what: &str) -> Res<&'a str> {
-    std::str::from_utf8(bytes(ptr, len)).map_err(|e| Fail::usage(format!("{what} is not UTF-8 text (byte {})", e.valid_up_to())))
+    std::str::from_utf8(bytes(ptr, len)).map_err(|e| {
+        Fail::usage(format!(
+            "{what} is not UTF-8 text (byte {})",
+            e.valid_up_to()
+        ))
+    })
 }
 
 /// Allocate `len` bytes in wasm memory for the page to fill.

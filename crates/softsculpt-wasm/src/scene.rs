@@ -55,7 +55,12 @@ fn scene_fail(e: SceneError) -> Fail {
 /// # Safety
 /// The pointers must point to `name_len` and `len` readable bytes.
 #[no_mangle]
-pub unsafe extern "C" fn ss_scene_file(name: *const u8, name_len: usize, ptr: *const u8, len: usize) -> i32 {
+pub unsafe extern "C" fn ss_scene_file(
+    name: *const u8,
+    name_len: usize,
+    ptr: *const u8,
+    len: usize,
+) -> i32 {
     status(|| {
         let name = text(name, name_len, "the file name")?.to_string();
         let data = bytes(ptr, len).to_vec();
@@ -77,14 +82,32 @@ pub unsafe extern "C" fn ss_open_scene(w: u32, ptr: *const u8, len: usize) -> i3
         let text = text(ptr, len, "the scene")?;
         let mut resolve = |path: &str| -> Result<Vec<u8>, String> {
             let base = path.rsplit(['/', '\\']).next().unwrap_or(path);
-            files.get(path).or_else(|| files.get(base)).cloned().ok_or_else(|| format!("not given: open '{base}' together with the scene"))
+            files
+                .get(path)
+                .or_else(|| files.get(base))
+                .cloned()
+                .ok_or_else(|| format!("not given: open '{base}' together with the scene"))
         };
         let run = SceneRun::load(text, &mut resolve).map_err(scene_fail)?;
         with_world(w, |h| {
-            let SceneRun { spec, world, names, duration, .. } = run;
-            set_result(json!({ "names": names, "dt": world.settings.dt, "duration": duration }).to_string().into_bytes());
+            let SceneRun {
+                spec,
+                world,
+                names,
+                duration,
+                ..
+            } = run;
+            set_result(
+                json!({ "names": names, "dt": world.settings.dt, "duration": duration })
+                    .to_string()
+                    .into_bytes(),
+            );
             h.world = world;
-            h.scene = Some(SceneInfo { spec, names, duration });
+            h.scene = Some(SceneInfo {
+                spec,
+                names,
+                duration,
+            });
             h.rebuild_views();
             Ok(())
         })
@@ -103,12 +126,22 @@ pub extern "C" fn ss_save_scene(w: u32) -> i32 {
             }
             let scene = h.scene.as_ref();
             let names: Vec<String> = (0..h.world.bodies.len())
-                .map(|k| scene.and_then(|s| s.names.get(k).cloned()).unwrap_or_else(|| format!("body{}", k + 1)))
+                .map(|k| {
+                    scene
+                        .and_then(|s| s.names.get(k).cloned())
+                        .unwrap_or_else(|| format!("body{}", k + 1))
+                })
                 .collect();
-            let pairs: Vec<(&str, &SoftBody)> = names.iter().map(String::as_str).zip(&h.world.bodies).collect();
+            let pairs: Vec<(&str, &SoftBody)> = names
+                .iter()
+                .map(String::as_str)
+                .zip(&h.world.bodies)
+                .collect();
             let duration = scene.map_or(params::DURATION.number(), |s| s.duration);
-            let spec = scene::save::scene_of(&h.world.settings, &pairs, duration, scene.map(|s| &s.spec));
-            let toml = scene::to_toml(&spec).map_err(|e| Fail::new("scene", format!("cannot write the scene: {e}")))?;
+            let spec =
+                scene::save::scene_of(&h.world.settings, &pairs, duration, scene.map(|s| &s.spec));
+            let toml = scene::to_toml(&spec)
+                .map_err(|e| Fail::new("scene", format!("cannot write the scene: {e}")))?;
             set_result(toml.into_bytes());
             Ok(())
         })
@@ -117,10 +150,18 @@ pub extern "C" fn ss_save_scene(w: u32) -> i32 {
 
 fn obstacle_json(o: &Obstacle) -> serde_json::Value {
     let mut v = match &o.shape {
-        Shape::Sphere { center, radius } => json!({ "kind": "sphere", "center": center, "radius": radius }),
-        Shape::Box { center, half, axes } => json!({ "kind": "box", "center": center, "half": half, "axes": axes }),
-        Shape::Capsule { a, b, radius } => json!({ "kind": "capsule", "a": a, "b": b, "radius": radius }),
-        Shape::Mesh(m) => json!({ "kind": "mesh", "positions": m.positions(), "indices": m.triangles().iter().flatten().collect::<Vec<_>>() }),
+        Shape::Sphere { center, radius } => {
+            json!({ "kind": "sphere", "center": center, "radius": radius })
+        }
+        Shape::Box { center, half, axes } => {
+            json!({ "kind": "box", "center": center, "half": half, "axes": axes })
+        }
+        Shape::Capsule { a, b, radius } => {
+            json!({ "kind": "capsule", "a": a, "b": b, "radius": radius })
+        }
+        Shape::Mesh(m) => {
+            json!({ "kind": "mesh", "positions": m.positions(), "indices": m.triangles().iter().flatten().collect::<Vec<_>>() })
+        }
     };
     v["friction"] = json!(o.friction);
     v
@@ -131,7 +172,13 @@ fn obstacle_json(o: &Obstacle) -> serde_json::Value {
 pub extern "C" fn ss_obstacles(w: u32) -> i32 {
     status(|| {
         with_world(w, |h| {
-            let list: Vec<serde_json::Value> = h.world.settings.obstacles.iter().map(obstacle_json).collect();
+            let list: Vec<serde_json::Value> = h
+                .world
+                .settings
+                .obstacles
+                .iter()
+                .map(obstacle_json)
+                .collect();
             set_result(serde_json::Value::Array(list).to_string().into_bytes());
             Ok(())
         })

@@ -22,8 +22,8 @@
 //! valid until a call replaces bodies (see the crate documentation); typed arrays over them must
 //! be re-made after any call, since any call may grow memory.
 
-use crate::world::with_world;
 use crate::status;
+use crate::world::with_world;
 use softsculpt::World;
 
 /// Length of the layout table (u32).
@@ -72,9 +72,22 @@ impl BodyViews {
         }
         let s = world.stats(i);
         self.stats = [
-            s.step as f64, s.time, s.volume, s.pressure, s.kinetic_energy, s.elastic_energy, s.gas_energy, s.gravity_energy,
-            s.total_energy, s.momentum[0], s.momentum[1], s.momentum[2], s.center_of_mass[0], s.center_of_mass[1],
-            s.center_of_mass[2], s.max_speed,
+            s.step as f64,
+            s.time,
+            s.volume,
+            s.pressure,
+            s.kinetic_energy,
+            s.elastic_energy,
+            s.gas_energy,
+            s.gravity_energy,
+            s.total_energy,
+            s.momentum[0],
+            s.momentum[1],
+            s.momentum[2],
+            s.center_of_mass[0],
+            s.center_of_mass[1],
+            s.center_of_mass[2],
+            s.max_speed,
         ];
     }
 

@@ -9,7 +9,9 @@ use softsculpt::body::BodyError;
 use softsculpt::mesh::{self, builtin, LoadedMesh, ObjData, TriMesh};
 use softsculpt::params::{self, ParamError, Scope, Value};
 use softsculpt::snapshot::SnapshotError;
-use softsculpt::{Material, MeshError, SimError, SoftBody, StepError, World, WorldSettings};
+use softsculpt::{
+    Material, MeshError, SimError, SoftBody, StepError, Target, World, WorldSettings,
+};
 use std::cell::RefCell;
 
 /// A world and what the binding keeps beside it.
@@ -25,13 +27,20 @@ pub struct Handle {
 
 impl Handle {
     fn new(world: World) -> Self {
-        let mut h = Handle { world, views: Vec::new(), mark: None, scene: None };
+        let mut h = Handle {
+            world,
+            views: Vec::new(),
+            mark: None,
+            scene: None,
+        };
         h.rebuild_views();
         h
     }
     /// New views for every body (after bodies were replaced).
     pub fn rebuild_views(&mut self) {
-        self.views = (0..self.world.bodies.len()).map(|i| BodyViews::new(&self.world, i)).collect();
+        self.views = (0..self.world.bodies.len())
+            .map(|i| BodyViews::new(&self.world, i))
+            .collect();
     }
     /// Body `b`'s index, checked.
     pub fn body(&self, b: u32) -> Res<usize> {
@@ -39,7 +48,9 @@ impl Handle {
         if (b as usize) < n {
             Ok(b as usize)
         } else {
-            Err(Fail::usage(format!("there is no body {b} (the world has {n})")))
+            Err(Fail::usage(format!(
+                "there is no body {b} (the world has {n})"
+            )))
         }
     }
     fn add(&mut self, body: SoftBody) -> usize {
@@ -65,7 +76,11 @@ fn insert(world: World) -> usize {
 pub fn with_world<R>(w: u32, f: impl FnOnce(&mut Handle) -> Res<R>) -> Res<R> {
     WORLDS.with(|t| {
         let mut t = t.borrow_mut();
-        match (w as usize).checked_sub(1).and_then(|i| t.get_mut(i)).and_then(Option::as_mut) {
+        match (w as usize)
+            .checked_sub(1)
+            .and_then(|i| t.get_mut(i))
+            .and_then(Option::as_mut)
+        {
             Some(h) => f(h),
             None => Err(Fail::usage(format!("there is no world with handle {w}"))),
         }
@@ -83,7 +98,11 @@ pub fn with_body<R>(w: u32, b: u32, f: impl FnOnce(&mut Handle, usize) -> Res<R>
 // ----- the core's errors as `Fail` --------------------------------------------------------------
 
 pub fn mesh_fail(e: MeshError) -> Fail {
-    let line = if let MeshError::Parse { line, .. } = e { Some(line) } else { None };
+    let line = if let MeshError::Parse { line, .. } = e {
+        Some(line)
+    } else {
+        None
+    };
     let f = Fail::new("mesh", e.to_string());
     match line {
         Some(l) => f.with("line", l),
@@ -94,10 +113,17 @@ pub fn mesh_fail(e: MeshError) -> Fail {
 /// A simulation error: a parameter refused, a wrong length (usage), or a blow-up (step).
 pub fn sim_fail(e: SimError) -> Fail {
     match &e {
-        SimError::BadParameter { name, .. } => Fail::new("parameter", e.to_string()).with("parameter", *name),
+        SimError::BadParameter { name, .. } => {
+            Fail::new("parameter", e.to_string()).with("parameter", *name)
+        }
         SimError::Length { .. } => Fail::usage(e.to_string()),
-        SimError::NonFinite { step } | SimError::Collapsed { step, .. } => Fail::new("step", e.to_string()).with("step", *step),
-        SimError::NotConverged { step, time, .. } => Fail::new("step", e.to_string()).with("step", *step).with("time", *time).with("converged", false),
+        SimError::NonFinite { step } | SimError::Collapsed { step, .. } => {
+            Fail::new("step", e.to_string()).with("step", *step)
+        }
+        SimError::NotConverged { step, time, .. } => Fail::new("step", e.to_string())
+            .with("step", *step)
+            .with("time", *time)
+            .with("converged", false),
     }
 }
 
@@ -111,11 +137,19 @@ fn body_fail(e: BodyError) -> Fail {
 /// Names the parameter and its unit.
 pub fn param_fail(e: ParamError) -> Fail {
     let unit = params::find(&e.id).map(|p| p.unit).unwrap_or("");
-    Fail::new("parameter", e.to_string()).with("parameter", e.id).with("unit", unit)
+    Fail::new("parameter", e.to_string())
+        .with("parameter", e.id)
+        .with("unit", unit)
 }
 
 fn step_fail(e: StepError) -> Fail {
-    let mut f = Fail::new("step", e.to_string()).with("time", e.time).with("step", e.step);
+    let mut f = Fail::new("step", e.to_string())
+        .with("time", e.time)
+        .with("step", e.step);
+    // An implicit step that did not converge (not a blow-up): a shorter step may succeed.
+    if matches!(e.error, SimError::NotConverged { .. }) {
+        f = f.with("converged", false);
+    }
     if let Some(l) = e.line {
         f = f.with("line", l);
     }
@@ -140,7 +174,10 @@ pub extern "C" fn ss_world_new() -> i32 {
 #[no_mangle]
 pub extern "C" fn ss_world_free(w: u32) {
     WORLDS.with(|t| {
-        if let Some(slot) = (w as usize).checked_sub(1).and_then(|i| t.borrow_mut().get_mut(i).map(Option::take)) {
+        if let Some(slot) = (w as usize)
+            .checked_sub(1)
+            .and_then(|i| t.borrow_mut().get_mut(i).map(Option::take))
+        {
             drop(slot);
         }
     });
@@ -151,7 +188,9 @@ pub extern "C" fn ss_world_free(w: u32) {
 pub extern "C" fn ss_workload(level: u32) -> i32 {
     index(|| {
         if level > 8 {
-            return Err(Fail::usage(format!("level {level} is too large (at most 8)")));
+            return Err(Fail::usage(format!(
+                "level {level} is too large (at most 8)"
+            )));
         }
         Ok(insert(softsculpt::workload::world(level)))
     })
@@ -173,7 +212,9 @@ fn add(w: u32, mesh: &TriMesh, mass: f64, warnings: &[String]) -> Res<usize> {
 pub unsafe extern "C" fn ss_add_builtin(w: u32, name: *const u8, len: usize, mass: f64) -> i32 {
     index(|| {
         let name = text(name, len, "the model name")?;
-        let loaded = builtin::builtin(name).map(LoadedMesh::from_trimesh).map_err(mesh_fail)?;
+        let loaded = builtin::builtin(name)
+            .map(LoadedMesh::from_trimesh)
+            .map_err(mesh_fail)?;
         add(w, &loaded.mesh, mass, &[])
     })
 }
@@ -196,21 +237,48 @@ pub unsafe extern "C" fn ss_add_obj(w: u32, ptr: *const u8, len: usize, mass: f6
 /// # Safety
 /// `pos` must point to `3 n_vertices` f64 and `idx` to `n_indices` u32.
 #[no_mangle]
-pub unsafe extern "C" fn ss_add_mesh(w: u32, pos: *const f64, n_vertices: usize, idx: *const u32, n_indices: usize, mass: f64, prepare: u32) -> i32 {
+pub unsafe extern "C" fn ss_add_mesh(
+    w: u32,
+    pos: *const f64,
+    n_vertices: usize,
+    idx: *const u32,
+    n_indices: usize,
+    mass: f64,
+    prepare: u32,
+) -> i32 {
     index(|| {
         if pos.is_null() || idx.is_null() || !n_indices.is_multiple_of(3) {
-            return Err(Fail::usage("a mesh needs positions and a multiple of 3 indices"));
+            return Err(Fail::usage(
+                "a mesh needs positions and a multiple of 3 indices",
+            ));
         }
         let positions = std::slice::from_raw_parts(pos, 3 * n_vertices).to_vec();
         let indices = std::slice::from_raw_parts(idx, n_indices).to_vec();
         if let Some(bad) = indices.iter().find(|&&i| i as usize >= n_vertices) {
-            return Err(mesh_fail(MeshError::Invalid(format!("index {bad} out of range ({n_vertices} vertices)"))));
+            return Err(mesh_fail(MeshError::Invalid(format!(
+                "index {bad} out of range ({n_vertices} vertices)"
+            ))));
         }
         if prepare == 0 {
-            let triangles = indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
-            return add(w, &TriMesh { positions, triangles }, mass, &[]);
+            let triangles = indices
+                .chunks_exact(3)
+                .map(|t| [t[0], t[1], t[2]])
+                .collect();
+            return add(
+                w,
+                &TriMesh {
+                    positions,
+                    triangles,
+                },
+                mass,
+                &[],
+            );
         }
-        let data = ObjData { positions, arities: vec![3; n_indices / 3], indices };
+        let data = ObjData {
+            positions,
+            arities: vec![3; n_indices / 3],
+            indices,
+        };
         let loaded = mesh::prepare(data).map_err(mesh_fail)?;
         add(w, &loaded.mesh, mass, &loaded.report.warnings)
     })
@@ -246,8 +314,16 @@ pub extern "C" fn ss_params(w: u32, b: u32) -> i32 {
     status(|| {
         with_body(w, b, |h, i| {
             let mut out = serde_json::Map::new();
-            for p in params::TABLE.iter().filter(|p| matches!(p.scope, Scope::Body | Scope::World)) {
-                let v = h.world.param(i, p.id).ok().and_then(|v| serde_json::to_value(v).ok()).unwrap_or(serde_json::Value::Null);
+            for p in params::TABLE
+                .iter()
+                .filter(|p| matches!(p.scope, Scope::Body | Scope::World))
+            {
+                let v = h
+                    .world
+                    .param(i, p.id)
+                    .ok()
+                    .and_then(|v| serde_json::to_value(v).ok())
+                    .unwrap_or(serde_json::Value::Null);
                 out.insert(p.id.to_string(), v);
             }
             set_result(serde_json::Value::Object(out).to_string().into_bytes());
@@ -258,7 +334,10 @@ pub extern "C" fn ss_params(w: u32, b: u32) -> i32 {
 
 /// A JSON value as the parameter `id` takes it: a number, `[x, y, z]`, a choice's name, or a flag.
 fn value_of(id: &str, v: &serde_json::Value) -> Result<Value, ParamError> {
-    let refuse = || ParamError { id: id.to_string(), message: format!("cannot take the value {v}") };
+    let refuse = || ParamError {
+        id: id.to_string(),
+        message: format!("cannot take the value {v}"),
+    };
     Ok(match v {
         serde_json::Value::Number(n) => Value::Number(n.as_f64().ok_or_else(refuse)?),
         serde_json::Value::Bool(f) => Value::Flag(*f),
@@ -277,13 +356,26 @@ fn value_of(id: &str, v: &serde_json::Value) -> Result<Value, ParamError> {
 /// # Safety
 /// `id` must point to `id_len` bytes and `json` to `json_len` bytes.
 #[no_mangle]
-pub unsafe extern "C" fn ss_set_param(w: u32, b: u32, id: *const u8, id_len: usize, json: *const u8, json_len: usize) -> i32 {
+pub unsafe extern "C" fn ss_set_param(
+    w: u32,
+    b: u32,
+    id: *const u8,
+    id_len: usize,
+    json: *const u8,
+    json_len: usize,
+) -> i32 {
     status(|| {
         let id = text(id, id_len, "the parameter id")?;
-        let v: serde_json::Value = serde_json::from_slice(bytes(json, json_len))
-            .map_err(|e| param_fail(ParamError { id: id.to_string(), message: format!("the value is not JSON ({e})") }))?;
+        let v: serde_json::Value = serde_json::from_slice(bytes(json, json_len)).map_err(|e| {
+            param_fail(ParamError {
+                id: id.to_string(),
+                message: format!("the value is not JSON ({e})"),
+            })
+        })?;
         let value = value_of(id, &v).map_err(param_fail)?;
-        with_world(w, |h| h.world.set_param(b as usize, id, value).map_err(param_fail))
+        with_world(w, |h| {
+            h.world.set_param(b as usize, id, value).map_err(param_fail)
+        })
     })
 }
 
@@ -325,7 +417,11 @@ pub extern "C" fn ss_subdivide(w: u32, b: u32) -> i32 {
             let finer = h.world.bodies[i].subdivided().map_err(sim_fail)?;
             let (_, dropped) = h.world.replace_body(i, finer);
             h.views[i] = BodyViews::new(&h.world, i);
-            set_result(serde_json::json!({ "dropped_events": dropped }).to_string().into_bytes());
+            set_result(
+                serde_json::json!({ "dropped_events": dropped })
+                    .to_string()
+                    .into_bytes(),
+            );
             Ok(())
         })
     })
@@ -335,13 +431,25 @@ pub extern "C" fn ss_subdivide(w: u32, b: u32) -> i32 {
 /// mean of its ends).
 #[no_mangle]
 pub extern "C" fn ss_scale_rest(w: u32, b: u32) -> i32 {
-    status(|| with_body(w, b, |h, i| h.world.bodies[i].scale_rest_lengths_by_vertex(&h.views[i].scratch).map_err(sim_fail)))
+    status(|| {
+        with_body(w, b, |h, i| {
+            h.world.bodies[i]
+                .scale_rest_lengths_by_vertex(&h.views[i].scratch)
+                .map_err(sim_fail)
+        })
+    })
 }
 
 /// Vertex masses (kg) from the vertex scratch.
 #[no_mangle]
 pub extern "C" fn ss_set_masses(w: u32, b: u32) -> i32 {
-    status(|| with_body(w, b, |h, i| h.world.bodies[i].set_masses(&h.views[i].scratch).map_err(sim_fail)))
+    status(|| {
+        with_body(w, b, |h, i| {
+            h.world.bodies[i]
+                .set_masses(&h.views[i].scratch)
+                .map_err(sim_fail)
+        })
+    })
 }
 
 /// Pins from the pinned view (1 pinned, 0 free); only vertices that change are touched.
@@ -372,6 +480,43 @@ pub extern "C" fn ss_apply_loads(w: u32, b: u32) -> i32 {
     })
 }
 
+/// Target springs of body `b` (`SoftBody::set_targets`), replacing any it had: `count` records
+/// of 6 f64 at `ptr`, (vertex, anchor x, y, z (m), stiffness (N/m), damping (N·s/m)); 0 clears.
+///
+/// # Safety
+/// `ptr` must point to `6 count` f64 (or be null with `count` 0).
+#[no_mangle]
+pub unsafe extern "C" fn ss_set_targets(w: u32, b: u32, ptr: *const f64, count: usize) -> i32 {
+    status(|| {
+        if ptr.is_null() && count > 0 {
+            return Err(Fail::usage("targets need a buffer"));
+        }
+        let rec = if count == 0 {
+            &[][..]
+        } else {
+            std::slice::from_raw_parts(ptr, 6 * count)
+        };
+        let mut targets = Vec::with_capacity(count);
+        for r in rec.chunks_exact(6) {
+            if !(r[0] >= 0.0 && r[0].fract() == 0.0 && r[0] < u32::MAX as f64) {
+                return Err(Fail::usage(format!(
+                    "a target's vertex must be a whole number ≥ 0, got {}",
+                    r[0]
+                )));
+            }
+            targets.push(Target {
+                vertex: r[0] as usize,
+                anchor: [r[1], r[2], r[3]],
+                stiffness: r[4],
+                damping: r[5],
+            });
+        }
+        with_body(w, b, |h, i| {
+            h.world.bodies[i].set_targets(&targets).map_err(sim_fail)
+        })
+    })
+}
+
 // ----- snapshots ------------------------------------------------------------------------------
 
 /// The whole world as snapshot bytes (`docs/snapshot.md`) in the result.
@@ -394,7 +539,9 @@ pub extern "C" fn ss_snapshot(w: u32) -> i32 {
 pub unsafe extern "C" fn ss_restore(w: u32, ptr: *const u8, len: usize) -> i32 {
     status(|| {
         with_world(w, |h| {
-            h.world.restore_from(bytes(ptr, len)).map_err(snapshot_fail)?;
+            h.world
+                .restore_from(bytes(ptr, len))
+                .map_err(snapshot_fail)?;
             h.rebuild_views();
             Ok(())
         })

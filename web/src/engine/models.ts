@@ -1,5 +1,5 @@
 // The built-in models as bodies of a world, standing on the ground, with the modeler's default
-// world and a stable time step.
+// world: implicit steps of 1/60 s, material parameters independent of the mesh resolution.
 
 import bunny from 'bunny';
 import { World } from './world';
@@ -33,15 +33,34 @@ export function addModel(world: World, name: ModelName): number {
   return b;
 }
 
+/** The modeler's step: one backward-Euler step of 1/60 s per frame. */
+export const FRAME_DT = 1 / 60;
 /**
- * The modeler's default world for body `b`: gravity, ground at y = 0, gas, damping, and the
- * largest stable time step for the body (see `stableDt`), set as the world's dt.
+ * The modeler's implicit tolerance (relative residual of a step): measured in the browser at
+ * 1e-3, 1e-4 and 1e-6 (BENCHMARKS.md, "The modeler on implicit steps").
+ */
+export const MODELER_TOLERANCE = 1e-3;
+
+/**
+ * The modeler's default world for body `b`: gravity, ground at y = 0, gas, damping, implicit
+ * stepping at dt = 1/60 s (set as the world's dt, returned).
+ *
+ * Every material parameter is independent of the mesh resolution, so a subdivision keeps the
+ * body's behaviour (docs: web/README.md, "Defaults"):
+ * - springs: a lattice of springs k has the membrane (2D Young's) modulus 2k/√3 whatever its
+ *   edge length, so k stays 100 N/m on every mesh;
+ * - spring damping: likewise a membrane viscosity 2cs/√3 (N·s/m), so cs stays fixed (0.1 N·s/m,
+ *   what the 362-vertex mushroom had); explicit steps of fine meshes then need smaller dt (they
+ *   get it from `stableDt`), implicit ones do not;
+ * - viscous damping c (1/s) and gravity act per unit mass; the mass (1 kg) is spread over the
+ *   vertices, so density per area is fixed; the gas amount is set by a pressure;
+ * - bending springs k_b = k: their in-plane share is resolution-independent like the edges';
+ *   their resistance to folding falls with the edge length (a measured limit: the subdivided
+ *   mushroom keeps its height, see the browser test), which the gas pressure makes up for.
  */
 export function useDefaults(world: World, b: number): number {
   world.setParam(b, 'stiffness', 100);
-  // Spring damping as a rate per vertex mass (cs / m = 36 1/s, i.e. 0.1 N·s/m on the 362-vertex
-  // mushroom of 1 kg), so fine meshes are damped alike and do not force a tiny step.
-  world.setParam(b, 'spring_damping', 36 * minMass(world, b));
+  world.setParam(b, 'spring_damping', 0.1);
   // Bending springs as stiff as the edges: the surface resists folding, so a mushroom's stem
   // carries its cap instead of buckling.
   world.setParam(b, 'bending', 100);
@@ -52,9 +71,15 @@ export function useDefaults(world: World, b: number): number {
   world.setParam(b, 'ground.friction', 0.5);
   world.setParam(b, 'gas.temperature', 300);
   world.setParam(b, 'gas.amount', gasAmount(30));
-  const dt = stableDt(world, b);
-  world.setParam(b, 'dt', dt);
-  return dt;
+  world.setParam(b, 'integrator', 'implicit');
+  world.setParam(b, 'tolerance', MODELER_TOLERANCE);
+  world.setParam(b, 'dt', FRAME_DT);
+  return FRAME_DT;
+}
+
+/** The step an integrator gets when chosen: 1/60 s implicit, else the stable explicit step. */
+export function dtFor(world: World, b: number, integrator: string): number {
+  return integrator === 'implicit' ? FRAME_DT : stableDt(world, b);
 }
 
 function minMass(world: World, b: number): number {

@@ -35,6 +35,7 @@ export interface RawEngine {
   ss_set_masses(w: number, b: number): number;
   ss_set_pins(w: number, b: number): number;
   ss_apply_loads(w: number, b: number): number;
+  ss_set_targets(w: number, b: number, ptr: number, count: number): number;
   ss_snapshot(w: number): number;
   ss_restore(w: number, ptr: number, len: number): number;
   ss_scene_file(name: number, nameLen: number, ptr: number, len: number): number;

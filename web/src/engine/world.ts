@@ -254,6 +254,15 @@ export class World {
   }
   /** User forces and face pressures from the body's staging views. */
   applyLoads(b: number): void { this.call((w) => raw().ss_apply_loads(w, b)); }
+  /**
+   * Target springs of body `b`, replacing its others: records of 6 numbers (vertex, anchor xyz
+   * (m), stiffness (N/m), damping (N·s/m)); empty clears them. Exact in the implicit system.
+   */
+  setTargets(b: number, records: Float64Array): void {
+    if (records.length % 6 !== 0) throw new EngineError({ kind: 'usage', message: 'targets are records of 6 numbers' });
+    if (records.length === 0) { this.call((w) => raw().ss_set_targets(w, b, 0, 0)); return; }
+    this.call((w) => withArrays([records], (p) => raw().ss_set_targets(w, b, p, records.length / 6)));
+  }
 
   /** The whole world as snapshot bytes (docs/snapshot.md). */
   snapshot(): Uint8Array {

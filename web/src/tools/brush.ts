@@ -36,12 +36,30 @@ export function facesAround(positions: ArrayLike<number>, triangles: ArrayLike<n
 }
 
 /**
- * Grab spring on one vertex (N): F = m w (ω² (target − x) − ω v). A critically-damped-ish pull
- * whose stiffness scales with the vertex mass, so every body feels the same under the mouse
- * and the explicit step stays stable (ω dt ≪ 2).
+ * A tool's target spring on one vertex of mass `mass` under brush weight `weight`, at angular
+ * frequency ω (1/s): stiffness m w ω² (N/m) and critical damping 2 m w ω (N·s/m). Scaling with
+ * the vertex mass makes the pull per unit of surface the same on any mesh resolution; the
+ * implicit step takes it exactly, so any ω is stable.
  */
-export function grabForce(mass: number, weight: number, omega: number, target: number, x: number, v: number): number {
-  return mass * weight * (omega * omega * (target - x) - omega * v);
+export function targetSpring(mass: number, weight: number, omega: number): { stiffness: number; damping: number } {
+  return { stiffness: mass * weight * omega * omega, damping: 2 * mass * weight * omega };
+}
+
+/** Unit outward vertex normals (area-weighted face normals) of a closed, outward-oriented mesh. */
+export function vertexNormals(positions: ArrayLike<number>, triangles: ArrayLike<number>): Float64Array {
+  const n = new Float64Array(positions.length);
+  for (let f = 0; f < triangles.length; f += 3) {
+    const a = 3 * triangles[f], b = 3 * triangles[f + 1], c = 3 * triangles[f + 2];
+    const u = [positions[b] - positions[a], positions[b + 1] - positions[a + 1], positions[b + 2] - positions[a + 2]];
+    const v = [positions[c] - positions[a], positions[c + 1] - positions[a + 1], positions[c + 2] - positions[a + 2]];
+    const cr = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+    for (const i of [a, b, c]) for (let d = 0; d < 3; d++) n[i + d] += cr[d];
+  }
+  for (let i = 0; i < n.length; i += 3) {
+    const l = Math.hypot(n[i], n[i + 1], n[i + 2]) || 1;
+    n[i] /= l; n[i + 1] /= l; n[i + 2] /= l;
+  }
+  return n;
 }
 
 /** Per-vertex rest-length factor for one frame of the inflate brush (rate in 1/s, dt in s). */

@@ -1,18 +1,24 @@
-// Grab (G): press on the surface and drag. The vertices under the brush are pulled by a spring
-// toward the cursor's point on the view plane through the grab point (each keeps its offset), so
-// the pull follows the mouse. Strength: the pull's angular frequency ω (1/s).
+// Grab (G): press on the surface and drag. Each vertex under the brush is tied by a target spring
+// (inside the implicit step, so any strength is stable) to the cursor's point on the view plane
+// through the grab point plus its offset, so the surface follows the mouse. Strength: the pull's
+// angular frequency ω (1/s): stiffness m w ω² per vertex, critically damped.
 
 import * as THREE from 'three';
 import { BaseTool, point } from './tool';
 import { verticesAround } from './brush';
+
+/** Default pull: stiff enough that the grabbed point stays within a few pixels of the cursor. */
+export const GRAB_OMEGA = 600;
+/** The strongest setting (stable too: the springs are in the implicit system). */
+export const GRAB_OMEGA_MAX = 3000;
 
 export class GrabTool extends BaseTool {
   readonly name = 'grab';
   readonly label = 'Grab';
   readonly key = 'g';
   readonly tooltip = 'Grab (G): drag the surface; the brush area follows the mouse on a spring (strength = ω, 1/s)';
-  strength = 30;
-  readonly strengthInfo = { label: 'pull ω (1/s)', min: 1, max: 200 };
+  strength = GRAB_OMEGA;
+  readonly strengthInfo = { label: 'pull ω (1/s)', min: 1, max: GRAB_OMEGA_MAX };
   private plane = new THREE.Plane();
   private cursor = new THREE.Vector3();
 

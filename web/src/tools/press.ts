@@ -1,6 +1,7 @@
-// Press (P): push on the faces under the brush with an external pressure along their inward
-// normal, while the button is held; the brush follows the surface under the pointer.
-// Strength: the pressure (Pa) at the brush centre.
+// Press (P): push the surface under the brush inward, while the button is held: each vertex the
+// brush passes over is held by a target spring (inside the implicit step) at where it was when
+// first touched, moved inward along its normal by the depth × the brush weight (Shift: outward).
+// Released, the dent springs back. Strength: the depth (m) at the brush centre.
 
 import { BaseTool } from './tool';
 
@@ -8,7 +9,7 @@ export class PressTool extends BaseTool {
   readonly name = 'press';
   readonly label = 'Press';
   readonly key = 'p';
-  readonly tooltip = 'Press (P): push the faces under the brush inward (strength = pressure, Pa)';
-  strength = 60;
-  readonly strengthInfo = { label: 'pressure (Pa)', min: 1, max: 2000 };
+  readonly tooltip = 'Press (P): dent the surface under the brush while held (strength = depth at the centre, m; Shift: outward)';
+  strength = 0.15;
+  readonly strengthInfo = { label: 'depth (m)', min: 0.01, max: 0.5 };
 }

@@ -11,7 +11,8 @@
 
 import { initEngine } from '../engine/wasm';
 import { EngineError, World, type DeltaScope, type ParamInfo, type ParamValue } from '../engine/world';
-import { addModel, stableDt, useDefaults } from '../engine/models';
+import { addModel, dtFor, stableDt, useDefaults } from '../engine/models';
+import { notConverged, stepSplitting } from './split';
 import { History, travel } from '../history';
 import { parse, ProjectError, serialize } from '../project';
 import type { Autosave, AutosaveRecord } from '../storage';
@@ -22,6 +23,8 @@ import { makeStroke, type Stroke, type StrokeBody, type StrokeStart } from './st
 
 export const HISTORY_STEPS = 200;
 export const HISTORY_BYTES = 512 * 1024 * 1024;
+/** Frames with split steps before the modeler says so (once per model). */
+export const SPLIT_NOTICE = 10;
 
 /** What a scene was opened from, to restart it (and to bring it back on undo). */
 export interface SceneSource { name: string; text: string; files: Map<string, Uint8Array>; duration: number }
@@ -152,6 +155,7 @@ export class Document {
 
   private useDefaults(model: string): void {
     const dt = useDefaults(this.world, 0);
+    this.splitFrames = 0;
     this.settings.dt = dt;
     this.settings.substeps = Math.max(1, Math.round(1 / 60 / dt));
     this.settings.model = model;
@@ -167,9 +171,9 @@ export class Document {
       addModel(this.world, name as ModelName);
       this.useDefaults(name);
       // Let it settle on the ground (a few simulated seconds) so it opens at rest.
-      const dt = this.settings.dt;
-      for (let t = 0; t < 6; t += dt * 100) {
-        this.world.step(100);
+      const dt = this.settings.dt, chunk = Math.max(1, Math.round(0.5 / dt));
+      for (let t = 0; t < 6; t += dt * chunk) {
+        stepSplitting((h, n) => this.stepAt(h, n), dt, chunk);
         this.hooks.progress(label, t / 6);
       }
     });
@@ -244,6 +248,12 @@ export class Document {
   setParam(id: string, value: ParamValue): boolean {
     const ok = this.edit(`set ${id}`, true, () => this.world.setParam(0, id, value), 'none');
     if (ok && id === 'dt') this.settings.dt = value as number;
+    // Another integrator gets a step it is stable at: 1/60 s implicit, else the explicit limit.
+    if (ok && id === 'integrator') {
+      this.setDt(dtFor(this.world, 0, value as string));
+      this.settings.substeps = Math.max(1, Math.round(1 / 60 / this.settings.dt));
+      this.hooks.message(`${value}: dt = ${fmt(this.settings.dt)} s`);
+    }
     return ok;
   }
 
@@ -314,9 +324,20 @@ export class Document {
     if (this.vertexCount > 200_000) { this.hooks.message('the mesh is already very fine; not subdividing', 'warn'); return; }
     this.edit('subdivide', true, () => {
       this.hooks.progress('subdividing');
+      const before = this.world.params(0);
       const dropped = this.world.subdivide(0);
+      // The subdivided body comes plainly frozen at its current shape: springs at rest, the
+      // ambient pressure raised to the gas pressure. Under gravity nothing would then carry the
+      // weight and it would sag (the mushroom to half its height). As Freeze does under gravity:
+      // the gas as it was, and the rest shape frozen under load, so the shape holds.
+      if (before.gravity !== 0) {
+        this.world.setParam(0, 'gas.ambient', before['gas.ambient'] as number);
+        this.world.freeze(0, true);
+      }
       if (dropped > 0) this.hooks.message(`${dropped} pending scene events of the body no longer fit its mesh and were dropped`, 'warn');
-      this.setDt(Math.min(this.settings.dt, stableDt(this.world, 0)));
+      // Implicit steps keep dt (the parameters do not depend on the resolution); an explicit
+      // integrator needs the finer mesh's stable step.
+      if (this.world.params(0).integrator !== 'implicit') this.setDt(Math.min(this.settings.dt, stableDt(this.world, 0)));
       this.settings.substeps = Math.max(1, Math.round(1 / 60 / this.settings.dt));
     });
   }
@@ -352,6 +373,7 @@ export class Document {
       scaleRest: (f) => w.scaleRest(0, f),
       setMasses: (m) => w.setMasses(0, m),
       setPins: () => w.setPins(0),
+      setTargets: (r) => w.setTargets(0, r),
     };
   }
 
@@ -371,11 +393,14 @@ export class Document {
   advance(dt: number, n: number): boolean {
     try {
       if (dt !== this.settings.dt) this.setDt(dt);
-      this.world.step(n);
+      const splits = stepSplitting((h, k) => this.stepAt(h, k), dt, n);
+      if (splits > 0) this.splitFrame(splits);
       return true;
     } catch (e) {
       this.settings.playing = false;
-      if (e instanceof EngineError && e.kind === 'step') {
+      if (notConverged(e)) {
+        this.hooks.message(`an implicit step did not converge even as 8 steps of dt/8 (${errorText(e)}). Paused.`, 'error');
+      } else if (e instanceof EngineError && e.kind === 'step') {
         this.hooks.message(`the simulation blew up at t = ${fmt(e.time)} s; the whole world was rolled back to t = ${fmt(e.rolledBackTo)} s. Paused. ` +
           `Try a smaller dt (now ${this.settings.dt} s), more damping, or another integrator.`, 'error');
       } else {
@@ -383,6 +408,22 @@ export class Document {
       }
       return false;
     }
+  }
+
+  /** `n` steps of `h` (s), the world's dt back to the settings' after a split step. */
+  private stepAt(h: number, n: number): void {
+    if (h === this.settings.dt) { this.world.step(n); return; }
+    this.world.setParam(0, 'dt', h);
+    try { this.world.step(n); } finally { this.world.setParam(0, 'dt', this.settings.dt); }
+  }
+
+  /** Frames whose implicit step had to be split (since the model was loaded). */
+  splitFrames = 0;
+  /** A frame's step was split: after SPLIT_NOTICE such frames, say so once. */
+  private splitFrame(splits: number): void {
+    if (++this.splitFrames !== SPLIT_NOTICE) return;
+    this.hooks.message(`implicit steps of ${fmt(this.settings.dt)} s did not converge in ${SPLIT_NOTICE} frames (the last split in ${splits + 1}); ` +
+      'those frames ran as shorter steps. More damping, a looser tolerance or a smaller dt avoids it.', 'warn');
   }
 
   // ----- scenes ---------------------------------------------------------------------------------

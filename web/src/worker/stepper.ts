@@ -31,7 +31,9 @@ export class Stepper {
       return false;
     }
     const want = s.realTime ? elapsed / s.dt + this.carry : s.substeps;
-    const n = Math.floor(want);
+    // A tenth of a step of slack: at dt = 1/60 s (implicit) a 16 ms tick still takes its step,
+    // and the carry (then slightly negative) keeps the average on the clock.
+    const n = s.realTime ? Math.floor(want + 0.1) : want;
     this.carry = s.realTime ? want - n : 0;
     doc.updateStroke(s.dt * n);
     const done = this.run(doc, s.dt, n, this.budgetMs);

@@ -1,14 +1,17 @@
 // What a tool stroke does to the body, in the worker. The page's tools (src/tools/) pick the
 // point and follow the pointer; these act on the engine every tick while the button is held:
-// - grab: the vertices under the brush are pulled by a spring toward the cursor's point (each
-//   keeps its offset); strength: the pull's angular frequency ω (1/s);
-// - press: an external pressure (Pa, the strength at the brush centre) on the faces under it;
+// - grab: a target spring (SoftBody::set_targets, exact in the implicit step) from each vertex
+//   under the brush to the cursor's point plus the vertex's offset, re-aimed every tick from the
+//   latest cursor; strength: the pull's angular frequency ω (1/s), stiffness m w ω²;
+// - press: a target spring on each vertex the brush passes over, to where it was when first
+//   touched moved inward along its normal by the depth (the strength, m) × the brush weight
+//   (Shift: outward); released with the button, so the dent springs back;
 // - inflate / mass: rest lengths / masses grow (Shift: shrink) at a rate (1/s) under the brush;
 // - pin: vertices under the brush are pinned (Shift: unpinned).
 
 import type { StrokeTool, Vec3 } from '../protocol';
 import type { BodyView } from '../engine/world';
-import { facesAround, grabForce, inflateFactor, verticesAround, type Weighted } from '../tools/brush';
+import { inflateFactor, targetSpring, vertexNormals, verticesAround, type Weighted } from '../tools/brush';
 
 /** What a stroke needs from the body (the document hands over its active body). */
 export interface StrokeBody {
@@ -21,6 +24,8 @@ export interface StrokeBody {
   setMasses(masses: ArrayLike<number>): void;
   /** Pins from the `pinned` view as written. */
   setPins(): void;
+  /** Target springs: records (vertex, anchor xyz, stiffness, damping); empty clears them. */
+  setTargets(records: Float64Array): void;
 }
 
 export interface StrokeStart { tool: StrokeTool; point: Vec3; radius: number; strength: number; inverted: boolean }
@@ -47,32 +52,34 @@ export abstract class Stroke {
 class Grab extends Stroke {
   private picked: Weighted = { indices: [], weights: [] };
   private offsets: number[] = [];
+  private records = new Float64Array(0);
   start(body: StrokeBody): void {
     const x = body.view.positions, p = this.s.point;
     this.picked = verticesAround(x, p, this.s.radius);
     this.offsets = this.picked.indices.flatMap((i) => [x[3 * i] - p[0], x[3 * i + 1] - p[1], x[3 * i + 2] - p[2]]);
+    this.records = new Float64Array(6 * this.picked.indices.length);
+    this.update(body);
   }
   /** The cursor moved: `point` is its point on the grab plane (null keeps the last one). */
   move(point: Vec3 | null): void { if (point) this.point = point; }
   update(body: StrokeBody): void {
-    const b = body.view, x = b.positions, v = b.velocities, m = b.masses;
-    const f = b.userForces;
-    f.fill(0);
+    const m = body.view.masses, r = this.records;
     const c = this.point ?? this.s.point;
     this.picked.indices.forEach((i, k) => {
-      for (let d = 0; d < 3; d++) {
-        f[3 * i + d] = grabForce(m[i], this.picked.weights[k], this.s.strength, c[d] + this.offsets[3 * k + d], x[3 * i + d], v[3 * i + d]);
-      }
+      const t = targetSpring(m[i], this.picked.weights[k], this.s.strength);
+      r.set([i, c[0] + this.offsets[3 * k], c[1] + this.offsets[3 * k + 1], c[2] + this.offsets[3 * k + 2], t.stiffness, t.damping], 6 * k);
     });
-    body.applyLoads();
+    body.setTargets(r);
   }
-  end(body: StrokeBody): void {
-    body.view.userForces.fill(0);
-    body.applyLoads();
-  }
+  end(body: StrokeBody): void { body.setTargets(new Float64Array(0)); }
 }
 
+/** Stiffness of the press's springs as an angular frequency (1/s): the dent forms in ~1/ω s. */
+export const PRESS_OMEGA = 200;
+
 class Press extends Stroke {
+  /** Anchor and weight of every vertex the brush has touched, by vertex. */
+  private anchors = new Map<number, { a: Vec3; w: number }>();
   start(body: StrokeBody): void { this.apply(body); }
   move(point: Vec3 | null, inverted: boolean, body: StrokeBody): void {
     if (!point) return;
@@ -80,16 +87,26 @@ class Press extends Stroke {
     this.apply(body);
   }
   private apply(body: StrokeBody): void {
-    const p = body.view.facePressures;
-    p.fill(0);
-    const faces = facesAround(body.view.positions, body.view.triangles, this.point!, this.s.radius);
-    faces.indices.forEach((f, k) => (p[f] = this.s.strength * faces.weights[k]));
-    body.applyLoads();
+    const x = body.view.positions;
+    const under = verticesAround(x, this.point!, this.s.radius);
+    const fresh = under.indices.filter((i) => !this.anchors.has(i));
+    if (fresh.length === 0 && this.anchors.size > 0) return;
+    const n = vertexNormals(x, body.view.triangles);
+    const depth = this.inverted ? -this.s.strength : this.s.strength;
+    under.indices.forEach((i, k) => {
+      if (this.anchors.has(i)) return;
+      const w = under.weights[k];
+      this.anchors.set(i, { a: [0, 1, 2].map((d) => x[3 * i + d] - depth * w * n[3 * i + d]) as Vec3, w });
+    });
+    const m = body.view.masses, r = new Float64Array(6 * this.anchors.size);
+    let k = 0;
+    for (const [i, { a, w }] of this.anchors) {
+      const t = targetSpring(m[i], w, PRESS_OMEGA);
+      r.set([i, a[0], a[1], a[2], t.stiffness, t.damping], 6 * k++);
+    }
+    body.setTargets(r);
   }
-  end(body: StrokeBody): void {
-    body.view.facePressures.fill(0);
-    body.applyLoads();
-  }
+  end(body: StrokeBody): void { body.setTargets(new Float64Array(0)); }
 }
 
 /** The brushes act every tick on the vertices under the centre while the button is held. */
