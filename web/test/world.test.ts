@@ -56,6 +56,22 @@ describe('world binding', () => {
     w.free();
   });
 
+  it('the modeler preset sets its values (30 J of gas: P V = nRT), and an unknown one is refused whole', () => {
+    const w = World.create();
+    const b = w.addBuiltin('sphere', 1);
+    w.applyPreset(b, 'modeler');
+    const p = w.params(b);
+    expect(p.integrator).toBe('implicit');
+    expect(p.dt).toBeCloseTo(1 / 60, 15);
+    expect(p.ground).toBe(true);
+    // n = nRT / (R T) and back: a few roundings of relative size EPS.
+    expect(Math.abs((p['gas.amount'] as number) * R * (p['gas.temperature'] as number) - 30)).toBeLessThan(30 * 8 * EPS);
+    const e = thrown(() => w.applyPreset(b, 'jelly'));
+    expect(e.kind).toBe('parameter');
+    expect(e.message).toContain("unknown preset 'jelly'");
+    w.free();
+  });
+
   it('gas pushes out with P V = nRT through the stats view', () => {
     const w = World.create();
     w.addBuiltin('sphere');

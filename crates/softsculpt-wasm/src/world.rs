@@ -350,6 +350,19 @@ fn value_of(id: &str, v: &serde_json::Value) -> Result<Value, ParamError> {
     })
 }
 
+/// Apply preset `name` (`softsculpt::params::presets`): its body parameters on body `b`, its
+/// world parameters on the world; all or nothing.
+///
+/// # Safety
+/// `name` must point to `len` bytes.
+#[no_mangle]
+pub unsafe extern "C" fn ss_apply_preset(w: u32, b: u32, name: *const u8, len: usize) -> i32 {
+    status(|| {
+        let name = text(name, len, "the preset name")?;
+        with_world(w, |h| h.world.apply_preset(b as usize, name).map_err(param_fail))
+    })
+}
+
 /// Set parameter `id` (body parameters on body `b`, world parameters on the world) from a JSON
 /// value; refused with an error naming the parameter and its unit.
 ///

@@ -146,3 +146,28 @@ fn the_table_as_json_lists_every_parameter() {
     let integrator = rows.iter().find(|r| r["id"] == "integrator").unwrap();
     assert_eq!(integrator["choices"].as_array().unwrap().len(), 5);
 }
+
+/// Every preset's values are parameters of the table, each within its range, and applying the
+/// modeler's sets them on the world (implicit at 1/60 s, 30 J of gas: nRT read back to 1e-12
+/// relative, the rounding of n = nRT / (R T) and back); an unknown preset is refused by name.
+#[test]
+fn presets_hold_valid_values_and_apply_them() {
+    use softsculpt::params::presets::{preset, PRESETS};
+    for p in PRESETS {
+        for (id, v) in p.values {
+            let param = params::find(id).unwrap_or_else(|e| panic!("{}: {e}", p.name));
+            assert!(param.check(v).is_ok(), "{}: {id} = {v:?} outside its range", p.name);
+        }
+    }
+    let body = softsculpt::SoftBody::new(&softsculpt::mesh::builtin::icosphere(1, 0.5), 1.0, softsculpt::Material::default()).unwrap();
+    let mut w = softsculpt::World::single(body, softsculpt::WorldSettings::default());
+    w.apply_preset(0, "modeler").unwrap();
+    assert_eq!(w.settings.integrator, softsculpt::Integrator::Implicit);
+    assert_eq!(w.settings.dt, 1.0 / 60.0);
+    assert!(w.settings.ground.is_some());
+    assert!((w.bodies[0].material.nrt() - 30.0).abs() < 1e-12 * 30.0);
+    assert_eq!(w.bodies[0].material.damping, 1.5);
+    let e = w.apply_preset(0, "jelly").unwrap_err().to_string();
+    assert!(e.contains("unknown preset 'jelly'") && e.contains("modeler"), "{e}");
+    assert!(preset("modeler").is_ok());
+}

@@ -3,7 +3,7 @@
 
 import bunny from 'bunny';
 import { World } from './world';
-import { gasAmount, placeOnGround, type ModelName } from '../models';
+import { placeOnGround, type ModelName } from '../models';
 
 /** A built-in model (or the Stanford bunny), standing on y = 0, added to `world`; its index. */
 export function addModel(world: World, name: ModelName): number {
@@ -36,12 +36,6 @@ export function addModel(world: World, name: ModelName): number {
 /** The modeler's step: one backward-Euler step of 1/60 s per frame. */
 export const FRAME_DT = 1 / 60;
 /**
- * The modeler's implicit tolerance (relative residual of a step): measured in the browser at
- * 1e-3, 1e-4 and 1e-6 (BENCHMARKS.md, "The modeler on implicit steps").
- */
-export const MODELER_TOLERANCE = 1e-3;
-
-/**
  * The modeler's default world for body `b`: gravity, ground at y = 0, gas, damping, implicit
  * stepping at dt = 1/60 s (set as the world's dt, returned).
  *
@@ -56,24 +50,14 @@ export const MODELER_TOLERANCE = 1e-3;
  *   vertices, so density per area is fixed; the gas amount is set by a pressure;
  * - bending springs k_b = k: their in-plane share is resolution-independent like the edges';
  *   their resistance to folding falls with the edge length (a measured limit: the subdivided
- *   mushroom keeps its height, see the browser test), which the gas pressure makes up for.
+ *   mushroom keeps its height, see the browser test), which the gas pressure makes up for;
+ * - the implicit tolerance 1e-3 was measured in the browser at 1e-3, 1e-4 and 1e-6
+ *   (BENCHMARKS.md, "The modeler on implicit steps").
  */
 export function useDefaults(world: World, b: number): number {
-  world.setParam(b, 'stiffness', 100);
-  world.setParam(b, 'spring_damping', 0.1);
-  // Bending springs as stiff as the edges: the surface resists folding, so a mushroom's stem
-  // carries its cap instead of buckling.
-  world.setParam(b, 'bending', 100);
-  world.setParam(b, 'damping', 1.5);
-  world.setParam(b, 'gravity', 9.81);
-  world.setParam(b, 'ground', true);
-  world.setParam(b, 'ground.height', 0);
-  world.setParam(b, 'ground.friction', 0.5);
-  world.setParam(b, 'gas.temperature', 300);
-  world.setParam(b, 'gas.amount', gasAmount(30));
-  world.setParam(b, 'integrator', 'implicit');
-  world.setParam(b, 'tolerance', MODELER_TOLERANCE);
-  world.setParam(b, 'dt', FRAME_DT);
+  // The values and why each is what it is: the core's `modeler` preset
+  // (crates/softsculpt/src/params/presets.rs, docs/parameters.md).
+  world.applyPreset(b, 'modeler');
   return FRAME_DT;
 }
 

@@ -230,6 +230,11 @@ export class World {
     this.call((w) => withBytes(encode(id), (ip, il) => withBytes(encode(json), (jp, jl) => raw().ss_set_param(w, b, ip, il, jp, jl))));
   }
 
+  /** Apply a preset of the core's (`modeler`…): its values on body `b` and the world, all or nothing. */
+  applyPreset(b: number, name: string): void {
+    this.call((w) => withBytes(encode(name), (p, n) => raw().ss_apply_preset(w, b, p, n)));
+  }
+
   freeze(b: number, underLoad = false): void { this.call((w) => raw().ss_freeze(w, b, underLoad ? 1 : 0)); }
   reset(b: number): void { this.call((w) => raw().ss_reset(w, b)); }
   /** Loop subdivision of body `b`; returns how many of its pending scene events were dropped. */

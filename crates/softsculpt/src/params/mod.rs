@@ -9,6 +9,7 @@
 //! checking the range with a message that names the parameter and its unit.
 
 mod access;
+pub mod presets;
 pub mod table;
 
 pub use access::choice;
@@ -227,6 +228,20 @@ pub fn markdown() -> String {
         };
         let unit = if p.unit.is_empty() { "–" } else { p.unit };
         out.push_str(&format!("| `{}` | {scope} | {unit} | {} | {valid} | {} |\n", p.id, p.default_text(), p.help));
+    }
+    out.push_str("\n## Presets\n\nNamed sets of values (`crates/softsculpt/src/params/presets.rs`), applied in order.\n\n| preset | values | meaning |\n|---|---|---|\n");
+    for p in presets::PRESETS {
+        let values: Vec<String> = p
+            .values
+            .iter()
+            .map(|(id, v)| match v {
+                Value::Number(x) => format!("`{id}` = {x}"),
+                Value::Vector(x) => format!("`{id}` = {x:?}"),
+                Value::Choice(c) => format!("`{id}` = {c}"),
+                Value::Flag(f) => format!("`{id}` = {f}"),
+            })
+            .collect();
+        out.push_str(&format!("| `{}` | {} | {} |\n", p.name, values.join(", "), p.help));
     }
     out
 }
