@@ -1,6 +1,6 @@
 import { beforeAll, describe, expect, it } from 'vitest';
 import { loadEngine } from './setup';
-import { falloff, facesAround, inflateFactor, targetSpring, vertexNormals, verticesAround } from '../src/tools/brush';
+import { falloff, inflateFactor, targetSpring, vertexNormals, verticesAround } from '../src/tools/brush';
 import { placeOnGround, MODELS } from '../src/models';
 import { addModel, stableDt, useDefaults } from '../src/engine/models';
 import { World } from '../src/engine/world';
@@ -19,13 +19,11 @@ describe('brush maths', () => {
     expect(falloff(0.5, 0)).toBe(0);
   });
 
-  it('selects the vertices and faces inside the brush, weighted', () => {
+  it('selects the vertices inside the brush, weighted', () => {
     const x = [0, 0, 0, 0.5, 0, 0, 2, 0, 0];
     const w = verticesAround(x, [0, 0, 0], 1);
     expect(w.indices).toEqual([0, 1]);
     expect(w.weights[0]).toBe(1);
-    const f = facesAround(x, [0, 1, 2], [0.8, 0, 0], 0.5);
-    expect(f.indices).toEqual([0]); // centroid at x = 0.8333
   });
 
   it('gives a target spring of stiffness m w ω² and critical damping 2 m w ω', () => {

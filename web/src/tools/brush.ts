@@ -23,18 +23,6 @@ export function verticesAround(positions: ArrayLike<number>, centre: [number, nu
   return out;
 }
 
-/** Faces whose centroid lies within `radius` of `centre`, with falloff weights. */
-export function facesAround(positions: ArrayLike<number>, triangles: ArrayLike<number>, centre: [number, number, number], radius: number): Weighted {
-  const out: Weighted = { indices: [], weights: [] };
-  for (let f = 0; f < triangles.length / 3; f++) {
-    const c = [0, 0, 0];
-    for (let k = 0; k < 3; k++) for (let d = 0; d < 3; d++) c[d] += positions[3 * triangles[3 * f + k] + d] / 3;
-    const w = falloff(Math.hypot(c[0] - centre[0], c[1] - centre[1], c[2] - centre[2]), radius);
-    if (w > 0) { out.indices.push(f); out.weights.push(w); }
-  }
-  return out;
-}
-
 /**
  * A tool's target spring on one vertex of mass `mass` under brush weight `weight`, at angular
  * frequency ω (1/s): stiffness m w ω² (N/m) and critical damping 2 m w ω (N·s/m). Scaling with
