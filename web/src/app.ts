@@ -19,6 +19,7 @@ import { GrabTool } from './tools/grab';
 import { PressTool } from './tools/press';
 import { InflateTool, MassTool, PinTool } from './tools/paint';
 import { download, exportShape, type ExportFormat } from './io/export';
+import { askImport } from './io/dialog';
 import { baseName } from './project';
 
 export class App implements ToolContext {
@@ -38,6 +39,7 @@ export class App implements ToolContext {
   private listeners: (() => void)[] = [];
   private lastMessage = '';
   private onReady: (() => void) | null = null;
+  private framedModel = 0;
 
   constructor(canvas: HTMLCanvasElement, plotCanvas: HTMLCanvasElement, hudRoot: HTMLElement, helpText: string, wasmUrl: string) {
     this.viewport = new Viewport(canvas);
@@ -115,11 +117,14 @@ export class App implements ToolContext {
     return Array.isArray(w) ? w : [0, 0, 0];
   }
 
-  /** Download the shape as drawn (the latest frame's positions and triangles). */
+  /** Download the shapes as drawn (every body), in the imported file's units and frame. */
   async export(format: ExportFormat): Promise<void> {
-    const blob = await exportShape(format, this.mirror.positions, this.mirror.triangles);
+    const blob = await exportShape(format, this.mirror.shapes(), undefined, this.mirror.settings.frame);
     download(blob, `${baseName(this.mirror.settings.model)}.${format}`);
   }
+  /** Start or stop recording (io: worker/recorder.ts); export the recording as GLB morph targets. */
+  record(on = !this.mirror.recording): void { this.send({ type: 'record', on }); }
+  exportRecording(): void { this.send({ type: 'exportRecording' }); }
 
   ui(): UiState {
     return { brush: { ...this.brush }, tool: this.tools.tool.name, strengths: Object.fromEntries(this.tools.tools.map((t) => [t.name, t.strength])) };
@@ -155,7 +160,8 @@ export class App implements ToolContext {
         return;
       case 'message': return this.message(r.text, r.kind);
       case 'progress': return this.setBusy(r.label, r.fraction);
-      case 'download': return download(new Blob([r.text], { type: r.mime }), r.filename);
+      case 'download': return download(new Blob([r.bytes ? (r.bytes as Uint8Array<ArrayBuffer>) : r.text], { type: r.mime }), r.filename);
+      case 'importQuestion': void askImport(r.question).then((answer) => this.send({ type: 'importAnswer', answer })); return;
       case 'ui': return this.applyUi(r.ui);
       case 'fatal': this.message(r.text, 'error'); return;
     }
@@ -172,12 +178,15 @@ export class App implements ToolContext {
 
   private applyFrame(f: Frame): void {
     const m = this.mirror;
+    const wasRecording = m.recording !== null;
     const old = m.apply(f);
     if (f.topology) {
       this.viewport.attach(m.triangles, m.springs, m.positions);
       this.viewport.extras.setBodies(m.others);
       this.viewport.extras.setObstacles(m.obstacles);
       this.plots.clear();
+      // A new model (an import keeps its own size): the view frames it.
+      if (f.topology.model !== undefined && f.topology.model !== this.framedModel) { this.framedModel = f.topology.model; this.viewport.frameModel(m.all); }
     } else {
       this.viewport.update(m.positions);
     }
@@ -185,7 +194,7 @@ export class App implements ToolContext {
     if (f.topology || f.body) this.refreshOverlay();
     if (f.params) this.syncScene();
     this.plots.push(m.stats.time, [m.stats.volume, m.stats.pressure, m.stats.kinetic, m.stats.elastic, m.stats.gas]);
-    if (f.topology || f.body || f.params || f.table || f.settings || f.history) this.changed();
+    if (f.topology || f.body || f.params || f.table || f.settings || f.history || (m.recording !== null) !== wasRecording) this.changed();
     if (old) this.drawn = old;
     if (!m.ready) {
       m.ready = true;
@@ -217,7 +226,8 @@ export class App implements ToolContext {
     this.hud.tick();
     if (m.ready) {
       this.hud.show([
-        `${this.hud.fps.toFixed(0)} fps   sim ${m.simMs.toFixed(1)} ms/frame${m.slowMotion ? `   SLOW MOTION (${(m.realTimeFraction * 100).toFixed(0)}% of real time)` : ''}${m.settings.playing ? '' : '   PAUSED'}`,
+        `${this.hud.fps.toFixed(0)} fps   sim ${m.simMs.toFixed(1)} ms/frame${m.slowMotion ? `   SLOW MOTION (${(m.realTimeFraction * 100).toFixed(0)}% of real time)` : ''}${m.settings.playing ? '' : '   PAUSED'}` +
+          (m.recording ? `   ● REC ${m.recording.frames} frames, ${m.recording.seconds.toFixed(1)} s` : ''),
         `${m.vertexCount} vertices   ${m.springCount} springs   ${m.faceCount} faces   tool: ${this.tools.tool.label}`,
         `t ${s.time.toFixed(2)} s   V ${s.volume.toFixed(4)} m³   P ${s.pressure.toFixed(2)} Pa   max speed ${s.maxSpeed.toFixed(3)} m/s`,
         ...(m.scene ? [sceneLine(m.scene)] : []),

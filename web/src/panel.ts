@@ -60,6 +60,9 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   tip(files.add({ f: () => app.export('obj') }, 'f').name('Export OBJ (E)'), 'Download the current shape as OBJ (E)');
   tip(files.add({ f: () => app.export('stl') }, 'f').name('Export STL'), 'Download the current shape as binary STL');
   tip(files.add({ f: () => app.export('glb') }, 'f').name('Export GLB'), 'Download the current shape as glTF binary');
+  // Recording (worker/recorder.ts): the button's label follows the mirror's state.
+  const rec = tip(files.add({ f: () => app.record() }, 'f').name('● Record'), 'Record the bodies while the simulation plays (30 frames per simulated second); press again to stop');
+  tip(files.add({ f: () => app.exportRecording() }, 'f').name('Export recording (GLB)'), 'Download the recording as GLB morph targets (Blender: shape keys), as `softsculpt run --frames` writes');
   tip(files.add({ f: () => app.saveProject() }, 'f').name('Save project (Ctrl+S)'), 'Download a project file: mesh, rest lengths, masses, pins, every parameter');
   tip(files.add({ f: () => actions.openProject() }, 'f').name('Open project (Ctrl+O)'), 'Open a saved project file');
   tip(files.add({ f: () => actions.openScene() }, 'f').name('Open scene…'),
@@ -108,6 +111,11 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
       paramsBuilt = true;
     }
     takeParams(p, app.mirror.params);
+    // An open surface (cloth-like) has no gas: its controls stay off, the folder says why.
+    const closed = app.mirror.closed;
+    gas.title(closed ? 'Gas' : 'Gas — off: open surface (cloth-like)');
+    for (const c of gas.controllers) if (typeof c.property === 'string' && c.property.startsWith('gas.')) c.enable(closed);
+    rec.name(app.mirror.recording ? '■ Stop recording' : '● Record');
     gravity.on = g() !== 0;
     if (g() !== 0) gravity.last = g();
     if (view.tool !== app.tools.tool.name) showStrength();

@@ -196,7 +196,7 @@ pub extern "C" fn ss_workload(level: u32) -> i32 {
     })
 }
 
-fn add(w: u32, mesh: &TriMesh, mass: f64, warnings: &[String]) -> Res<usize> {
+pub(crate) fn add(w: u32, mesh: &TriMesh, mass: f64, warnings: &[String]) -> Res<usize> {
     with_world(w, |h| {
         let body = SoftBody::new(mesh, mass, Material::default()).map_err(body_fail)?;
         set_result(serde_json::to_vec(warnings).unwrap_or_default());

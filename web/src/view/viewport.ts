@@ -67,13 +67,46 @@ export class Viewport {
     this.controls.handleResize();
   }
 
+  /** Where `resetView` puts the camera and what it looks at (moved by `frameModel`). */
+  private home = HOME.clone();
+  private homeTarget = TARGET.clone();
+
   resetView(): void {
-    this.camera.position.copy(HOME);
+    this.camera.position.copy(this.home);
     this.camera.up.set(0, 1, 0);
-    this.controls.target.copy(TARGET);
+    this.controls.target.copy(this.homeTarget);
     this.controls.addEventListener('change', () => this.invalidate());
-    this.camera.lookAt(TARGET);
+    this.camera.lookAt(this.homeTarget);
     this.controls.update();
+  }
+
+  /**
+   * Frame a new model (xyz of every vertex, m) at whatever size it is: the camera looks at its
+   * middle from the home direction, as far as the default view is from a 2.5 m model (so the
+   * built-in models open as before); near/far planes, zoom limits, the ground grid's extent and
+   * spacing (a power of ten) follow its size.
+   */
+  frameModel(positions: ArrayLike<number>): void {
+    const box = new THREE.Box3();
+    const v = new THREE.Vector3();
+    for (let i = 0; i + 2 < positions.length; i += 3) box.expandByPoint(v.set(positions[i], positions[i + 1], positions[i + 2]));
+    if (box.isEmpty()) return;
+    const size = box.getSize(new THREE.Vector3()).length();
+    if (!(size > 0) || !Number.isFinite(size)) return;
+    const k = size / 2.5;
+    const center = box.getCenter(new THREE.Vector3());
+    this.homeTarget.set(center.x, box.min.y + k * TARGET.y, center.z);
+    this.home.copy(HOME).sub(TARGET).multiplyScalar(k).add(this.homeTarget);
+    this.camera.near = 0.004 * k;
+    this.camera.far = 80 * k;
+    this.camera.updateProjectionMatrix();
+    this.controls.minDistance = 0.05 * k;
+    this.controls.maxDistance = 40 * k;
+    const grid = Math.pow(10, Math.round(Math.log10(k)));
+    this.grid.scale.setScalar(grid);
+    this.groundPlane.scale.setScalar(grid);
+    this.resetView();
+    this.invalidate();
   }
 
   /** Point the surface and the springs at a (new) mesh: its triangles, springs and positions. */

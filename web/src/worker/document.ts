@@ -16,8 +16,9 @@ import { notConverged, stepSplitting } from './split';
 import { History, travel } from '../history';
 import { parse, ProjectError, serialize } from '../project';
 import type { Autosave, AutosaveRecord } from '../storage';
-import { MODELS, placeOnGround, type ModelName } from '../models';
-import { importModel } from '../io/import';
+import { MODELS, type ModelName } from '../models';
+import { isClosed, type ImportAnswer, type ImportFrame, type ImportQuestion } from '../io/import';
+import { Importer } from './importer';
 import type { MessageKind, SceneInfo, Settings, Stats, Topology, UiState, Vec3 } from '../protocol';
 import { makeStroke, type Stroke, type StrokeBody, type StrokeStart } from './strokes';
 
@@ -41,6 +42,8 @@ export interface DocumentHooks {
   changed(): void;
   /** An opened project brought the page's state. */
   ui(ui: Partial<UiState>): void;
+  /** An imported file needs the user's answers (up axis, pieces): `importAnswer` brings them. */
+  ask?(q: ImportQuestion): void;
 }
 
 /** Load the engine (the wasm module's bytes, or its URL). */
@@ -55,7 +58,7 @@ export class Document {
   /** The open scene, if any (its first body is the active body). */
   private session: SceneSource | null = null;
   readonly history = new History<Entry>({ limit: HISTORY_STEPS, maxBytes: HISTORY_BYTES, size: (e) => e.delta.byteLength });
-  readonly settings: Settings = { dt: 1e-3, substeps: 16, realTime: true, playing: true, model: 'mushroom' };
+  readonly settings: Settings = { dt: 1e-3, substeps: 16, realTime: true, playing: true, model: 'mushroom', frame: null };
   ui: UiState = { brush: { radius: 0.35 }, tool: 'grab', strengths: {} };
   private stroke: Stroke | null = null;
   private strokeScope: DeltaScope = 'all';
@@ -66,7 +69,13 @@ export class Document {
   /** Bumped when masses or pins may have changed. */
   bodyVersion = 0;
 
-  constructor(private readonly hooks: DocumentHooks) {}
+  /** Bumped when a new model replaces the old one (the page frames its view on it). */
+  modelVersion = 0;
+  readonly importer: Importer;
+
+  constructor(private readonly hooks: DocumentHooks) {
+    this.importer = new Importer(this, { message: hooks.message, progress: hooks.progress, ask: (q) => hooks.ask?.(q) });
+  }
 
   get loaded(): boolean { return this.w !== null && this.w.bodyCount > 0; }
   /** The engine world (for tests and the service; operations go through the methods below). */
@@ -117,7 +126,8 @@ export class Document {
     const w = this.world, b = w.body(0);
     const others = [];
     for (let i = 1; i < w.bodyCount; i++) others.push({ vertexCount: w.body(i).vertexCount, triangles: w.body(i).triangles.slice() });
-    return { vertexCount: b.vertexCount, triangles: b.triangles.slice(), springs: b.springs.slice(), others, obstacles: w.obstacles() };
+    const triangles = b.triangles.slice();
+    return { vertexCount: b.vertexCount, triangles, springs: b.springs.slice(), others, obstacles: w.obstacles(), model: this.modelVersion, closed: isClosed(triangles) };
   }
   bodyData(): { masses: Float64Array; pinned: Uint8Array } {
     this.synced();
@@ -146,12 +156,26 @@ export class Document {
     this.loadBuiltin('mushroom', false);
   }
 
-  /** A fresh world: no bodies, no scene, no obstacles, the table's defaults. */
-  private fresh(): void {
+  /** A fresh world: no bodies, no scene, no obstacles, the table's defaults, a new model. */
+  fresh(): void {
     this.world.clear();
     this.world.restore(this.empty!);
     this.session = null;
+    this.settings.frame = null;
+    this.modelVersion++;
   }
+
+  /** A model built in the world (an import): its name, the settings from the world's dt, its file's frame. */
+  adopt(model: string, frame: ImportFrame): void {
+    this.splitFrames = 0;
+    this.settings.dt = this.world.params(0).dt as number;
+    this.settings.substeps = Math.max(1, Math.round(1 / 60 / this.settings.dt));
+    this.settings.model = model;
+    this.settings.frame = frame;
+  }
+
+  /** Tell the page new tool state (the brush radius fitted to an imported model). */
+  hooksUi(ui: Partial<UiState>): void { this.hooks.ui(ui); }
 
   private useDefaults(model: string): void {
     const dt = useDefaults(this.world, 0);
@@ -179,32 +203,10 @@ export class Document {
     });
   }
 
-  async importFile(name: string, data: ArrayBuffer): Promise<void> {
-    this.hooks.progress(`importing ${name}`);
-    const scratch = World.create();
-    try {
-      const imported = await importModel(name, data);
-      if (imported.kind === 'obj') scratch.addObj(imported.bytes); else scratch.addMesh(imported.positions, imported.indices);
-      const read = scratch.body(0);
-      const placed = placeOnGround(read.positions.slice(), 2.5);
-      const triangles = read.triangles.slice();
-      const warnings = scratch.warnings;
-      const ok = this.edit(`import ${name}`, true, () => {
-        this.fresh();
-        this.world.addMesh(placed.positions, triangles, 1, false);
-        this.useDefaults(name);
-      });
-      if (!ok) return;
-      const b = this.world.body(0);
-      this.hooks.message(`imported ${name}: ${b.vertexCount} vertices, ${b.faceCount} faces (scaled ×${placed.scale.toPrecision(3)} to fit)`);
-      if (warnings.length) this.hooks.message(warnings.join('\n'), 'warn');
-    } catch (e) {
-      this.hooks.message(`could not import ${name}: ${errorText(e)} — the current model is unchanged`, 'error');
-    } finally {
-      scratch.free();
-      this.hooks.progress(null);
-    }
-  }
+  /** Read a model file; the page is asked what the file does not say (`importAnswer`). */
+  importFile(name: string, data: ArrayBuffer): void { this.importer.read(name, data); }
+  /** The page's answers for the file waiting (null: cancelled). */
+  importAnswer(a: ImportAnswer | null): void { this.importer.answer(a); }
 
   // ----- editing and undo -----------------------------------------------------------------------
 
@@ -435,6 +437,8 @@ export class Document {
     const ok = this.edit(`open ${name}`, true, () => {
       opened = this.world.openScene(text, files);
       this.session = { name, text, files, duration: opened.duration };
+      this.settings.frame = null;
+      this.modelVersion++;
       this.settings.dt = opened.dt;
       this.settings.substeps = Math.max(1, Math.round(1 / 60 / opened.dt));
       this.settings.model = name;
@@ -511,6 +515,7 @@ export class Document {
     if (typeof u.playing === 'boolean') this.settings.playing = u.playing;
     if (typeof u.realTime === 'boolean') this.settings.realTime = u.realTime;
     this.settings.model = name;
+    this.settings.frame = validFrame(u.frame);
     const page: Partial<UiState> = {};
     if (u.brush && typeof u.brush.radius === 'number') page.brush = { radius: u.brush.radius };
     if (typeof u.tool === 'string') page.tool = u.tool;
@@ -527,6 +532,13 @@ export class Document {
       this.hooks.message(`could not open ${name}: ${errorText(e)} — the current model is unchanged`, 'error');
     }
   }
+}
+
+/** An import frame from a project file, if it is one. */
+function validFrame(f: unknown): ImportFrame | null {
+  const x = f as ImportFrame | null | undefined;
+  if (!x || (x.up !== 'y' && x.up !== 'z') || !Array.isArray(x.offset) || x.offset.length !== 3 || !x.offset.every(Number.isFinite)) return null;
+  return { up: x.up, offset: [x.offset[0], x.offset[1], x.offset[2]] };
 }
 
 function fmt(t: number | undefined): string {
