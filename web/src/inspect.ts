@@ -23,6 +23,8 @@ export function inspector(app: App) {
   return {
     get ready() { return m.ready; },
     vertexCount: () => m.vertexCount,
+    /** Bodies drawn: the active one and the others (a scene's, an import's pieces). */
+    bodies: () => 1 + m.others.length,
     faceCount: () => m.faceCount,
     springCount: () => m.springCount,
     positions: () => Array.from(m.positions),

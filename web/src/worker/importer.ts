@@ -64,6 +64,7 @@ export class Importer {
     const area = chosen.reduce((s, k) => s + p.areas[k], 0);
     let gasless = 0;
     const w = this.doc.world;
+    this.hooks.progress(`importing ${p.name}`);
     const ok = this.doc.edit(`import ${p.name}`, true, () => {
       this.doc.fresh();
       chosen.forEach((k, i) => {
@@ -86,7 +87,7 @@ export class Importer {
       a.up === 'z' ? 'turned from Z-up to Y-up' : '',
       q.pieces.length > 1 ? (n > 1 ? `${n} pieces as ${n} bodies` : `the largest of ${q.pieces.length} pieces`) : '',
       gasless ? `${gasless === n ? '' : `${gasless} of ${n} bodies `}cloth-like (an open surface): no gas` : '',
-      w.params(0).dt !== FRAME_DT ? `steps of ${(w.params(0).dt as number).toPrecision(2)} s (finer for its size)` : '',
+      (w.params(0).dt as number) < FRAME_DT / 1.5 ? `steps of ${(w.params(0).dt as number).toPrecision(2)} s (finer for its small size)` : '',
     ];
     this.hooks.message(parts.filter(Boolean).join('; '));
     if (p.warnings.length) this.hooks.message(p.warnings.join('\n'), 'warn');
