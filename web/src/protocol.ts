@@ -33,6 +33,8 @@ export interface Settings {
   playing: boolean;
   /** Name of the model, file or scene (used for file names). */
   model: string;
+  /** Send each vertex's strain with the frames (the strain view). */
+  strain?: boolean;
 }
 
 /** What the page keeps in a project file besides the body: brush, tool, tool strengths. */
@@ -40,6 +42,8 @@ export interface UiState {
   brush: { radius: number };
   tool: string;
   strengths: Record<string, number>;
+  /** Mirror symmetry axes (X, Y, Z) for the tools. */
+  symmetry?: [boolean, boolean, boolean];
 }
 
 /** The tools whose strokes act on the body (see worker/strokes.ts). */
@@ -84,9 +88,15 @@ export type Command =
    * press the faces, the brushes paint the vertices. `strength` in the tool's unit; `inverted`:
    * Shift (deflate, lighter, unpin). One undo entry per stroke.
    */
-  | { type: 'strokeStart'; tool: StrokeTool; point: Vec3; radius: number; strength: number; inverted: boolean }
+  | {
+    type: 'strokeStart'; tool: StrokeTool; point: Vec3; radius: number; strength: number; inverted: boolean;
+    /** Mirror symmetry: the axes and the plane's centre (m); the stroke acts at the mirror images too. */
+    mirror?: { axes: [boolean, boolean, boolean]; centre: Vec3 };
+    /** Pen pressure in (0, 1] scaling the strength (absent: 1, a mouse). */
+    pressure?: number;
+  }
   /** Grab: the cursor's point on the grab plane; press and brushes: the brush centre (null: off the body). */
-  | { type: 'strokeMove'; point: Vec3 | null; inverted: boolean }
+  | { type: 'strokeMove'; point: Vec3 | null; inverted: boolean; pressure?: number }
   | { type: 'strokeEnd' }
   /** A frame's position buffer, drawn and handed back (transferred). */
   | { type: 'returnBuffer'; buffer: ArrayBuffer }
@@ -127,6 +137,8 @@ export interface Frame {
   settings?: Settings;
   /** Undo and redo stack sizes, when they changed. */
   history?: [number, number];
+  /** With `settings.strain`: each vertex's mean spring strain l / L − 1 (active body). */
+  strain?: Float32Array;
 }
 
 export type Reply =
