@@ -25,7 +25,7 @@ test('the default model renders: the mushroom on the ground, pixels not uniform'
   await page.context().close();
 });
 
-test('a trackball drag on empty space turns the view', async () => {
+test('a drag on empty space turns the view', async () => {
   const { page } = await openModeler(suite.browser, suite.server.url);
   const before = await inspect(page, () => window.softsculpt.camera());
   await drag(page, { x: 150, y: 300 }, { x: 400, y: 350 });

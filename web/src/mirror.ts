@@ -41,6 +41,8 @@ export class Mirror implements BodyView {
   closed = true;
   /** A recording under way, or null. */
   recording: Recording | null = null;
+  /** Each vertex's strain l / L − 1 (when the strain view is on), else empty. */
+  strain: Float32Array = new Float32Array(0);
 
   get vertexCount(): number { return this.positions.length / 3; }
   get faceCount(): number { return this.triangles.length / 3; }
@@ -66,6 +68,7 @@ export class Mirror implements BodyView {
     if (f.table) this.table = f.table;
     if (f.settings) Object.assign(this.settings, f.settings);
     if (f.history) this.history = f.history;
+    this.strain = f.strain ?? new Float32Array(0);
     this.stats = f.stats;
     this.simMs = f.simMs;
     this.slowMotion = f.slowMotion;

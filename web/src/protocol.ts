@@ -36,6 +36,8 @@ export interface Settings {
   model: string;
   /** An imported model's frame: how the file's coordinates became the engine's (exports go back); null otherwise. */
   frame?: ImportFrame | null;
+  /** Send each vertex's strain with the frames (the strain view). */
+  strain?: boolean;
 }
 
 /** What the page keeps in a project file besides the body: brush, tool, tool strengths. */
@@ -43,6 +45,8 @@ export interface UiState {
   brush: { radius: number };
   tool: string;
   strengths: Record<string, number>;
+  /** Mirror symmetry axes (X, Y, Z) for the tools. */
+  symmetry?: [boolean, boolean, boolean];
 }
 
 /** The tools whose strokes act on the body (see worker/strokes.ts). */
@@ -93,9 +97,15 @@ export type Command =
    * press the faces, the brushes paint the vertices. `strength` in the tool's unit; `inverted`:
    * Shift (deflate, lighter, unpin). One undo entry per stroke.
    */
-  | { type: 'strokeStart'; tool: StrokeTool; point: Vec3; radius: number; strength: number; inverted: boolean }
+  | {
+    type: 'strokeStart'; tool: StrokeTool; point: Vec3; radius: number; strength: number; inverted: boolean;
+    /** Mirror symmetry: the axes and the plane's centre (m); the stroke acts at the mirror images too. */
+    mirror?: { axes: [boolean, boolean, boolean]; centre: Vec3 };
+    /** Pen pressure in (0, 1] scaling the strength (absent: 1, a mouse). */
+    pressure?: number;
+  }
   /** Grab: the cursor's point on the grab plane; press and brushes: the brush centre (null: off the body). */
-  | { type: 'strokeMove'; point: Vec3 | null; inverted: boolean }
+  | { type: 'strokeMove'; point: Vec3 | null; inverted: boolean; pressure?: number }
   | { type: 'strokeEnd' }
   /** A frame's position buffer, drawn and handed back (transferred). */
   | { type: 'returnBuffer'; buffer: ArrayBuffer }
@@ -113,8 +123,6 @@ export interface Topology {
   /** A scene's other bodies, in order; their positions follow the active body's in the frame buffer. */
   others: { vertexCount: number; triangles: Uint32Array }[];
   obstacles: Obstacle[];
-  /** Bumped when a new model replaced the old one (the view frames it). */
-  model?: number;
   /** The active body's surface is closed (an open one, cloth-like, has no gas). */
   closed?: boolean;
 }
@@ -145,6 +153,8 @@ export interface Frame {
   history?: [number, number];
   /** A recording under way (absent: none). */
   recording?: Recording;
+  /** With `settings.strain`: each vertex's mean spring strain l / L − 1 (active body). */
+  strain?: Float32Array;
 }
 
 export type Reply =

@@ -160,7 +160,7 @@ describe('worker service', () => {
     await h.send({ type: 'settings', patch: { dt: 0.005 } });
     for (let i = 0; i < 50 && h.service.doc.settings.playing; i++) { const f = h.tick(100); if (f) h.giveBack(f); }
     expect(h.service.doc.settings.playing).toBe(false);
-    expect(h.messages().at(-1)).toMatch(/rolled back.*Paused/);
+    expect(h.messages().at(-1)).toMatch(/at t = [0-9.]+ s.*It was put back to t = [0-9.]+ s and paused/);
     const f = h.frames().at(-1)!;
     expect(f.settings!.playing).toBe(false);
     expect(f.positions.every(Number.isFinite)).toBe(true);

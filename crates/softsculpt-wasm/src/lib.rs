@@ -11,7 +11,8 @@
 //!   `{"kind": K, "message": "…", …}` with K one of `mesh`, `parameter`, `step`, `snapshot`,
 //!   `scene`, `delta`, `project`, `usage`, and optional fields: `parameter` and `unit`
 //!   (parameter errors), `time` (s), `step`, `line` and `rolled_back_to` (s) (step errors;
-//!   `converged: false` when an implicit step did not converge: a shorter step may succeed),
+//!   `converged: false` when an implicit step did not converge: a shorter step may succeed;
+//!   `cause`: `non_finite`, `collapsed` (with the gas `volume`, m³) or `not_converged`),
 //!   `line` and `key` (scene errors). The error slot holds only errors.
 //! - **Results** (`ss_result_ptr`/`ss_result_len`): data a call returns — JSON, TOML, snapshot
 //!   or delta bytes, load warnings — valid until the next call that writes a result.

@@ -10,9 +10,9 @@
 // are limited to HISTORY_STEPS and HISTORY_BYTES in all, the oldest dropped first.
 
 import { initEngine } from '../engine/wasm';
-import { EngineError, World, type DeltaScope, type ParamInfo, type ParamValue } from '../engine/world';
+import { World, type DeltaScope, type ParamInfo, type ParamValue } from '../engine/world';
 import { addModel, dtFor, stableDt, useDefaults } from '../engine/models';
-import { notConverged, stepSplitting } from './split';
+import { stepSplitting } from './split';
 import { History, travel } from '../history';
 import { parse, ProjectError, serialize } from '../project';
 import type { Autosave, AutosaveRecord } from '../storage';
@@ -21,6 +21,7 @@ import { isClosed, type ImportAnswer, type ImportFrame, type ImportQuestion } fr
 import { Importer } from './importer';
 import type { MessageKind, SceneInfo, Settings, Stats, Topology, UiState, Vec3 } from '../protocol';
 import { makeStroke, type Stroke, type StrokeBody, type StrokeStart } from './strokes';
+import { explainStop, type Change } from './explain';
 
 export const HISTORY_STEPS = 200;
 export const HISTORY_BYTES = 512 * 1024 * 1024;
@@ -68,9 +69,13 @@ export class Document {
   topologyVersion = 0;
   /** Bumped when masses or pins may have changed. */
   bodyVersion = 0;
+  /** The simulation paused itself on a failure (a new model plays again). */
+  pausedByError = false;
+  /** Parameters the user changed on this model, with the simulated time (to name a failure's likely cause). */
+  private changes: Change[] = [];
+  /** Part of the body was below the ground when it was last switched on. */
+  private groundUnderBody = false;
 
-  /** Bumped when a new model replaces the old one (the page frames its view on it). */
-  modelVersion = 0;
   readonly importer: Importer;
 
   constructor(private readonly hooks: DocumentHooks) {
@@ -127,13 +132,32 @@ export class Document {
     const others = [];
     for (let i = 1; i < w.bodyCount; i++) others.push({ vertexCount: w.body(i).vertexCount, triangles: w.body(i).triangles.slice() });
     const triangles = b.triangles.slice();
-    return { vertexCount: b.vertexCount, triangles, springs: b.springs.slice(), others, obstacles: w.obstacles(), model: this.modelVersion, closed: isClosed(triangles) };
+    return { vertexCount: b.vertexCount, triangles, springs: b.springs.slice(), others, obstacles: w.obstacles(), closed: isClosed(triangles) };
   }
   bodyData(): { masses: Float64Array; pinned: Uint8Array } {
     this.synced();
     const b = this.world.body(0);
     return { masses: b.masses.slice(), pinned: b.pinned.slice() };
   }
+  /**
+   * Each vertex's strain: the mean over its springs of l / L − 1 (l the current length, L the
+   * rest length; > 0 stretched, < 0 compressed), what would spring back if released.
+   */
+  strain(): Float32Array {
+    const b = this.world.body(0), x = b.positions, e = b.springs, rest = b.rest;
+    const n = b.vertexCount, sum = new Float64Array(n), count = new Uint32Array(n);
+    for (let k = 0; k < rest.length; k++) {
+      const i = 3 * e[2 * k], j = 3 * e[2 * k + 1];
+      const l = Math.hypot(x[i] - x[j], x[i + 1] - x[j + 1], x[i + 2] - x[j + 2]);
+      const s = rest[k] > 0 ? l / rest[k] - 1 : 0;
+      sum[e[2 * k]] += s; count[e[2 * k]]++;
+      sum[e[2 * k + 1]] += s; count[e[2 * k + 1]]++;
+    }
+    const out = new Float32Array(n);
+    for (let i = 0; i < n; i++) out[i] = count[i] ? sum[i] / count[i] : 0;
+    return out;
+  }
+
   /** Every parameter of the active body and the world, by the table's ids. */
   params(): Record<string, ParamValue | null> { return this.world.params(0); }
   /** The engine's parameter table (ids, units, ranges, help). */
@@ -156,13 +180,12 @@ export class Document {
     this.loadBuiltin('mushroom', false);
   }
 
-  /** A fresh world: no bodies, no scene, no obstacles, the table's defaults, a new model. */
+  /** A fresh world: no bodies, no scene, no obstacles, the table's defaults. */
   fresh(): void {
     this.world.clear();
     this.world.restore(this.empty!);
     this.session = null;
     this.settings.frame = null;
-    this.modelVersion++;
   }
 
   /** A model built in the world (an import): its name, the settings from the world's dt, its file's frame. */
@@ -178,6 +201,8 @@ export class Document {
   hooksUi(ui: Partial<UiState>): void { this.hooks.ui(ui); }
 
   private useDefaults(model: string): void {
+    this.changes = [];
+    if (this.pausedByError) { this.pausedByError = false; this.settings.playing = true; }
     const dt = useDefaults(this.world, 0);
     this.splitFrames = 0;
     this.settings.dt = dt;
@@ -248,7 +273,9 @@ export class Document {
 
   /** Change a parameter by its table id (undoable); a refused value is reported and leaves the old one. */
   setParam(id: string, value: ParamValue): boolean {
+    if (id === 'ground' && value === true) this.groundUnderBody = this.belowGround();
     const ok = this.edit(`set ${id}`, true, () => this.world.setParam(0, id, value), 'none');
+    if (ok) this.changes = [...this.changes.slice(-7), { id, value, time: this.stats().time }];
     if (ok && id === 'dt') this.settings.dt = value as number;
     // Another integrator gets a step it is stable at: 1/60 s implicit, else the explicit limit.
     if (ok && id === 'integrator') {
@@ -260,6 +287,15 @@ export class Document {
   }
 
   setMass(total: number): void { this.setParam('mass', total); }
+
+  /** Whether some vertex of the active body is below the ground's height. */
+  private belowGround(): boolean {
+    const h = this.world.params(0)['ground.height'];
+    const x = this.world.body(0).positions;
+    if (typeof h !== 'number') return false;
+    for (let i = 1; i < x.length; i += 3) if (x[i] < h - 1e-9) return true;
+    return false;
+  }
 
   /** Wind along `direction` at `strength` m/s (0: calm); undoable. */
   wind(direction: Vec3, strength: number): void {
@@ -355,7 +391,10 @@ export class Document {
     this.stroke.start(this.strokeBody());
     if (this.stroke.paintsBodyData) this.bodyVersion++;
   }
-  strokeMove(point: Vec3 | null, inverted: boolean): void { this.stroke?.move(point, inverted, this.strokeBody()); }
+  strokeMove(point: Vec3 | null, inverted: boolean, pressure?: number): void {
+    this.stroke?.press(pressure);
+    this.stroke?.move(point, inverted, this.strokeBody());
+  }
   strokeEnd(): void {
     if (!this.stroke) return;
     const stroke = this.stroke;
@@ -400,14 +439,12 @@ export class Document {
       return true;
     } catch (e) {
       this.settings.playing = false;
-      if (notConverged(e)) {
-        this.hooks.message(`an implicit step did not converge even as 8 steps of dt/8 (${errorText(e)}). Paused.`, 'error');
-      } else if (e instanceof EngineError && e.kind === 'step') {
-        this.hooks.message(`the simulation blew up at t = ${fmt(e.time)} s; the whole world was rolled back to t = ${fmt(e.rolledBackTo)} s. Paused. ` +
-          `Try a smaller dt (now ${this.settings.dt} s), more damping, or another integrator.`, 'error');
-      } else {
-        this.hooks.message(`${errorText(e)}. Paused.`, 'error');
-      }
+      this.pausedByError = true;
+      const integrator = String(this.world.params(0).integrator);
+      this.hooks.message(explainStop(e, {
+        integrator, dt: this.settings.dt, changes: this.changes, groundUnderBody: this.groundUnderBody,
+        stableDt: integrator === 'implicit' ? undefined : stableDt(this.world, 0),
+      }), 'error');
       return false;
     }
   }
@@ -438,14 +475,17 @@ export class Document {
       opened = this.world.openScene(text, files);
       this.session = { name, text, files, duration: opened.duration };
       this.settings.frame = null;
-      this.modelVersion++;
       this.settings.dt = opened.dt;
       this.settings.substeps = Math.max(1, Math.round(1 / 60 / opened.dt));
       this.settings.model = name;
+      // A scene opens paused at t = 0, so its first events are seen when the user plays it.
+      this.settings.playing = false;
+      this.pausedByError = false;
+      this.changes = [];
     }, 'all', (why) => `could not open ${name}: ${why} — the current model is unchanged`);
     if (!ok) return false;
     const n = opened.names.length;
-    this.hooks.message(`opened scene ${name}: ${n} ${n === 1 ? 'body' : 'bodies'}, ${opened.duration} s of events — play to run it`);
+    this.hooks.message(`opened scene ${name}: ${n} ${n === 1 ? 'body' : 'bodies'}, ${opened.duration} s of events — paused at t = 0; Space plays it`);
     return true;
   }
 

@@ -98,7 +98,7 @@ export class Service {
       case 'wind': return doc.wind(cmd.direction, cmd.strength);
       case 'settings': return this.settings(cmd.patch);
       case 'strokeStart': return doc.strokeStart(cmd);
-      case 'strokeMove': return doc.strokeMove(cmd.point, cmd.inverted);
+      case 'strokeMove': return doc.strokeMove(cmd.point, cmd.inverted, cmd.pressure);
       case 'strokeEnd': return doc.strokeEnd();
     }
   }
@@ -126,7 +126,8 @@ export class Service {
     if (typeof patch.dt === 'number' && Number.isFinite(patch.dt) && patch.dt > 0) this.doc.setDt(patch.dt);
     if (typeof patch.substeps === 'number' && patch.substeps >= 1) s.substeps = Math.round(patch.substeps);
     if (typeof patch.realTime === 'boolean') s.realTime = patch.realTime;
-    if (typeof patch.playing === 'boolean') s.playing = patch.playing;
+    if (typeof patch.playing === 'boolean') { s.playing = patch.playing; this.doc.pausedByError = false; }
+    if (typeof patch.strain === 'boolean') s.strain = patch.strain;
     this.autosave();
   }
 
