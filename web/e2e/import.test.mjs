@@ -18,6 +18,8 @@ async function pick(page, file) {
   await page.locator('input[data-picker=import]').setInputFiles(file);
   await page.waitForSelector('.import-dialog', { timeout: 15000 });
 }
+/** The model named `name` is the one drawn (its first frame has arrived). */
+const drawn = (page, name) => page.waitForFunction((n) => window.softsculpt.settings().model === n, name, { timeout: 15000 });
 /** Every message the page showed so far (text and kind), from the HUD. */
 const shown = (page) => page.evaluate(() => Array.from(document.querySelectorAll('#hud .message, .message')).map((m) => ({ text: m.textContent, kind: m.className })));
 const extent = (x, d) => { let lo = Infinity, hi = -Infinity; for (let i = d; i < x.length; i += 3) { lo = Math.min(lo, x[i]); hi = Math.max(hi, x[i]); } return [lo, hi]; };
@@ -28,9 +30,11 @@ test('an open cloth-like mesh loads without gas, says so, and the gas controls a
   assert.match(await page.locator('.import-dialog').innerText(), /open \(cloth-like\)/);
   await shot(page, 'import-01-cloth-dialog');
   await page.keyboard.press('Enter');
-  await page.waitForFunction(() => window.softsculpt.vertexCount() === 289);
+  await drawn(page, 'cloth.obj');
+  assert.equal(await inspect(page, () => window.softsculpt.vertexCount()), 289);
   assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /imported cloth\.obj.*cloth-like \(an open surface\): no gas/);
   assert.deepEqual((await shown(page)).filter((m) => /error/.test(m.kind)), [], 'no error shown');
+  assert.ok((await shown(page)).some((m) => /cloth-like/.test(m.text)), 'the cloth-like report stays on screen with the new model');
   assert.equal(await inspect(page, () => window.softsculpt.param('gas.nrt')), 0);
   // The gas folder says why its controls are off, and they are.
   const gas = page.locator('.lil-gui', { has: page.locator(':scope > .lil-title', { hasText: 'Gas — off: open surface (cloth-like)' }) });
@@ -52,7 +56,7 @@ test('a file of two shells: the dialog counts them; largest only, or one body pe
   await page.locator('.import-dialog input[value=largest]').check();
   await shot(page, 'import-03-pieces-dialog');
   await page.locator('.import-dialog button[type=submit]').click();
-  await page.waitForFunction(() => /imported two-shells/.test(window.softsculpt.lastMessage()));
+  await drawn(page, 'two-shells.obj');
   assert.equal(await inspect(page, () => window.softsculpt.bodies()), 1);
   assert.equal(await inspect(page, () => window.softsculpt.vertexCount()), 42); // the 0.5 m ball (an icosphere of 42 vertices)
   // Again, one body per piece.
@@ -78,7 +82,7 @@ test('a Z-up STL stands upright at its own size, fills the view, and its export 
   assert.equal(await page.locator('.import-dialog input[value=z]').isChecked(), true, 'Z-up offered first');
   await shot(page, 'import-05-up-dialog');
   await page.keyboard.press('Enter');
-  await page.waitForFunction(() => /imported zup-tower/.test(window.softsculpt.lastMessage()));
+  await drawn(page, 'zup-tower.stl');
   assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /turned from Z-up to Y-up/);
   await page.waitForTimeout(1500);
   // Upright, 0.1 m tall as in the file (the file's z), not rescaled to 2.5 m.
@@ -99,7 +103,7 @@ test('a Z-up STL stands upright at its own size, fills the view, and its export 
   // Re-imported: the same size (×1.00, not ×0.71).
   await pick(page, path);
   await page.keyboard.press('Enter');
-  await page.waitForFunction(() => /imported tower-export/.test(window.softsculpt.lastMessage()));
+  await drawn(page, 'tower-export.stl');
   const y = await inspect(page, () => window.softsculpt.positions());
   const [ylo, yhi] = extent(y, 1);
   assert.ok(Math.abs((yhi - ylo) / (hi - lo) - 1) < 0.02, `re-imported height ${yhi - ylo} m vs ${hi - lo} m`);
@@ -108,7 +112,7 @@ test('a Z-up STL stands upright at its own size, fills the view, and its export 
   const glbPath = join(tmpdir(), 'tower-export.glb');
   await glb.saveAs(glbPath);
   await page.locator('input[data-picker=import]').setInputFiles(glbPath);
-  await page.waitForFunction(() => /imported tower-export\.glb/.test(window.softsculpt.lastMessage()));
+  await drawn(page, 'tower-export.glb');
   assert.equal(await page.locator('.import-dialog').count(), 0, 'no dialog: glTF says Y is up');
   const g = await inspect(page, () => window.softsculpt.positions());
   const [glo, ghi] = extent(g, 1);
