@@ -238,6 +238,18 @@ describe('importing', () => {
     expect(x.every(Number.isFinite)).toBe(true);
   });
 
+  it('a cancelled import leaves the model as it was; an answer with nothing waiting says so', async () => {
+    const h = await started();
+    await h.send({ type: 'import', name: 'cloth.obj', data: bytes(sheetObj(4, 1)) });
+    await h.send({ type: 'importAnswer', answer: null });
+    expect(h.messages().at(-1)).toBe('import of cloth.obj cancelled — the current model is unchanged');
+    expect(h.service.doc.vertexCount).toBe(362);
+    expect(h.service.doc.history.sizes).toEqual([0, 0]);
+    await h.send({ type: 'importAnswer', answer: { up: 'y', pieces: 'each' } });
+    expect(h.messages().at(-1)).toBe('no import is waiting for an answer');
+    expect(h.service.doc.vertexCount).toBe(362);
+  });
+
   it('two shells: one body per piece with masses by area, or the largest only', async () => {
     const h = await started();
     const file = cubeObj(1, -2, 0) + '\n' + cubeObj(0.5, 2, 8);
