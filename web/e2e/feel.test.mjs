@@ -257,3 +257,44 @@ test('the strain view colours the stretch of a grab and fades back to white', as
   assert.deepEqual(errors, []);
   await page.context().close();
 });
+
+test('a pen\'s pressure scales the press: a light touch dents less than a firm one', async () => {
+  const { page, errors } = await openModeler(suite.browser, suite.server.url);
+  await load(page, 'sphere');
+  await page.keyboard.press('p');
+  const top = await topVertex(page);
+  const at = { x: top.screen.x, y: top.screen.y + 40 };
+  /** Press with a pen at `pressure` for 1.5 s: how far the vertex under it went in (m). */
+  const press = async (pressure) => {
+    await settle(page, 0.02, 30000);
+    const i = await inspect(page, (p) => {
+      const x = window.softsculpt.positions();
+      let best = 0, d = Infinity;
+      for (let k = 0; k < x.length / 3; k++) {
+        const s = window.softsculpt.screenOf(k);
+        const e = Math.hypot(s.x - p.x, s.y - p.y) + (x[3 * k + 2] < 0 ? 1e6 : 0); // the front side
+        if (e < d) { d = e; best = k; }
+      }
+      return best;
+    }, at);
+    const before = await vertex(page, i);
+    const pen = (type, extra = {}) => page.evaluate(({ type, at, extra }) => {
+      const target = type === 'pointerdown' ? document.getElementById('view') : window;
+      target.dispatchEvent(new PointerEvent(type, { pointerType: 'pen', pointerId: 7, isPrimary: true, button: 0, buttons: 1, clientX: at.x, clientY: at.y, bubbles: true, ...extra }));
+    }, { type, at, extra });
+    await pen('pointerdown', { pressure });
+    await pen('pointermove', { pressure });
+    await page.waitForTimeout(1500);
+    const during = await vertex(page, i);
+    await pen('pointerup', { pressure: 0, buttons: 0 });
+    return dist(before, during);
+  };
+  const light = await press(0.2);
+  const firm = await press(1);
+  // The depth is the strength × the pressure: 0.2 of the firm dent, up to what the body's own
+  // springs add (the dent is held by target springs of finite stiffness): between 0.1 and 0.45.
+  assert.ok(firm > 0.05, `a firm press dents ${firm} m`);
+  assert.ok(light / firm > 0.1 && light / firm < 0.45, `light ${light} m vs firm ${firm} m`);
+  assert.deepEqual(errors, []);
+  await page.context().close();
+});

@@ -198,6 +198,7 @@ test('reload restores the autosaved project', async () => {
   const ctx = await suite.browser.newContext({ viewport: { width: 1280, height: 800 } });
   const { page } = await openModeler(suite.browser, suite.server.url, ctx);
   await settle(page);
+  const pins0 = (await inspect(page, () => window.softsculpt.pinned())).filter(Boolean).length; // the stem's foot
   await page.keyboard.press('n');
   const top = await topVertex(page);
   await drag(page, top.screen, top.screen, 2, 50);
@@ -207,12 +208,25 @@ test('reload restores the autosaved project', async () => {
   const n = await inspect(page, () => window.softsculpt.vertexCount());
   const pins = (await inspect(page, () => window.softsculpt.pinned())).filter(Boolean).length;
   assert.ok(n > 362 && pins > 0);
+  // The camera as the user left it comes back too.
+  await page.mouse.move(150, 500);
+  await page.mouse.down();
+  await page.mouse.move(230, 480, { steps: 6 });
+  await page.mouse.up();
+  const camera = await inspect(page, () => window.softsculpt.camera());
+  await page.waitForTimeout(1500); // the autosave's debounce
   await page.reload();
   await page.waitForFunction(() => window.softsculpt?.ready === true);
   assert.equal(await inspect(page, () => window.softsculpt.vertexCount()), n);
   assert.equal((await inspect(page, () => window.softsculpt.pinned())).filter(Boolean).length, pins);
-  assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /restored/);
+  assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /restored.*with 2 undo steps/);
+  assert.ok(dist(await inspect(page, () => window.softsculpt.camera()), camera) < 1e-9, 'the camera where it was');
   await shot(page, '08-restored-after-reload');
+  // The undo history survived the reload: undo the subdivision, then the pins.
+  await page.keyboard.press('Control+z');
+  await page.waitForFunction(() => window.softsculpt.vertexCount() === 362);
+  await page.keyboard.press('Control+z');
+  await page.waitForFunction((p0) => window.softsculpt.pinned().filter(Boolean).length === p0, pins0);
   await ctx.close();
 });
 

@@ -14,7 +14,7 @@ const CUBE = 'v -0.5 0 -0.5\nv 0.5 0 -0.5\nv 0.5 1 -0.5\nv -0.5 1 -0.5\nv -0.5 0
 const bytes = (s: string) => new TextEncoder().encode(s).buffer as ArrayBuffer;
 
 /** A service on a fake clock, its replies collected; the autosave goes to `saved`. */
-function harness() {
+function harness(autosave: unknown = null) {
   const replies: Reply[] = [];
   const saved: AutosaveRecord[] = [];
   let clock = 0;
@@ -23,7 +23,7 @@ function harness() {
   const service = new Service({
     post: (r) => replies.push(r),
     now: () => clock,
-    storage: { load: async () => null, save: async (t) => { saved.push(t); } },
+    storage: { load: async () => autosave as null, save: async (t) => { saved.push(t); } },
     later: (f) => { timers.set(++timerId, f); return timerId; },
     cancel: (id) => { timers.delete(id as number); },
   });
@@ -182,6 +182,27 @@ describe('worker service', () => {
     await h.send({ type: 'openProject', name: 'cube.softsculpt.json', text: d.text });
     expect(h.service.doc.vertexCount).toBe(8);
     expect(h.replies.filter((r) => r.type === 'ui').at(-1)).toEqual({ type: 'ui', ui: { brush: { radius: 0.5 }, tool: 'press', strengths: { press: 99 } } });
+  });
+
+  it('a reload keeps the undo steps: the autosave holds them with the snapshot, and undo then works', async () => {
+    const h = await started();
+    await h.send({ type: 'setParam', name: 'stiffness', value: 250 });
+    await h.send({ type: 'subdivide' });
+    h.flushTimers();
+    const record = h.saved.at(-1)!;
+    expect(record.history!.undo.map((i) => i.label)).toEqual(['set stiffness', 'subdivide']);
+    // A new worker opening that autosave (a reload).
+    const g = harness({ record });
+    await g.send({ type: 'init', wasmUrl: 'unused', restore: true });
+    expect(g.messages().at(-1)).toMatch(/restored your last session \(autosaved\), with 2 undo steps/);
+    expect(g.service.doc.vertexCount).toBe(1442);
+    await g.send({ type: 'undo' });
+    expect(g.service.doc.vertexCount).toBe(362);
+    expect(g.service.doc.params().stiffness).toBe(250);
+    await g.send({ type: 'undo' });
+    expect(g.service.doc.params().stiffness).not.toBe(250);
+    await g.send({ type: 'redo' });
+    expect(g.service.doc.params().stiffness).toBe(250);
   });
 
   it('a scene: the other bodies follow the active one in the frame buffer, with obstacles', async () => {

@@ -25,6 +25,8 @@ import { explainStop, type Change } from './explain';
 
 export const HISTORY_STEPS = 200;
 export const HISTORY_BYTES = 512 * 1024 * 1024;
+/** Undo steps kept across a reload: the newest that fit in this many bytes (the autosave is written after every operation). */
+export const HISTORY_KEPT_BYTES = 48 * 1024 * 1024;
 /** Frames with split steps before the modeler says so (once per model). */
 export const SPLIT_NOTICE = 10;
 
@@ -171,7 +173,8 @@ export class Document {
       try {
         if ('record' in autosave) this.openRecordOrThrow(autosave.record, false);
         else this.openProjectText(autosave.legacyText, false);
-        this.hooks.message('restored your last session (autosaved)');
+        const kept = 'record' in autosave ? this.takeHistory(autosave.record.history) : 0;
+        this.hooks.message(`restored your last session (autosaved)${kept > 0 ? `, with ${kept} undo ${kept === 1 ? 'step' : 'steps'}` : ''}`);
         return;
       } catch (e) {
         this.hooks.message(`the autosave could not be read (${errorText(e)}); opened the default model instead`, 'warn');
@@ -505,9 +508,19 @@ export class Document {
     return serialize({ name: this.settings.model, ui: { ...this.settings, ...this.ui }, snapshot: this.world.snapshot() });
   }
 
-  /** The autosave's record of the world as it is now. */
+  /** The autosave's record of the world as it is now, with the newest undo steps (HISTORY_KEPT_BYTES). */
   autosaveRecord(now: number): AutosaveRecord {
-    return { name: this.settings.model, ui: { ...this.settings, ...this.ui }, snapshot: this.world.snapshot(), savedAt: now };
+    return { name: this.settings.model, ui: { ...this.settings, ...this.ui }, snapshot: this.world.snapshot(), savedAt: now, history: this.history.newest(HISTORY_KEPT_BYTES) };
+  }
+
+  /** Undo steps from an autosave (taken with its snapshot): well-formed ones only. Returns how many. */
+  private takeHistory(h: AutosaveRecord['history']): number {
+    if (!h) return 0;
+    const ok = (i: { label: string; state: unknown }) => typeof i.label === 'string' && i.state !== null && typeof i.state === 'object' &&
+      (i.state as Entry).delta instanceof Uint8Array && typeof (i.state as Entry).settings === 'object';
+    if (!h.undo.every(ok) || !h.redo.every(ok)) return 0;
+    this.history.load(h.undo as { label: string; state: Entry }[], h.redo as { label: string; state: Entry }[]);
+    return this.history.sizes[0];
   }
 
   private openRecord(r: { name: string; ui: Record<string, unknown>; snapshot: Uint8Array }, undoable: boolean, label?: string): void {
