@@ -13,6 +13,7 @@ pub mod presets;
 pub mod table;
 
 pub use access::choice;
+pub(crate) use access::set_body_param;
 pub use table::*;
 
 use serde::Serialize;
