@@ -27,8 +27,11 @@
 //! - `jelly`: a softer skin (k 60 N/m) held round by 20 J of gas, little damping (c 0.3 1/s,
 //!   cs 0.05): wobbles a while after a push and springs back.
 //! - `clay`: a firm skin (k 300 N/m) on 20 J of gas, heavily damped (c 4 1/s, cs 0.5), plastic:
-//!   strain beyond 1 % flows into the rest lengths at 5 1/s (the excess halves every 0.14 s),
-//!   so what the user presses stays pressed; the gas reference follows, so it never creeps.
+//!   strain beyond 1 % flows into the rest lengths at 5 1/s (the excess halves every 0.14 s), so
+//!   a hard press leaves a dent (measured on the modeler's sphere on the ground: a 10 N press for
+//!   0.5 s, 52 cm deep, leaves 7.5 cm) while the body still carries its own weight (a yield strain
+//!   of 0.3 % keeps 10 cm of the same press but slumps on: 2.00 → 1.44 m tall after 5 s, against
+//!   1.63 m); the gas reference follows, so it never creeps under its gas.
 //! - `cloth`: no gas (open meshes), a stiff weave (k 400 N/m), damped (c 1 1/s, cs 0.2): drapes.
 //! - `stiff_rubber`: a stiff skin (k 2000 N/m, cs 0.5) on 30 J of gas, damped (c 1 1/s): hardly
 //!   dents, bounces back at once.
@@ -88,7 +91,7 @@ pub const BALLOON: Preset = Preset { name: "balloon", help: "material: a soft sk
 pub const JELLY: Preset = Preset { name: "jelly", help: "material: a softer skin held round by 20 J of gas, little damping; wobbles and springs back", values: &JELLY_VALUES };
 pub const CLAY: Preset = Preset {
     name: "clay",
-    help: "material: a firm, damped skin on 20 J of gas; strain beyond 1 % flows at 5 1/s, so presses stay",
+    help: "material: a firm, damped skin on 20 J of gas; strain beyond 1 % flows at 5 1/s, so a hard press leaves a dent",
     values: &CLAY_VALUES,
 };
 pub const CLOTH: Preset = Preset { name: "cloth", help: "material: no gas (open meshes), a stiff damped weave; drapes", values: &CLOTH_VALUES };
