@@ -1,8 +1,6 @@
 //! The material presets (`params/presets.rs`): each stable with the modeler's implicit steps on
 //! every built-in model and after two subdivisions, and the same at either resolution.
 
-mod common;
-use common::*;
 use softsculpt::mesh::builtin::builtin;
 use softsculpt::params::presets::PRESETS;
 use softsculpt::{Material, SoftBody, TriMesh, World, WorldSettings};

@@ -21,6 +21,7 @@
 //! - bending springs are the one term that does (the flexural rigidity of k_b springs across
 //!   edges of length h goes as k_b h², so it weakens 4× per subdivision): every material preset
 //!   leaves them at 0, and gets its shape from the gas and the membrane instead.
+//!
 //! Values, each checked by `tests/presets.rs` on every built-in model and after two
 //! subdivisions with the implicit integrator at 1/60 s:
 //! - `balloon`: a soft skin (k 100 N/m) on 30 J of gas, lightly damped (c 0.5 1/s): bouncy.
