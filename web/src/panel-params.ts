@@ -18,6 +18,8 @@ export const SHOWN: Record<string, Shown> = {
   bending: { folder: 'sim', label: 'bending k_b', slider: [0, 5000] },
   damping: { folder: 'sim', label: 'damping c', slider: [0, 20] },
   self_collision: { folder: 'sim', label: 'self-collision' },
+  yield: { folder: 'sim', label: 'yield strain (clay)', slider: [0, 0.1, 0.001] },
+  flow: { folder: 'sim', label: 'plastic flow', slider: [0, 20, 0.1] },
   mass: { folder: 'sim', label: 'total mass', slider: [0.01, 100] },
   contact_thickness: { folder: 'sim', label: 'contact thickness', slider: [0, 0.05, 0.0005] },
   contact_friction: { folder: 'sim', label: 'contact friction μ', slider: [0, 2] },

@@ -46,7 +46,10 @@ fn main() -> ExitCode {
         Err(e) => return clap_error(e),
     };
     let result = match cli.command {
-        Command::Simulate(a) => simulate::run(a),
+        Command::Simulate(mut a) => {
+            a.explicit = matches.subcommand_matches("simulate").map(simulate::explicit).unwrap_or_default();
+            simulate::run(a)
+        }
         Command::Run(a) => run::run(a),
         Command::Info(a) => info::run(a),
         Command::Bench(a) => bench::run(a),

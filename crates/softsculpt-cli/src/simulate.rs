@@ -2,7 +2,7 @@
 
 use crate::args::{self, help};
 use crate::{input, output};
-use softsculpt::params as table;
+use softsculpt::params::{self as table, Value};
 use clap::Args;
 use serde_json::json;
 use softsculpt::body::{Material, SoftBody, VolumeMode};
@@ -52,6 +52,17 @@ pub struct SimulateArgs {
     pub gas: f64,
     #[arg(long, default_value = table::VOLUME.choice(), value_parser = parse_volume, help = help(&table::VOLUME))]
     pub volume: VolumeMode,
+    #[arg(long = "yield", allow_hyphen_values = true, default_value_t = table::YIELD.number(), value_parser = args::non_negative, value_name = "STRAIN", help = help(&table::YIELD))]
+    pub yield_strain: f64,
+    #[arg(long, allow_hyphen_values = true, default_value_t = table::FLOW.number(), value_parser = args::non_negative, value_name = "RATE", help = help(&table::FLOW))]
+    pub flow: f64,
+    /// A named preset's values first (material: balloon, jelly, clay, cloth, stiff_rubber; or
+    /// modeler, which sets the world too); the flags given explicitly override it.
+    #[arg(long, value_name = "NAME")]
+    pub preset: Option<String>,
+    /// The flags given on the command line (filled from the matches: they override a preset).
+    #[arg(skip)]
+    pub explicit: Vec<String>,
     #[arg(long, allow_hyphen_values = true, default_value_t = table::GRAVITY.number(), value_parser = args::finite, value_name = "G", help = help(&table::GRAVITY))]
     pub gravity: f64,
     #[arg(long, allow_hyphen_values = true, value_parser = args::finite, value_name = "H", help = format!("{}; no ground unless given", help(&table::GROUND_HEIGHT)))]
@@ -74,6 +85,51 @@ pub struct SimulateArgs {
     /// Statistics every N steps (default max(1, steps/100)); step 0 and the last step always.
     #[arg(long = "stats-every", allow_hyphen_values = true, value_parser = args::count_positive, value_name = "N")]
     pub stats_every: Option<u64>,
+}
+
+/// The flags a preset may set, as (clap id, flag, parameter id, value) from the arguments.
+fn preset_flags(a: &SimulateArgs) -> Vec<(&'static str, &'static str, &'static str, Value)> {
+    let mut flags = vec![
+        ("stiffness", "--stiffness", "stiffness", Value::Number(a.stiffness)),
+        ("spring_damping", "--spring-damping", "spring_damping", Value::Number(a.spring_damping)),
+        ("bending", "--bending", "bending", Value::Number(a.bending)),
+        ("damping", "--damping", "damping", Value::Number(a.damping)),
+        ("gas", "--gas", "gas.nrt", Value::Number(a.gas)),
+        ("volume", "--volume", "gas.volume", Value::Choice(a.volume.name())),
+        ("yield_strain", "--yield", "yield", Value::Number(a.yield_strain)),
+        ("flow", "--flow", "flow", Value::Number(a.flow)),
+        ("gravity", "--gravity", "gravity", Value::Number(a.gravity)),
+        ("wind_drag", "--wind-drag", "wind_drag", Value::Number(a.wind_drag)),
+        ("integrator", "--integrator", "integrator", Value::Choice(a.integrator.name())),
+        ("dt", "--dt", "dt", Value::Number(a.dt)),
+        ("tolerance", "--tolerance", "tolerance", Value::Number(a.tolerance)),
+        ("newton_iterations", "--newton-iterations", "newton_iterations", Value::Number(a.newton_iterations as f64)),
+    ];
+    if let Some(w) = a.wind {
+        flags.push(("wind", "--wind", "wind", Value::Vector(w)));
+    }
+    if let Some(h) = a.ground {
+        flags.push(("ground", "--ground", "ground", Value::Flag(true)));
+        flags.push(("ground", "--ground", "ground.height", Value::Number(h)));
+    }
+    flags.push(("friction", "--friction", "ground.friction", Value::Number(a.friction)));
+    flags
+}
+
+/// Set preset `name` on the world, then again every flag given explicitly (they override it).
+fn apply_preset(world: &mut World, name: &str, a: &SimulateArgs) -> Result<(), String> {
+    world.apply_preset(0, name).map_err(|e| format!("--preset: {e}"))?;
+    for (id, flag, param, value) in preset_flags(a) {
+        if a.explicit.iter().any(|e| e == id) && !(param == "ground.friction" && world.settings.ground.is_none()) {
+            world.set_param(0, param, value).map_err(|e| format!("{flag}: {e}"))?;
+        }
+    }
+    Ok(())
+}
+
+/// The ids of the arguments given on the command line (not defaulted).
+pub fn explicit(m: &clap::ArgMatches) -> Vec<String> {
+    m.ids().filter(|id| m.value_source(id.as_str()) == Some(clap::parser::ValueSource::CommandLine)).map(|id| id.to_string()).collect()
 }
 
 pub fn parse_integrator(s: &str) -> Result<Integrator, String> {
@@ -107,6 +163,7 @@ pub fn stats_json(s: &softsculpt::Stats) -> serde_json::Value {
         "center_of_mass": s.center_of_mass,
         "max_speed": s.max_speed,
         "solver_iterations": {"newton": s.solver_iterations.newton, "linear": s.solver_iterations.linear},
+        "plastic_dissipation": s.plastic_dissipation,
     })
 }
 
@@ -121,6 +178,8 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         bending_stiffness: a.bending,
         damping: a.damping,
         volume_mode: a.volume,
+        yield_strain: a.yield_strain,
+        flow_rate: a.flow,
         ..Material::default()
     };
     material.set_nrt(a.gas);
@@ -142,6 +201,9 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     // A lone body is a one-body world.
     let mut world = World::single(body, settings);
     world.set_threads(a.threads.unwrap_or(0) as usize).map_err(|e| format!("--threads: {e}"))?;
+    if let Some(name) = &a.preset {
+        apply_preset(&mut world, name, &a)?;
+    }
     if let Some(h) = a.ground {
         let (lo, _) = loaded.mesh.bounds();
         if lo[1] < h {

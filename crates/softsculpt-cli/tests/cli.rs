@@ -148,7 +148,7 @@ fn stats_lines_carry_the_contract_keys() {
     assert_eq!(steps, vec![0, 100, 200, 250]);
     let keys = [
         "step", "time", "volume", "pressure", "kinetic_energy", "elastic_energy", "gas_energy", "gravity_energy",
-        "total_energy", "momentum", "center_of_mass", "max_speed", "solver_iterations",
+        "total_energy", "momentum", "center_of_mass", "max_speed", "solver_iterations", "plastic_dissipation",
     ];
     for l in &lines {
         let obj = l.as_object().unwrap();

@@ -23,6 +23,7 @@ pub mod par;
 pub mod params;
 pub mod scene;
 pub mod snapshot;
+pub mod snapshot_v3;
 pub mod vec3;
 pub mod workload;
 pub mod world;

@@ -9,7 +9,7 @@
 //! | 4 | format version (u32), [`VERSION`] |
 //! | 8 | payload length in bytes (u64) |
 //! | 4 | CRC-32 (IEEE) of the payload (u32) |
-//! | … | payload: [`WorldV2`] encoded with postcard (serde); version 1: [`WorldV1`] |
+//! | … | payload: [`WorldV3`] encoded with postcard (serde); version 2: [`WorldV2`]; version 1: [`WorldV1`] |
 //!
 //! The payload holds everything that carries over from one step to the next: every body's mesh
 //! (triangles), state, rest and bending rest lengths, masses, pins, prestress, user forces and
@@ -27,6 +27,9 @@
 //! place and `ExtensionV2::implicit` is true. A version-1 snapshot reads as before, with the
 //! defaults for the new settings and no targets.
 //!
+//! Version 3 (plasticity, the ellipsoid volume) is the version-2 payload followed by
+//! `ExtensionV3` (`crate::snapshot_v3`). Versions 1 and 2 read with its defaults.
+//!
 //! Version policy: any change to the payload's types is a new version; this build reads the
 //! versions up to [`VERSION`] (a newer one is refused with a message saying so), and keeps the
 //! types of every older version it reads here, each with its conversion.
@@ -37,12 +40,17 @@ use crate::world::{Action, ContactSettings, Event, Events, Ground, Integrator, L
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
+pub use crate::snapshot_v3::{BodyV3, ExtensionV3, WorldV3};
+pub(crate) use crate::snapshot_v3::payload_v3;
+
 /// The first bytes of every snapshot.
 pub const MAGIC: &[u8; 5] = b"SSNAP";
 /// The format version this build writes (and the newest it reads).
-pub const VERSION: u32 = 2;
-/// The first version, still read (and what `crate::delta` frames its whole worlds in).
+pub const VERSION: u32 = 3;
+/// The first version, still read.
 pub const V1: u32 = 1;
+/// The second version (the implicit integrator), still read.
+pub const V2: u32 = 2;
 /// Magic, version, payload length, checksum.
 pub const HEADER_LEN: usize = 5 + 4 + 8 + 4;
 
@@ -299,7 +307,8 @@ fn body_v1(b: &SoftBody) -> BodyV1 {
             gas_amount: p.gas_amount,
             temperature: p.temperature,
             volume_mode: match p.volume_mode {
-                VolumeMode::Exact => VolumeModeV1::Exact,
+                // Version 3 says `ellipsoid` in its extension; this is the placeholder.
+                VolumeMode::Exact | VolumeMode::Ellipsoid => VolumeModeV1::Exact,
                 VolumeMode::Box => VolumeModeV1::Box,
                 VolumeMode::Sphere => VolumeModeV1::Sphere,
             },
@@ -385,7 +394,7 @@ fn load_v1(l: &Load) -> LoadV1 {
 /// The snapshot of `w`: header and payload (see the module documentation).
 pub fn write(w: &World) -> Vec<u8> {
     // Plain numbers, vectors and enums: postcard cannot fail on them.
-    frame(VERSION, &postcard::to_stdvec(&payload_v2(w)).unwrap_or_default())
+    frame(VERSION, &postcard::to_stdvec(&payload_v3(w)).unwrap_or_default())
 }
 
 /// The version-1 part of `w`'s snapshot (also what `crate::delta` compares).
@@ -460,32 +469,34 @@ fn open(bytes: &[u8]) -> Result<(u32, &[u8]), SnapshotError> {
 pub fn read(bytes: &[u8]) -> Result<World, SnapshotError> {
     let (version, payload) = open(bytes)?;
     let undecodable = |e: postcard::Error| corrupted(format!("the payload does not decode ({e})"));
-    let (v2, rest): (WorldV2, &[u8]) = if version == V1 {
-        let (base, rest) = postcard::take_from_bytes(payload).map_err(undecodable)?;
-        (WorldV2 { base, ext: ExtensionV2 { implicit: false, tolerance: crate::params::TOLERANCE.number(), newton_iterations: crate::params::NEWTON_ITERATIONS.number() as u32, targets: Vec::new() } }, rest)
-    } else {
-        postcard::take_from_bytes(payload).map_err(undecodable)?
+    let (v3, rest): (WorldV3, &[u8]) = match version {
+        V1 => {
+            let (base, rest) = postcard::take_from_bytes(payload).map_err(undecodable)?;
+            let ext = ExtensionV2 { implicit: false, tolerance: crate::params::TOLERANCE.number(), newton_iterations: crate::params::NEWTON_ITERATIONS.number() as u32, targets: Vec::new() };
+            (WorldV3 { base, ext, ext3: ExtensionV3::default() }, rest)
+        }
+        V2 => {
+            let (v2, rest): (WorldV2, &[u8]) = postcard::take_from_bytes(payload).map_err(undecodable)?;
+            (WorldV3 { base: v2.base, ext: v2.ext, ext3: ExtensionV3::default() }, rest)
+        }
+        _ => postcard::take_from_bytes(payload).map_err(undecodable)?,
     };
     if !rest.is_empty() {
         return Err(corrupted(format!("{} unread bytes at the end of the payload", rest.len())));
     }
-    world_from_v2(v2).map_err(corrupted)
+    world_from_v3(v3).map_err(corrupted)
 }
 
-/// The whole payload of `w`'s snapshot, version-2 additions included (what `crate::delta`
-/// compares).
-pub(crate) fn payload_v2(w: &World) -> WorldV2 {
-    WorldV2 { base: payload(w), ext: extension(w) }
-}
-
-/// A world from a whole payload (an empty target list means none on any body).
-pub(crate) fn world_from_v2(v2: WorldV2) -> Result<World, String> {
-    let mut ext = v2.ext;
-    let mut world = world_from_v1(v2.base)?;
+/// A world from a whole payload (an empty target list means none on any body, an empty
+/// version-3 list the defaults on every body).
+pub(crate) fn world_from_v3(v3: WorldV3) -> Result<World, String> {
+    let mut ext = v3.ext;
+    let mut world = world_from_v1(v3.base)?;
     if ext.targets.is_empty() {
         ext.targets = vec![Vec::new(); world.bodies.len()];
     }
     apply_extension(&mut world, &ext)?;
+    crate::snapshot_v3::apply_extension3(&mut world, &v3.ext3)?;
     Ok(world)
 }
 
@@ -563,6 +574,7 @@ fn body_from_v1(b: BodyV1) -> Result<SoftBody, String> {
             VolumeModeV1::Sphere => VolumeMode::Sphere,
         },
         self_collision: m.self_collision,
+        ..Material::default()
     };
     material.validate().map_err(|e| e.to_string())?;
     let n = b.mass.len();
@@ -624,6 +636,7 @@ fn body_from_v1(b: BodyV1) -> Result<SoftBody, String> {
         face_pressure: b.face_pressure,
         gas: gas(b.gas)?,
         targets: Default::default(),
+        plastic_dissipation: 0.0,
     };
     let frozen = Frozen { x: b.frozen_x, rest: b.frozen_rest, bending_rest: b.frozen_bending_rest, gas: gas(b.frozen_gas)?, prestress: b.frozen_prestress };
     Ok(SoftBody { material, model, state: State { x: b.x, v: b.v }, work: Work::new(3 * n), frozen })

@@ -167,7 +167,7 @@ fn presets_hold_valid_values_and_apply_them() {
     assert!(w.settings.ground.is_some());
     assert!((w.bodies[0].material.nrt() - 30.0).abs() < 1e-12 * 30.0);
     assert_eq!(w.bodies[0].material.damping, 1.5);
-    let e = w.apply_preset(0, "jelly").unwrap_err().to_string();
-    assert!(e.contains("unknown preset 'jelly'") && e.contains("modeler"), "{e}");
+    let e = w.apply_preset(0, "marble").unwrap_err().to_string();
+    assert!(e.contains("unknown preset 'marble'") && e.contains("modeler") && e.contains("clay"), "{e}");
     assert!(preset("modeler").is_ok());
 }

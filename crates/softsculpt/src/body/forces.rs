@@ -65,7 +65,7 @@ pub(crate) fn gather(th: &Threads, mut par: Option<&mut ParForces>, p: &Material
     // Stage gas: s = (P − P_ref) / 6 with P = nRT / V from the selected volume.
     let mut scale = 1.0;
     if gas_active {
-        let volume = gas::measure(p.volume_mode, six_v, x);
+        let volume = gas::measure(m.faces.triangles(), p.volume_mode, six_v, x);
         if !(volume > 0.0) {
             return Err(if volume.is_finite() { Fault::Collapsed(volume) } else { Fault::NonFinite });
         }

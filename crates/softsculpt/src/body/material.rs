@@ -22,15 +22,20 @@ pub enum VolumeMode {
     /// Bounding sphere 4/3 π r³, r the largest distance from the vertex centroid (the paper's
     /// other approximation).
     Sphere,
+    /// Bounding ellipsoid along the principal axes of the vertex cloud, scaled to enclose every
+    /// vertex: 4/3 π s³ √det C with C the vertices' covariance and s² the largest
+    /// (x − c)ᵀ C⁻¹ (x − c) (the paper's third bounding volume; `gas.rs`).
+    Ellipsoid,
 }
 
 impl VolumeMode {
-    pub const NAMES: &'static [&'static str] = &["exact", "box", "sphere"];
+    pub const NAMES: &'static [&'static str] = &["exact", "box", "sphere", "ellipsoid"];
     pub fn name(self) -> &'static str {
         match self {
             VolumeMode::Exact => "exact",
             VolumeMode::Box => "box",
             VolumeMode::Sphere => "sphere",
+            VolumeMode::Ellipsoid => "ellipsoid",
         }
     }
     pub fn from_name(s: &str) -> Option<Self> {
@@ -38,6 +43,7 @@ impl VolumeMode {
             "exact" => VolumeMode::Exact,
             "box" => VolumeMode::Box,
             "sphere" => VolumeMode::Sphere,
+            "ellipsoid" => VolumeMode::Ellipsoid,
             _ => return None,
         })
     }
@@ -64,6 +70,13 @@ pub struct Material {
     pub volume_mode: VolumeMode,
     /// Keep the body's vertices out of its own faces (the world's contact stage does it).
     pub self_collision: bool,
+    /// Plasticity (`plastic.rs`): yield strain (dimensionless). Where a spring's strain
+    /// |l / L − 1| exceeds it, its rest length flows toward the length at which the strain is
+    /// the yield strain. 0 with a flow rate: every strain flows.
+    pub yield_strain: f64,
+    /// Plasticity: flow rate (1/s) at which the excess strain relaxes (e^(−rate t)); 0 (the
+    /// default) = elastic, no plasticity.
+    pub flow_rate: f64,
 }
 
 impl Default for Material {
@@ -78,6 +91,8 @@ impl Default for Material {
             temperature: table::TEMPERATURE.number(),
             volume_mode: VolumeMode::Exact,
             self_collision: table::SELF_COLLISION.flag(),
+            yield_strain: table::YIELD.number(),
+            flow_rate: table::FLOW.number(),
         }
     }
 }
@@ -106,6 +121,11 @@ pub fn check_positive(name: &'static str, value: f64) -> Result<(), SimError> {
 }
 
 impl Material {
+    /// Whether the plastic stage runs (a flow rate above 0).
+    pub fn is_plastic(&self) -> bool {
+        self.flow_rate > 0.0
+    }
+
     /// n R T (J): the product the gas law uses.
     pub fn nrt(&self) -> f64 {
         self.gas_amount * GAS_CONSTANT * self.temperature
@@ -124,6 +144,8 @@ impl Material {
         check_non_negative("damping", self.damping)?;
         check_non_negative("gas", self.gas_amount)?;
         check_positive("temperature", self.temperature)?;
+        check_non_negative("yield", self.yield_strain)?;
+        check_non_negative("flow", self.flow_rate)?;
         Ok(())
     }
 }

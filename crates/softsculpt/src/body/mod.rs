@@ -11,7 +11,9 @@
 //!    symplectic Euler); the force accumulator is cleared on the way.
 //!
 //! Stages 1–4 add into one force accumulator; `forces.rs` explains how the gas force shares it.
-//! The ground, obstacles and contacts are the world's stages that follow (`crate::world`).
+//! The ground, obstacles and contacts are the world's stages that follow (`crate::world`); the
+//! body's **plastic** stage (`plastic.rs`: rest lengths flow where the strain exceeds the yield
+//! strain) comes last, on the step's final positions.
 //!
 //! All arrays are `xyz` interleaved per vertex (`[x0, y0, z0, x1, …]`), so a renderer can read
 //! positions without copying and a spring touches one cache line per end.
@@ -26,12 +28,14 @@ pub mod material;
 mod modeling;
 mod parforces;
 mod persist;
+mod plastic;
 mod springs;
 mod stats;
 mod targets;
 
 pub use faces::Faces;
 pub use gas::GasReference;
+pub use plastic::PlasticState;
 pub use material::{Material, VolumeMode, DEFAULT_TEMPERATURE, GAS_CONSTANT};
 pub use springs::Springs;
 pub use implicit::SolverIterations;
@@ -68,6 +72,8 @@ pub(crate) struct Model {
     pub gas: GasReference,
     /// Target springs (`targets.rs`).
     pub targets: targets::Targets,
+    /// Energy taken out by the plastic stage so far (J, `plastic.rs`).
+    pub plastic_dissipation: f64,
 }
 
 /// Positions (m) and velocities (m/s), flat xyz.
@@ -181,6 +187,7 @@ impl SoftBody {
                 face_pressure_active: false,
                 gas: GasReference { ambient_pressure: 0.0, reference_volume: 1.0 },
                 targets: Default::default(),
+                plastic_dissipation: 0.0,
             },
             state: State { v: vec![0.0; 3 * n], x },
             work: Work::new(3 * n),
@@ -272,7 +279,7 @@ impl SoftBody {
     }
     /// The volume the gas uses (m³), in the selected mode.
     pub fn volume(&self) -> f64 {
-        gas::measure(self.material.volume_mode, self.model.faces.volume6(&self.state.x), &self.state.x)
+        gas::measure(self.model.faces.triangles(), self.material.volume_mode, self.model.faces.volume6(&self.state.x), &self.state.x)
     }
     /// The exact enclosed volume (m³).
     pub fn exact_volume(&self) -> f64 {

@@ -55,7 +55,7 @@ impl SoftBody {
         self.model.bending.accumulate(self.material.bending_stiffness, 0.0, &self.state.x, &self.state.v, &mut f);
         let mut g = vec![0.0; n];
         let six_v = self.model.faces.volume6_and_normals(&self.state.x, &mut g);
-        let volume = gas::measure(self.material.volume_mode, six_v, &self.state.x);
+        let volume = gas::measure(self.model.faces.triangles(), self.material.volume_mode, six_v, &self.state.x);
         let s = (gas::pressure(self.material.nrt(), volume) - self.model.gas.ambient_pressure) / 6.0;
         let mut prestress: Vec<f64> = (0..n).map(|k| f[k] + s * g[k] + self.model.prestress[k]).collect();
         if prestress.iter().any(|p| !p.is_finite()) {

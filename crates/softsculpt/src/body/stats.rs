@@ -31,6 +31,9 @@ pub struct Stats {
     pub max_speed: f64,
     /// Newton and linear iterations of the last step (implicit integrator; zeros otherwise).
     pub solver_iterations: super::SolverIterations,
+    /// Energy the plastic stage has taken out so far (J, `plastic.rs`): total_energy plus this
+    /// is what the integrator alone conserves.
+    pub plastic_dissipation: f64,
 }
 
 impl SoftBody {
@@ -80,6 +83,7 @@ impl SoftBody {
             center_of_mass: com.map(|c| c / total_mass),
             max_speed: vmax2.sqrt(),
             solver_iterations: self.work.iterations,
+            plastic_dissipation: self.model.plastic_dissipation,
         }
     }
 }

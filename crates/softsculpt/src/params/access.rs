@@ -64,11 +64,14 @@ fn body_param(b: &SoftBody, id: &str) -> Result<Value, ParamError> {
         "gas.volume" => Value::Choice(m.volume_mode.name()),
         "gas.ambient" => Value::Number(b.gas_reference().ambient_pressure),
         "self_collision" => Value::Flag(m.self_collision),
+        "yield" => Value::Number(m.yield_strain),
+        "flow" => Value::Number(m.flow_rate),
         _ => return Err(err(id, "not a body parameter")),
     })
 }
 
-fn set_body_param(b: &mut SoftBody, id: &str, value: Value) -> Result<(), ParamError> {
+/// Set body parameter `id` of `b` (not range-checked: [`World::set_param`] checks first).
+pub(crate) fn set_body_param(b: &mut SoftBody, id: &str, value: Value) -> Result<(), ParamError> {
     let sim = |e: crate::SimError| err(id, e.to_string());
     let (n, t) = (b.material.gas_amount, b.material.temperature);
     match (id, value) {
@@ -83,6 +86,8 @@ fn set_body_param(b: &mut SoftBody, id: &str, value: Value) -> Result<(), ParamE
         ("gas.volume", Value::Choice(c)) => b.material.volume_mode = VolumeMode::from_name(c).ok_or_else(|| err(id, "unknown volume mode"))?,
         ("gas.ambient", Value::Number(x)) => b.set_gas_reference(GasReference { ambient_pressure: x, ..b.gas_reference() }).map_err(sim)?,
         ("self_collision", Value::Flag(f)) => b.material.self_collision = f,
+        ("yield", Value::Number(x)) => b.material.yield_strain = x,
+        ("flow", Value::Number(x)) => b.material.flow_rate = x,
         _ => return Err(err(id, "not a body parameter")),
     }
     Ok(())

@@ -14,6 +14,7 @@ pub mod similarity;
 pub mod table;
 
 pub use access::choice;
+pub(crate) use access::set_body_param;
 pub use table::*;
 
 use serde::Serialize;

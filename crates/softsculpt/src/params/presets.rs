@@ -8,6 +8,34 @@
 //!   Chromium: the resting shape is the same to four digits as at 1e-6, at twice the speed; see
 //!   BENCHMARKS.md). Every value is a material or world property, not one of the mesh's: the
 //!   reasons each stays the same when the mesh is subdivided are in `web/src/engine/models.ts`.
+//!
+//! The material presets (`balloon`, `jelly`, `clay`, `cloth`, `stiff_rubber`) set only body
+//! parameters — stiffness, spring damping, bending, damping, gas and plasticity — so they go on
+//! any body in any world (a scene body's `preset`, `simulate --preset`). Each is chosen to behave
+//! the same at any mesh resolution:
+//! - the edge stiffness k (N/m) of an equilateral lattice is a membrane of modulus 2k/√3 (N/m)
+//!   and the spring damping cs a membrane viscosity 2cs/√3 (N·s/m), neither depending on the
+//!   edge length, so a subdivided body stretches the same under the same load;
+//! - the damping c (1/s) acts per unit mass, the gas nRT (J) on the volume, plasticity on the
+//!   strain (dimensionless) at a rate (1/s): none sees the edge length;
+//! - bending springs are the one term that does (the flexural rigidity of k_b springs across
+//!   edges of length h goes as k_b h², so it weakens 4× per subdivision): every material preset
+//!   leaves them at 0, and gets its shape from the gas and the membrane instead.
+//!
+//! Values, each checked by `tests/presets.rs` on every built-in model and after two
+//! subdivisions with the implicit integrator at 1/60 s:
+//! - `balloon`: a soft skin (k 100 N/m) on 30 J of gas, lightly damped (c 0.5 1/s): bouncy.
+//! - `jelly`: a softer skin (k 60 N/m) held round by 20 J of gas, little damping (c 0.3 1/s,
+//!   cs 0.05): wobbles a while after a push and springs back.
+//! - `clay`: a firm skin (k 300 N/m) on 20 J of gas, heavily damped (c 4 1/s, cs 0.5), plastic:
+//!   strain beyond 1 % flows into the rest lengths at 5 1/s (the excess halves every 0.14 s), so
+//!   a hard press leaves a dent (measured on the modeler's sphere on the ground: a 10 N press for
+//!   0.5 s, 52 cm deep, leaves 7.5 cm) while the body still carries its own weight (a yield strain
+//!   of 0.3 % keeps 10 cm of the same press but slumps on: 2.00 → 1.44 m tall after 5 s, against
+//!   1.63 m); the gas reference follows, so it never creeps under its gas.
+//! - `cloth`: no gas (open meshes), a stiff weave (k 400 N/m), damped (c 1 1/s, cs 0.2): drapes.
+//! - `stiff_rubber`: a stiff skin (k 2000 N/m, cs 0.5) on 30 J of gas, damped (c 1 1/s): hardly
+//!   dents, bounces back at once.
 
 use super::{find, ParamError, Value};
 use crate::world::World;
@@ -41,8 +69,44 @@ pub const MODELER: Preset = Preset {
     ],
 };
 
+/// The body parameters every material preset sets, in this order.
+const fn material(k: f64, cs: f64, c: f64, nrt: f64, yield_strain: f64, flow: f64) -> [(&'static str, Value); 7] {
+    [
+        ("stiffness", Value::Number(k)),
+        ("spring_damping", Value::Number(cs)),
+        ("bending", Value::Number(0.0)),
+        ("damping", Value::Number(c)),
+        ("gas.nrt", Value::Number(nrt)),
+        ("yield", Value::Number(yield_strain)),
+        ("flow", Value::Number(flow)),
+    ]
+}
+
+const BALLOON_VALUES: [(&str, Value); 7] = material(100.0, 0.1, 0.5, 30.0, 0.0, 0.0);
+const JELLY_VALUES: [(&str, Value); 7] = material(60.0, 0.05, 0.3, 20.0, 0.0, 0.0);
+const CLAY_VALUES: [(&str, Value); 7] = material(300.0, 0.5, 4.0, 20.0, 0.01, 5.0);
+const CLOTH_VALUES: [(&str, Value); 7] = material(400.0, 0.2, 1.0, 0.0, 0.0, 0.0);
+const RUBBER_VALUES: [(&str, Value); 7] = material(2000.0, 0.5, 1.0, 30.0, 0.0, 0.0);
+
+pub const BALLOON: Preset = Preset { name: "balloon", help: "material: a soft skin on 30 J of gas, lightly damped; bouncy", values: &BALLOON_VALUES };
+pub const JELLY: Preset = Preset { name: "jelly", help: "material: a softer skin held round by 20 J of gas, little damping; wobbles and springs back", values: &JELLY_VALUES };
+pub const CLAY: Preset = Preset {
+    name: "clay",
+    help: "material: a firm, damped skin on 20 J of gas; strain beyond 1 % flows at 5 1/s, so a hard press leaves a dent",
+    values: &CLAY_VALUES,
+};
+pub const CLOTH: Preset = Preset { name: "cloth", help: "material: no gas (open meshes), a stiff damped weave; drapes", values: &CLOTH_VALUES };
+pub const STIFF_RUBBER: Preset = Preset { name: "stiff_rubber", help: "material: a stiff skin on 30 J of gas; hardly dents, bounces back at once", values: &RUBBER_VALUES };
+
 /// Every preset.
-pub const PRESETS: &[Preset] = &[MODELER];
+pub const PRESETS: &[Preset] = &[MODELER, BALLOON, JELLY, CLAY, CLOTH, STIFF_RUBBER];
+
+impl Preset {
+    /// Whether it sets only body parameters (a material preset, for a scene body).
+    pub fn is_material(&self) -> bool {
+        self.values.iter().all(|(id, _)| find(id).is_ok_and(|p| p.scope == super::Scope::Body))
+    }
+}
 
 /// The preset called `name`.
 pub fn preset(name: &str) -> Result<&'static Preset, ParamError> {

@@ -81,7 +81,7 @@ pub const VOLUME: Param = Param {
     unit: "",
     default: Value::Choice("exact"),
     range: ANY,
-    help: "volume the gas law uses: exact, box or sphere",
+    help: "volume the gas law uses: exact, or the body's bounding box, sphere or ellipsoid",
 };
 pub const AMBIENT: Param = Param {
     id: "gas.ambient",
@@ -90,6 +90,22 @@ pub const AMBIENT: Param = Param {
     default: Value::Number(0.0),
     range: NON_NEGATIVE,
     help: "pressure of the surroundings P_ref (set by freeze): the gas pushes with P - P_ref",
+};
+pub const YIELD: Param = Param {
+    id: "yield",
+    scope: Scope::Body,
+    unit: "",
+    default: Value::Number(0.0),
+    range: NON_NEGATIVE,
+    help: "plasticity: yield strain; where a spring's strain (l/L - 1, stretched or compressed) exceeds it, its rest length flows (at `flow`) toward the length at which the strain is the yield strain; 0 = any strain flows",
+};
+pub const FLOW: Param = Param {
+    id: "flow",
+    scope: Scope::Body,
+    unit: "1/s",
+    default: Value::Number(0.0),
+    range: NON_NEGATIVE,
+    help: "plasticity: rate at which strain beyond `yield` flows into the rest lengths (excess decays as e^(-flow t)); 0 = elastic, no plasticity",
 };
 pub const SELF_COLLISION: Param = Param {
     id: "self_collision",
@@ -238,6 +254,8 @@ pub const TABLE: &[Param] = &[
     GAS_NRT,
     VOLUME,
     AMBIENT,
+    YIELD,
+    FLOW,
     SELF_COLLISION,
     DT,
     INTEGRATOR,

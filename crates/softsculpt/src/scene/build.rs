@@ -109,9 +109,15 @@ pub fn build(spec: &SceneSpec, text: &str, resolve: Resolver) -> Result<Built, S
     };
 
     let mut bodies: Vec<BuiltBody> = Vec::new();
+    // The keys each body gives itself (a preset fills the others); the text parsed already.
+    let tables = text.parse::<toml::Table>().ok();
+    let given = |k: usize| tables.as_ref().and_then(|t| t.get("body")?.as_array()?.get(k)?.as_table().cloned()).unwrap_or_default();
     for (k, b) in spec.bodies.iter().enumerate() {
         let cx = Ctx { line: line_of(text, b.span().start), table: format!("body[{k}]") };
-        let built = body(&cx, b.get_ref(), ground, k, resolve)?;
+        let mut built = body(&cx, b.get_ref(), ground, k, resolve)?;
+        if let Some(name) = &b.get_ref().preset {
+            apply_preset(&cx, &mut built.body, name, &given(k))?;
+        }
         if bodies.iter().any(|o| o.name == built.name) {
             return Err(cx.err("name", format!("two bodies are named '{}'", built.name)));
         }
@@ -249,6 +255,8 @@ fn body(cx: &Ctx, b: &BodySpec, ground: Option<Ground>, index: usize, resolve: R
     material.spring_damping = cx.non_negative("spring_damping", b.spring_damping)?;
     material.bending_stiffness = cx.non_negative("bending", b.bending)?;
     material.damping = cx.non_negative("damping", b.damping)?;
+    material.yield_strain = cx.non_negative("yield", b.yield_strain)?;
+    material.flow_rate = cx.non_negative("flow", b.flow)?;
     material.self_collision = b.self_collision;
     if let Some(g) = &b.gas {
         material.temperature = cx.positive("gas.temperature", g.temperature.unwrap_or(DEFAULT_TEMPERATURE))?;
@@ -260,7 +268,7 @@ fn body(cx: &Ctx, b: &BodySpec, ground: Option<Ground>, index: usize, resolve: R
         };
         if let Some(v) = &g.volume {
             material.volume_mode = VolumeMode::from_name(v)
-                .ok_or_else(|| cx.err("gas.volume", format!("unknown volume mode '{v}' (exact, box, sphere)")))?;
+                .ok_or_else(|| cx.err("gas.volume", format!("unknown volume mode '{v}' ({})", VolumeMode::NAMES.join(", "))))?;
         }
     }
     let mass = cx.positive("mass", b.mass)?;
@@ -284,6 +292,27 @@ fn body(cx: &Ctx, b: &BodySpec, ground: Option<Ground>, index: usize, resolve: R
     }
     body.set_uniform_velocity(cx.vec("velocity", b.velocity)?).map_err(|e| cx.err("velocity", e.to_string()))?;
     Ok(BuiltBody { name, body, mesh })
+}
+
+/// Set the values of material preset `name` on `body`, except those the body's table `given`
+/// sets itself (`gas.nrt` counts as given when the `gas` table has `nrt` or `amount`).
+fn apply_preset(cx: &Ctx, body: &mut SoftBody, name: &str, given: &toml::Table) -> Result<(), SceneError> {
+    let p = crate::params::presets::preset(name).map_err(|e| cx.err("preset", e.message))?;
+    if !p.is_material() {
+        let names: Vec<&str> = crate::params::presets::PRESETS.iter().filter(|p| p.is_material()).map(|p| p.name).collect();
+        return Err(cx.err("preset", format!("'{name}' sets world parameters too; a body takes a material preset ({})", names.join(", "))));
+    }
+    let gas = given.get("gas").and_then(|g| g.as_table());
+    let has = |id: &str| match id.split_once('.') {
+        Some(("gas", "nrt" | "amount")) => gas.is_some_and(|g| g.contains_key("nrt") || g.contains_key("amount")),
+        Some(("gas", key)) => gas.is_some_and(|g| g.contains_key(key)),
+        _ => given.contains_key(id),
+    };
+    for (id, v) in p.values.iter().filter(|(id, _)| !has(id)) {
+        crate::params::find(id).and_then(|t| t.check(v)).map_err(|e| cx.err("preset", format!("'{name}': {e}")))?;
+        crate::params::set_body_param(body, id, *v).map_err(|e| cx.err("preset", format!("'{name}': {e}")))?;
+    }
+    Ok(())
 }
 
 /// A mesh file named in the scene, in the format its extension says, else its first bytes

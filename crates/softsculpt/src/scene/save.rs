@@ -71,6 +71,8 @@ fn body_spec(name: &str, b: &SoftBody) -> BodySpec {
         spring_damping: p.spring_damping,
         bending: p.bending_stiffness,
         damping: p.damping,
+        yield_strain: p.yield_strain,
+        flow: p.flow_rate,
         gas,
         self_collision: p.self_collision,
         pins: if pinned.is_empty() { Vec::new() } else { vec![RegionSpec { vertices: Some(pinned), ..Default::default() }] },

@@ -126,6 +126,15 @@ pub struct BodySpec {
     pub bending: f64,
     /// Viscous damping c (1/s).
     pub damping: f64,
+    /// Plasticity: yield strain (dimensionless; `crate::body::plastic`).
+    #[serde(rename = "yield")]
+    pub yield_strain: f64,
+    /// Plasticity: flow rate (1/s); 0 = elastic.
+    pub flow: f64,
+    /// A material preset (`balloon`, `jelly`, `clay`, `cloth`, `stiff_rubber`): its values for
+    /// every material key this body does not give itself.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub preset: Option<String>,
     /// Gas inside (absent: none).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub gas: Option<GasSpec>,
@@ -157,6 +166,9 @@ impl Default for BodySpec {
             spring_damping: table::SPRING_DAMPING.number(),
             bending: table::BENDING.number(),
             damping: table::DAMPING.number(),
+            yield_strain: table::YIELD.number(),
+            flow: table::FLOW.number(),
+            preset: None,
             gas: None,
             velocity: [0.0; 3],
             self_collision: table::SELF_COLLISION.flag(),
@@ -184,7 +196,7 @@ pub struct GasSpec {
     pub temperature: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub nrt: Option<f64>,
-    /// `exact`, `box` or `sphere`.
+    /// `exact`, `box`, `sphere` or `ellipsoid`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub volume: Option<String>,
     /// Pressure of the surroundings P_ref (Pa, default 0): the gas pushes with P − P_ref. The

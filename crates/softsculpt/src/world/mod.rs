@@ -15,7 +15,11 @@
 //!    (`obstacles.rs`, `mesh_obstacle.rs`). Ground before obstacles, as a body's own step always
 //!    did them, so every result is bit for bit what it was before the world owned them.
 //! 4. **contacts** – between bodies, and within self-colliding ones (`contacts.rs`, `edges.rs`).
-//! 5. **clock**    – one step more (`clock.rs`).
+//! 5. **plastic**  – each plastic body's rest lengths flow toward its current lengths where the
+//!    strain exceeds the yield strain, and its gas reference follows (`body/plastic.rs`). Its own
+//!    stage after integration and contacts, on the step's final positions, so it works the same
+//!    with every integrator (and changes nothing when the flow rate is 0).
+//! 6. **clock**    – one step more (`clock.rs`).
 //!
 //! Stages 2–4 are velocity-level corrections after the integrator, so away from contact the
 //! integrators are exactly themselves. A failing stage leaves the world as it failed;
@@ -226,7 +230,12 @@ impl World {
             self.collide();
         }
 
-        // Stage 5: the clock.
+        // Stage 5: plasticity.
+        for b in &mut self.bodies {
+            b.plastic_flow(dt);
+        }
+
+        // Stage 6: the clock.
         self.clock.tick();
         Ok(())
     }

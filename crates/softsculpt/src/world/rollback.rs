@@ -3,8 +3,9 @@
 //! events' effects (frozen shapes, gas, pins, masses, wind…) and the loads.
 //!
 //! Cheaply: a step without an event changes only positions, velocities and the clock (the rest
-//! of what it touches is scratch), so those are copied at the start of each call, into buffers
-//! kept from call to call. Only before the first step of the call at which an event fires or a
+//! of what it touches is scratch) — and, for a plastic body, its rest lengths, gas reference and
+//! plastic dissipation (`body/plastic.rs`) — so those are copied at the start of each call, into
+//! buffers kept from call to call. Only before the first step of the call at which an event fires or a
 //! load ends (`Events::due`) is the rest copied too (a clone of the bodies, settings, events and
 //! load sums). A rollback restores that full copy if there is one, then the positions,
 //! velocities and clock of the call's start: the steps before the first event changed nothing
@@ -22,11 +23,13 @@ struct Full {
     load_sums: (Vec<Vec<f64>>, Vec<Vec<f64>>),
 }
 
-/// Positions and velocities of every body at the start of a call (flat xyz), reused.
+/// Positions and velocities of every body at the start of a call (flat xyz), reused; and what
+/// the plastic stage changes, of the plastic bodies.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Backup {
     x: Vec<Vec<f64>>,
     v: Vec<Vec<f64>>,
+    plastic: Vec<Option<crate::body::PlasticState>>,
 }
 
 impl World {
@@ -44,6 +47,8 @@ impl World {
             v.clear();
             v.extend_from_slice(b.velocities());
         }
+        backup.plastic.clear();
+        backup.plastic.extend(self.bodies.iter().map(|b| b.material.is_plastic().then(|| b.plastic_state())));
         let clock = self.clock;
         let mut full: Option<Full> = None;
         let mut result = Ok(());
@@ -80,6 +85,11 @@ impl World {
         for (b, (x, v)) in self.bodies.iter_mut().zip(backup.x.iter().zip(&backup.v)) {
             b.state.x.copy_from_slice(x);
             b.state.v.copy_from_slice(v);
+        }
+        for (b, p) in self.bodies.iter_mut().zip(&backup.plastic) {
+            if let Some(p) = p {
+                b.set_plastic_state(p);
+            }
         }
         self.clock = clock;
     }

@@ -169,7 +169,7 @@ impl System {
             if !six_v.is_finite() {
                 return Err(Fault::NonFinite);
             }
-            let volume = gas::measure(p.volume_mode, six_v, xt);
+            let volume = gas::measure(m.faces.triangles(), p.volume_mode, six_v, xt);
             if !(volume > 0.0) {
                 return Err(if volume.is_finite() { Fault::Collapsed(volume) } else { Fault::NonFinite });
             }

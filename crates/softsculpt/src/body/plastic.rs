@@ -1,0 +1,131 @@
+//! Plasticity ("clay"): the stage **plastic**, after a world step's integration and contacts.
+//!
+//! Each spring (edge and bending) has a strain ε = l / L − 1 (l its length, L its rest length,
+//! m). With yield strain ε_y (`Material::yield_strain`) and flow rate φ (1/s,
+//! `Material::flow_rate`), where |ε| > ε_y the rest length flows toward the rest length L* at
+//! which the strain is exactly the yield strain,
+//!   L* = l / (1 + ε_y)   (stretched, ε > ε_y),      L* = l / (1 − ε_y)   (compressed, ε < −ε_y),
+//! by  dL/dt = φ (L* − L)  with l held at its end-of-step value. Over a step of dt the exact
+//! solution is
+//!   L' = L + (1 − e^(−φ dt)) (L* − L).
+//! The factor lies in [0, 1) for every φ ≥ 0 and dt > 0, so L' is always between L and L*: the
+//! update never overshoots the yield strain, never changes a strain's sign, keeps L > 0 and is
+//! stable for any dt (an explicit L += φ dt (L* − L) overshoots once φ dt > 1 and diverges past
+//! 2). Springs within the yield strain are untouched: below it the body is exactly elastic.
+//! φ = 0 switches the stage off; ε_y = 0 with φ > 0 lets every strain flow (a Maxwell fluid).
+//!
+//! **The gas reference follows.** An inflated body at rest holds its gas with stretched
+//! springs. Were only the rest lengths to flow, the springs would slacken, the gas would push
+//! the skin out, the strain would flow again: the body would creep (grow) under its own gas. The
+//! balance that holds the body's size is the virial identity of its internal forces: at
+//! equilibrium of springs and gas, Σ_i xi · fi = 0 over springs and gas gives (Euler's theorem,
+//! V homogeneous of degree 3, so Σ xi · ∂V/∂xi = 3V; a spring's pair of forces contributes
+//! −k (l − L) l)
+//!   Σ_springs k (l − L) l = 3 (P − P_ref) V         (V the exact volume: the force's direction)
+//! A plastic step changes the left side by −Σ k l δL. Changing P_ref by
+//!   δP_ref = Σ k l δL / (3 V)
+//! keeps the identity, so the flow does not move the body as a whole. When every spring flows
+//! by the same fraction (a uniformly stretched sphere) this is exactly the new equilibrium at the
+//! same positions; otherwise it is the exact balance of the dilation mode and the rest is the
+//! shape's real plastic change. In the limit ε_y = 0, φ dt → ∞ it becomes freeze's rule (every
+//! L = l, P_ref = P). It applies when the gas acts (a closed mesh with nRT > 0); P_ref stays
+//! ≥ 0 (the surroundings are never below vacuum).
+//!
+//! **Energy.** At fixed positions the stage lowers the potential energy by
+//!   D = Σ ½ k [(l − L)² − (l − L')²]  −  δP_ref (V_g − V0)
+//! (the second term: the gas energy −nRT ln(V_g/V0) + P_ref (V_g − V0) with V_g the volume the
+//! gas law uses, `gas.rs`). The first term equals ∫ k (l − L) dL along the flow at fixed l: the
+//! plastic work, ≥ 0 for each spring since L moves toward l. D is added to the body's
+//! `plastic_dissipation` (J), so kinetic + elastic + gas + gravity energy + dissipation is what
+//! the integrator alone conserves (tested in `tests/plastic.rs`).
+
+use super::{gas, GasReference, SoftBody, Springs};
+
+/// What the plastic stage changes: rest lengths of the edge and bending springs (m), the gas
+/// reference, the dissipation (J). What a rollback puts back.
+#[derive(Debug, Clone)]
+pub struct PlasticState {
+    rest: Vec<f64>,
+    bending_rest: Vec<f64>,
+    gas: GasReference,
+    dissipation: f64,
+}
+
+/// Flow the rest lengths of `s` (stiffness `k`, N/m) by the fraction `a` of their excess strain
+/// over `y`, at positions `x`. Returns (elastic energy released in J, Σ k l δL in J).
+fn flow(s: &mut Springs, k: f64, y: f64, a: f64, x: &[f64]) -> (f64, f64) {
+    let mut rest = std::mem::take(&mut s.rest);
+    let (mut released, mut virial) = (0.0, 0.0);
+    s.lengths_into(x, |e, l| {
+        let r = rest[e];
+        if !(r > 0.0 && l.is_finite()) {
+            return;
+        }
+        let strain = l / r - 1.0;
+        let target = if strain > y {
+            l / (1.0 + y)
+        } else if strain < -y && y < 1.0 {
+            l / (1.0 - y)
+        } else {
+            return;
+        };
+        let r2 = r + a * (target - r);
+        released += 0.5 * k * ((l - r) * (l - r) - (l - r2) * (l - r2));
+        virial += k * l * (r2 - r);
+        rest[e] = r2;
+    });
+    s.rest = rest;
+    (released, virial)
+}
+
+impl SoftBody {
+    /// Stage "plastic" over a step of `dt` seconds (see the module documentation); nothing when
+    /// the flow rate is 0.
+    pub(crate) fn plastic_flow(&mut self, dt: f64) {
+        let p = &self.material;
+        if !p.is_plastic() {
+            return;
+        }
+        // 1 − e^(−φ dt), accurate for small φ dt.
+        let a = -(-p.flow_rate * dt).exp_m1();
+        let x = &self.state.x;
+        let (mut released, mut virial) = flow(&mut self.model.springs, p.stiffness, p.yield_strain, a, x);
+        if p.bending_stiffness > 0.0 {
+            let (r, v) = flow(&mut self.model.bending, p.bending_stiffness, p.yield_strain, a, x);
+            released += r;
+            virial += v;
+        }
+        if virial != 0.0 && self.model.closed && p.nrt() > 0.0 {
+            let six_v = self.model.faces.volume6(x);
+            if six_v > 0.0 && six_v.is_finite() {
+                let g = &mut self.model.gas;
+                let before = g.ambient_pressure;
+                g.ambient_pressure = (before + virial / (0.5 * six_v)).max(0.0);
+                let gas_volume = gas::measure(self.model.faces.triangles(), p.volume_mode, six_v, x);
+                released -= (g.ambient_pressure - before) * (gas_volume - g.reference_volume);
+            }
+        }
+        self.model.plastic_dissipation += released;
+    }
+
+    /// Energy (J) the plastic stage has taken out of the body since it was made (see `plastic.rs`).
+    pub fn plastic_dissipation(&self) -> f64 {
+        self.model.plastic_dissipation
+    }
+
+    pub(crate) fn plastic_state(&self) -> PlasticState {
+        PlasticState { rest: self.model.springs.rest.clone(), bending_rest: self.model.bending.rest.clone(), gas: self.model.gas, dissipation: self.model.plastic_dissipation }
+    }
+
+    pub(crate) fn set_plastic_state(&mut self, p: &PlasticState) {
+        self.model.springs.rest.clone_from(&p.rest);
+        self.model.bending.rest.clone_from(&p.bending_rest);
+        self.model.gas = p.gas;
+        self.model.plastic_dissipation = p.dissipation;
+    }
+
+    /// Set the plastic dissipation counter (J), e.g. when restoring.
+    pub fn set_plastic_dissipation(&mut self, joules: f64) {
+        self.model.plastic_dissipation = joules;
+    }
+}
