@@ -26,6 +26,7 @@ pub mod material;
 mod modeling;
 mod parforces;
 mod persist;
+mod remesh;
 mod springs;
 mod stats;
 mod targets;

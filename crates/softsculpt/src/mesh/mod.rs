@@ -5,6 +5,8 @@ pub mod format;
 pub mod gltf;
 pub mod obj;
 pub mod ply;
+pub mod quality;
+pub mod remesh;
 pub mod reorder;
 pub mod stl;
 pub mod subdivide;
