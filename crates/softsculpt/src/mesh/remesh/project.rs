@@ -1,40 +1,11 @@
 //! Projection back onto the input surface: the nearest point on the nearest input triangle,
 //! found through a uniform grid of the triangles' bounding boxes.
 
-use crate::vec3::{add, dot, norm, scale, sub, V3};
+use crate::vec3::{norm, sub, V3};
 
-/// Closest point to `p` on triangle (a, b, c) (Ericson, Real-Time Collision Detection, 5.1.5:
-/// the Voronoi region of p among the vertices, edges and face).
+/// Closest point to `p` on triangle (a, b, c).
 pub fn closest_on_triangle(p: V3, a: V3, b: V3, c: V3) -> V3 {
-    let (ab, ac, ap) = (sub(b, a), sub(c, a), sub(p, a));
-    let (d1, d2) = (dot(ab, ap), dot(ac, ap));
-    if d1 <= 0.0 && d2 <= 0.0 {
-        return a;
-    }
-    let bp = sub(p, b);
-    let (d3, d4) = (dot(ab, bp), dot(ac, bp));
-    if d3 >= 0.0 && d4 <= d3 {
-        return b;
-    }
-    let vc = d1 * d4 - d3 * d2;
-    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
-        return add(a, scale(ab, d1 / (d1 - d3)));
-    }
-    let cp = sub(p, c);
-    let (d5, d6) = (dot(ab, cp), dot(ac, cp));
-    if d6 >= 0.0 && d5 <= d6 {
-        return c;
-    }
-    let vb = d5 * d2 - d1 * d6;
-    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
-        return add(a, scale(ac, d2 / (d2 - d6)));
-    }
-    let va = d3 * d6 - d5 * d4;
-    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
-        return add(b, scale(sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6))));
-    }
-    let denom = 1.0 / (va + vb + vc);
-    add(a, add(scale(ab, vb * denom), scale(ac, vc * denom)))
+    crate::geometry::closest_on_triangle(p, a, b, c).1
 }
 
 /// The input surface, bucketed in a grid of cubic cells.
