@@ -131,7 +131,8 @@ fn split_chords(tris: &mut Vec<[usize; 3]>, xy: &mut Vec<[f64; 2]>, on_border: &
             *count.entry(key(t[k], t[(k + 1) % 3])).or_insert(0) += 1;
         }
     }
-    let chords: Vec<(usize, usize)> = count.into_iter().filter(|&((a, b), c)| c == 2 && on_border[a] && on_border[b]).map(|(e, _)| e).collect();
+    let mut chords: Vec<(usize, usize)> = count.into_iter().filter(|&((a, b), c)| c == 2 && on_border[a] && on_border[b]).map(|(e, _)| e).collect();
+    chords.sort_unstable(); // the same mesh every run
     for (a, b) in chords {
         let m = xy.len();
         xy.push([0.5 * (xy[a][0] + xy[b][0]), 0.5 * (xy[a][1] + xy[b][1])]);
