@@ -18,6 +18,7 @@ import type { Tool, ToolContext } from './tools/tool';
 import { GrabTool } from './tools/grab';
 import { PressTool } from './tools/press';
 import { InflateTool, MassTool, PinTool } from './tools/paint';
+import { SketchTool } from './tools/sketch';
 import { download, exportShape, type ExportFormat } from './io/export';
 import { baseName } from './project';
 
@@ -43,7 +44,7 @@ export class App implements ToolContext {
     this.viewport = new Viewport(canvas);
     this.plots = new Plots(plotCanvas);
     this.hud = new Hud(hudRoot, helpText);
-    const tools: Tool[] = [new GrabTool(), new PressTool(), new InflateTool(), new MassTool(), new PinTool()];
+    const tools: Tool[] = [new GrabTool(), new PressTool(), new InflateTool(), new MassTool(), new PinTool(), new SketchTool()];
     this.tools = new ToolManager(this, tools, () => { this.refreshOverlay(); this.sendUi(); this.changed(); }, () => this.busyLabel === null && this.mirror.ready);
     this.client = new SimulationClient(wasmUrl, {
       reply: (r) => this.onReply(r),

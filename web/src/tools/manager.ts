@@ -38,7 +38,7 @@ export class ToolManager {
   private onDown(ev: PointerEvent): void {
     if (ev.button !== 0 || !this.enabled()) return;
     const hit = this.ctx.viewport.pick(ev);
-    if (!hit || !this.active.start(hit, ev)) return;
+    if ((!hit && !this.active.anywhere) || !this.active.start(hit ?? null, ev)) return;
     this.dragging = this.active;
     this.ctx.viewport.controls.enabled = false;
     ev.stopImmediatePropagation();

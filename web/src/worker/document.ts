@@ -20,6 +20,7 @@ import { MODELS, placeOnGround, type ModelName } from '../models';
 import { importModel } from '../io/import';
 import type { MessageKind, SceneInfo, Settings, Stats, Topology, UiState, Vec3 } from '../protocol';
 import { makeStroke, type Stroke, type StrokeBody, type StrokeStart } from './strokes';
+import { sketchBalloon, type SketchCommand } from './sketch';
 
 export const HISTORY_STEPS = 200;
 export const HISTORY_BYTES = 512 * 1024 * 1024;
@@ -204,6 +205,18 @@ export class Document {
       scratch.free();
       this.hooks.progress(null);
     }
+  }
+
+  /** The sketch tool's outline becomes a balloon replacing the model (undoable; a bad outline is one message). */
+  sketch(cmd: SketchCommand): void {
+    this.hooks.progress('inflating the sketch');
+    const ok = this.edit('sketch', true, () => {
+      const { positions, triangles } = sketchBalloon(cmd);
+      this.fresh();
+      this.world.addMesh(positions, triangles, 1, false);
+      this.useDefaults('sketch');
+    }, 'all', (why) => `sketch: ${why} — the model is unchanged`);
+    if (ok) this.hooks.message(`sketched a balloon: ${this.world.body(0).vertexCount} vertices, ${this.world.body(0).faceCount} faces`);
   }
 
   // ----- editing and undo -----------------------------------------------------------------------

@@ -93,6 +93,7 @@ export class Service {
       case 'strokeStart': return doc.strokeStart(cmd);
       case 'strokeMove': return doc.strokeMove(cmd.point, cmd.inverted);
       case 'strokeEnd': return doc.strokeEnd();
+      case 'sketch': return doc.sketch(cmd);
     }
   }
 

@@ -108,3 +108,13 @@ pub fn default_nrt(pillow: &TriMesh, stiffness: f64) -> f64 {
     let tension = 3f64.sqrt() / 2.0 * stiffness * DEFAULT_STRAIN;
     2.0 * tension / dmax * pillow.volume()
 }
+
+/// The inflated body of an outline given as flat `x y` pairs (m): what the modeler's sketch tool
+/// calls. `edge` ≤ 0 takes the default edge length; the default gas.
+pub fn sketch_points(xy: &[f64], edge: f64) -> Result<TriMesh, MeshError> {
+    let points: Vec<[f64; 2]> = xy.chunks_exact(2).map(|p| [p[0], p[1]]).collect();
+    if points.iter().flatten().any(|v| !v.is_finite()) {
+        return Err(MeshError::Invalid("the outline has non-finite coordinates".into()));
+    }
+    Ok(sketch(&Outline::new(&points)?, (edge > 0.0).then_some(edge), None)?.mesh)
+}
