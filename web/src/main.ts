@@ -15,6 +15,7 @@ const HELP = `<h2>SoftSculpt</h2>
 <tr><td>I</td><td>Inflate brush (Shift: deflate)</td></tr>
 <tr><td>M</td><td>Mass brush: heavier (Shift: lighter) — heavy parts move less</td></tr>
 <tr><td>N</td><td>Pin brush (Shift: unpin)</td></tr>
+<tr><td>K</td><td>Sketch: draw a closed outline on the view; it becomes a balloon inflated by gas (replaces the model)</td></tr>
 <tr><td>[ ]</td><td>Brush radius smaller / larger</td></tr>
 <tr><td>F / R</td><td>Freeze the shape as the rest shape / reset to the last frozen shape</td></tr>
 <tr><td>U</td><td>Subdivide (Loop)</td></tr>
