@@ -119,8 +119,8 @@ test('save scene downloads a file that opens again as the same body', async () =
 // One screenshot per shipped scene — the figures of the paper — at the end of its run, or where
 // the figure shows it: Fig. 4b while pushed, Fig. 7 at the end of the push with the mass brush's
 // overlay showing the painted masses (dark: heavy).
-const MOMENT = { 'fig4b_sphere_push.toml': 2.5, 'fig7_local_deformation.toml': 0.4 };
-const KEYS = { 'fig7_local_deformation.toml': 'm' };
+const MOMENT = { 'fig4b_sphere_push.toml': 2.5, 'fig7_kangaroo.toml': 0.4, 'fig7_local_deformation.toml': 0.4 };
+const KEYS = { 'fig7_kangaroo.toml': 'm', 'fig7_local_deformation.toml': 'm' };
 for (const file of readdirSync(SCENES).filter((f) => f.endsWith('.toml')).sort()) {
   test(`figure scene ${file} plays to its end in the modeler`, async () => {
     const { page, errors } = await openModeler(suite.browser, suite.server.url);

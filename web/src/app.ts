@@ -18,6 +18,7 @@ import type { Tool, ToolContext } from './tools/tool';
 import { GrabTool } from './tools/grab';
 import { PressTool } from './tools/press';
 import { InflateTool, MassTool, PinTool } from './tools/paint';
+import { SketchTool } from './tools/sketch';
 import { download, exportShape, type ExportFormat } from './io/export';
 import { askImport } from './io/dialog';
 import { baseName } from './project';
@@ -65,7 +66,7 @@ export class App implements ToolContext {
     this.plots = new Plots(plotCanvas);
     this.hud = new Hud(hudRoot, helpText);
     this.viewport.rig.onSettled(() => this.saveCamera());
-    const tools: Tool[] = [new GrabTool(), new PressTool(), new InflateTool(), new MassTool(), new PinTool()];
+    const tools: Tool[] = [new GrabTool(), new PressTool(), new InflateTool(), new MassTool(), new PinTool(), new SketchTool()];
     this.tools = new ToolManager(this, tools, () => { this.refreshOverlay(); this.sendUi(); this.changed(); },
       () => this.busyLabel === null && this.mirror.ready, (t) => this.mayAct(t));
     this.cursor = new BrushCursor(this, (text) => { this.adjustText = text; if (text === null) this.sendUi(); });

@@ -15,6 +15,7 @@ const HELP = `<h2>SoftSculpt</h2>
 <tr><td>I</td><td>Inflate brush (Shift: deflate)</td></tr>
 <tr><td>M</td><td>Mass brush: heavier (Shift: lighter) — heavy parts move less</td></tr>
 <tr><td>N</td><td>Pin brush (Shift: unpin)</td></tr>
+<tr><td>K</td><td>Sketch: draw a closed outline on the view; it becomes a balloon inflated by gas (replaces the model)</td></tr>
 <tr><td>[ ] / { }</td><td>Brush radius / strength smaller, larger (shown on the ring under the cursor)</td></tr>
 <tr><td>B / Shift+B</td><td>Set the radius / strength by moving the mouse; click or Enter sets it, Esc puts it back</td></tr>
 <tr><td>Tool › mirror X Y Z</td><td>Symmetry: every tool also acts on the mirror image (X on for symmetric models)</td></tr>

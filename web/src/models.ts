@@ -4,7 +4,7 @@
 /** R (J/(mol·K)). */
 export const GAS_CONSTANT = 8.314462618;
 
-export const MODELS = ['mushroom', 'sphere', 'octopus', 'bunny'] as const;
+export const MODELS = ['mushroom', 'sphere', 'octopus', 'kangaroo', 'bunny'] as const;
 export type ModelName = (typeof MODELS)[number];
 
 /** Positions scaled to fit a `size` m bounding-box diagonal (if `fit`), centred in x and z, lowest point at y = 0. */

@@ -107,6 +107,11 @@ export type Command =
   /** Grab: the cursor's point on the grab plane; press and brushes: the brush centre (null: off the body). */
   | { type: 'strokeMove'; point: Vec3 | null; inverted: boolean; pressure?: number }
   | { type: 'strokeEnd' }
+  /**
+   * Sketch: the closed outline `points` (x y pairs, m) in the view plane through `origin` spanned
+   * by `right` and `up` (`normal` toward the camera) becomes a balloon replacing the model (undoable).
+   */
+  | { type: 'sketch'; points: number[]; origin: Vec3; right: Vec3; up: Vec3; normal: Vec3 }
   /** A frame's position buffer, drawn and handed back (transferred). */
   | { type: 'returnBuffer'; buffer: ArrayBuffer }
   /** Send everything again in the next frame (after a lost message). */

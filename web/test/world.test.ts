@@ -263,6 +263,22 @@ describe('world binding', () => {
     expect(thrown(() => w.addBuiltin('teapot')).message).toMatch(/unknown built-in model 'teapot'/);
     w.free();
   });
+
+  it('sketches a balloon from an outline: closed, inflated, its silhouette the outline; a bow tie is refused', () => {
+    const w = World.create();
+    // A 2 m square.
+    const b = w.addSketch(Float64Array.from([-1, -1, 1, -1, 1, 1, -1, 1]));
+    const body = w.body(b);
+    // Closed, of a sphere's topology: F = 2V − 4.
+    expect(body.faceCount).toBe(2 * body.vertexCount - 4);
+    w.sync();
+    expect(w.body(b).stats.volume).toBeGreaterThan(0.5);
+    // Its shadow on the outline's plane stays within the square's (up to 5 %: the gas stretches it a little).
+    const x = body.positions;
+    for (let i = 0; i < x.length; i += 3) for (const d of [0, 1]) expect(Math.abs(x[i + d])).toBeLessThan(1.05);
+    expect(thrown(() => w.addSketch(Float64Array.from([0, 0, 1, 1, 1, 0, 0, 1]))).message).toMatch(/crosses itself/);
+    w.free();
+  });
 });
 
 describe('scenes through the world binding', () => {

@@ -3,6 +3,7 @@
 use crate::input;
 use clap::Args;
 use serde_json::json;
+use softsculpt::mesh::quality::quality;
 
 #[derive(Args, Debug)]
 pub struct InfoArgs {
@@ -23,6 +24,7 @@ pub fn run(a: InfoArgs) -> Result<(), String> {
     let r = &loaded.report;
     let (lo, hi) = m.bounds();
     let closed = r.edges.boundary == 0 && r.edges.non_manifold == 0;
+    let q = quality(m, None);
     if a.json {
         let v = json!({
             "input": a.input,
@@ -46,6 +48,17 @@ pub fn run(a: InfoArgs) -> Result<(), String> {
             "up_axis": r.up_axis.name(),
             "rotated_to_y_up": r.up_rotated,
             "warnings": r.warnings,
+            "quality": {
+                "min_angle_deg": q.min_angle_deg,
+                "max_angle_deg": q.max_angle_deg,
+                "small_angle_share": q.small_angle_share,
+                "edge_min": q.edge_min,
+                "edge_mean": q.edge_mean,
+                "edge_max": q.edge_max,
+                "edge_spread": q.edge_spread,
+                "edges_within_band_of_mean": q.edges_in_band,
+                "poor": q.is_poor(),
+            },
         });
         println!("{v}");
         return Ok(());
@@ -66,5 +79,9 @@ pub fn run(a: InfoArgs) -> Result<(), String> {
     println!("volume:              {} m^3{}", m.volume(), if closed { "" } else { " (not meaningful: open surface)" });
     println!("up axis:             {}", input::up_text(&loaded));
     println!("bounding box:        [{}, {}, {}] .. [{}, {}, {}] m", lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+    println!("triangle quality:    {}", crate::remesh::summary(&q).replace(" within", " of edges within").replace("×", "× the mean"));
+    if q.is_poor() {
+        println!("                     poor for springs: try softsculpt remesh {} --edge {:.3} --out OUT", a.input, q.edge_mean);
+    }
     Ok(())
 }

@@ -1,6 +1,6 @@
 //! `softsculpt`: the headless front end of the SoftSculpt engine.
 //!
-//! Subcommands: `simulate` (run a body and write the result), `run` (play a scene file), `info` (what a mesh is made of),
+//! Subcommands: `simulate` (run a body and write the result), `run` (play a scene file), `info` (what a mesh is made of), `remesh`, `sketch` (an outline becomes a balloon),
 //! `bench` (the standard workload). Every failure prints one line starting `error:` on stderr
 //! and exits with status 1 (2 for a malformed command line); nothing panics on bad input.
 
@@ -9,8 +9,10 @@ mod bench;
 mod info;
 mod input;
 mod output;
+mod remesh;
 mod run;
 mod simulate;
+mod sketch;
 
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::process::ExitCode;
@@ -32,6 +34,12 @@ enum Command {
     Run(run::RunArgs),
     /// Print what a mesh is made of: counts, welds, defects, volume, bounds.
     Info(info::InfoArgs),
+    /// Remesh to a target edge length (isotropic: regular triangles, the same shape).
+    #[command(allow_negative_numbers = true)]
+    Remesh(remesh::RemeshArgs),
+    /// Sketch: a closed outline (lines of `x y`) becomes a balloon inflated to rest.
+    #[command(allow_negative_numbers = true)]
+    Sketch(sketch::SketchArgs),
     /// Run the standard benchmark workload (icospheres of increasing size).
     Bench(bench::BenchArgs),
 }
@@ -53,6 +61,8 @@ fn main() -> ExitCode {
         Command::Run(a) => run::run(a),
         Command::Info(a) => info::run(a),
         Command::Bench(a) => bench::run(a),
+        Command::Remesh(a) => remesh::run(a),
+        Command::Sketch(a) => sketch::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

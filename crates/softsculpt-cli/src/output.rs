@@ -58,3 +58,10 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
     s.write(bytes)?;
     s.commit()
 }
+
+/// Write a generated mesh (remeshed, sketched) atomically in the format `format`.
+pub fn write_mesh(path: &Path, format: softsculpt::mesh::MeshFormat, mesh: &softsculpt::TriMesh, header: &str) -> Result<(), String> {
+    let loaded = softsculpt::LoadedMesh::from_trimesh(mesh.clone());
+    let bytes = loaded.write(format, &loaded.mesh.positions, header).map_err(|e| format!("--out {}: {e}", path.display()))?;
+    write_atomic(path, &bytes).map_err(|e| format!("--out {e}"))
+}

@@ -241,6 +241,16 @@ pub unsafe extern "C" fn ss_add_obj(w: u32, ptr: *const u8, len: usize, mass: f6
     })
 }
 
+/// A body sketched from a closed outline of `n` points (`2 n` f64: x y, m): the pillow inflated
+/// to rest (`softsculpt::sketch`); `edge` ≤ 0 takes the default edge length.
+///
+/// # Safety
+/// `xy` must point to `2 n` f64.
+#[no_mangle]
+pub unsafe extern "C" fn ss_add_sketch(w: u32, xy: *const f64, n: usize, edge: f64, mass: f64) -> i32 {
+    index(|| add(w, &softsculpt::sketch::sketch_points(if xy.is_null() { &[] } else { std::slice::from_raw_parts(xy, 2 * n) }, edge).map_err(mesh_fail)?, mass, &[]))
+}
+
 /// A body from an indexed triangle mesh (f64 xyz, u32 indices): `prepare` = 1 prepares it like
 /// a file (weld, check, orient, reorder), 0 takes it exactly as given.
 ///

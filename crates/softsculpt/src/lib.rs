@@ -22,6 +22,7 @@ pub mod mesh;
 pub mod par;
 pub mod params;
 pub mod scene;
+pub mod sketch;
 pub mod snapshot;
 pub mod snapshot_v3;
 pub mod vec3;

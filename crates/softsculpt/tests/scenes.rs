@@ -295,3 +295,42 @@ fn a_running_scene_takes_a_new_dt_and_a_replaced_body() {
     assert_eq!(s.body_replaced(1, 1, 1), 2);
     assert_eq!(s.pending_events(), 0);
 }
+
+#[test]
+fn fig7_only_the_kangaroos_front_leg_and_tail_deform_much() {
+    let t = text("fig7_kangaroo.toml");
+    // Each push played alone (the scene's header and one of its four force events), so each
+    // place's motion is its own push's: (centre, radius) as the events name them.
+    let places = [([0.63, 0.8, 0.0], 0.12), ([-1.25, 0.1, 0.0], 0.15), ([-0.2, 1.0, 0.0], 0.3), ([0.75, 1.62, 0.0], 0.25)];
+    // Motion of each place under its own push, in the scene as written or with `repaint` applied.
+    let measure = |repaint: &dyn Fn(&str) -> String| -> Vec<f64> {
+        let t = repaint(&t);
+        let parts: Vec<&str> = t.split("[[event]]").collect();
+        (0..4)
+            .map(|k| {
+                let mut s = load(&format!("{}[[event]]{}", parts[0], parts[k + 1]));
+                let b = &s.world.bodies[0];
+                let x0 = b.positions().to_vec();
+                let set = region(b, places[k].0, places[k].1);
+                assert!(!set.is_empty(), "push {k} reaches no vertex");
+                run_to(&mut s, 0.4);
+                local_motion(&s.world.bodies[0], &x0, &set)
+            })
+            .collect()
+    };
+    let painted = measure(&|t| t.to_string());
+    // The same scenes unpainted (every vertex 0.01 kg).
+    let unpainted = measure(&|t| t.replace("mass = 0.0005 }", "mass = 0.01 }"));
+    let ([paw, tail, back, head], [paw_u, tail_u, back_u, head_u]) = ([painted[0], painted[1], painted[2], painted[3]], [unpainted[0], unpainted[1], unpainted[2], unpainted[3]]);
+    eprintln!("fig7 kangaroo: painted paw {paw} tail {tail} back {back} head {head}; unpainted paw {paw_u} tail {tail_u} back {back_u} head {head_u}");
+    // The same 1 N push: the light front leg and tail move far more than the heavy back and head
+    // (measured: paw 0.082 m, tail 0.27 m; back 0.009 m, head 0.012 m: 6.6× and 21×). The tail,
+    // long and light, moves 1.5× as far as unpainted (measured 0.27 vs 0.18 m); the short front
+    // leg reaches its spring-limited deflection within the push either way (0.082 m both).
+    for light in [paw, tail] {
+        assert!(light > 5.0 * back.max(head), "light {light} vs heavy {back} {head}");
+    }
+    assert!(tail > 1.3 * tail_u, "painted tail {tail} vs unpainted {tail_u}");
+    assert!(paw >= 0.95 * paw_u, "painted paw {paw} vs unpainted {paw_u}");
+    assert!((back - back_u).abs() < 0.5 * back_u && (head - head_u).abs() < 0.5 * head_u, "back {back}/{back_u} head {head}/{head_u}");
+}

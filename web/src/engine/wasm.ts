@@ -19,6 +19,7 @@ export interface RawEngine {
   ss_workload(level: number): number;
   ss_add_builtin(w: number, name: number, len: number, mass: number): number;
   ss_add_mesh(w: number, pos: number, nVertices: number, idx: number, nIndices: number, mass: number, prepare: number): number;
+  ss_add_sketch(w: number, xy: number, nPoints: number, edge: number, mass: number): number;
   ss_add_obj(w: number, ptr: number, len: number, mass: number): number;
   ss_add_file(w: number, name: number, nameLen: number, ptr: number, len: number, split: number, mass: number): number;
   ss_apply_preset_scaled(w: number, b: number, name: number, len: number, size: number): number;

@@ -253,6 +253,10 @@ export class World {
     return JSON.parse(resultText()) as string[];
   }
 
+  /** A balloon sketched from a closed outline (x y pairs, m), inflated to rest; `edge` ≤ 0: the default. */
+  addSketch(xy: Float64Array, edge = 0, mass = 1): number {
+    return this.added(this.call((w) => withArrays([xy], (p) => raw().ss_add_sketch(w, p, xy.length / 2, edge, mass))));
+  }
   /** Drop bodies, events and loads; keep the settings. */
   clear(): void { this.call((w) => raw().ss_clear(w)); }
 

@@ -45,10 +45,10 @@ export class ToolManager {
     if (!ev.isPrimary) { this.onUp(); return; }
     if (ev.button !== 0 || !this.enabled()) return;
     const hit = this.ctx.viewport.pick(ev);
-    if (!hit) return;
+    if (!hit && !this.active.anywhere) return;
     // A tool that can do nothing now (a drag while paused) says so and takes nothing.
     if (!this.allowed(this.active)) { ev.stopImmediatePropagation(); ev.preventDefault(); return; }
-    if (!this.active.start(hit, ev)) return;
+    if (!this.active.start(hit ?? null, ev)) return;
     this.dragging = this.active;
     this.ctx.viewport.controls.enabled = false;
     ev.stopImmediatePropagation();

@@ -46,7 +46,7 @@ export function penPressure(ev: PointerEvent): number | undefined {
 }
 
 export interface Tool {
-  readonly name: StrokeTool;
+  readonly name: StrokeTool | 'sketch';
   readonly label: string;
   readonly key: string;
   readonly tooltip: string;
@@ -56,8 +56,10 @@ export interface Tool {
   connect(ctx: ToolContext): void;
   disconnect(): void;
   dispose(): void;
-  /** Pointer pressed on the body: return true to take the drag. */
-  start(hit: THREE.Intersection, ev: PointerEvent): boolean;
+  /** The tool's drag may start off the body (`start` then gets no hit). */
+  readonly anywhere?: boolean;
+  /** Pointer pressed on the body (or anywhere, for `anywhere` tools): return true to take the drag. */
+  start(hit: THREE.Intersection | null, ev: PointerEvent): boolean;
   move(ev: PointerEvent): void;
   end(): void;
   /** Colour overlay while the tool is active, or null. */
@@ -84,8 +86,9 @@ export abstract class BaseTool implements Tool {
   disconnect(): void { if (this.dragging) this.end(); this.ctx = null; }
   dispose(): void { this.disconnect(); }
 
-  start(hit: THREE.Intersection, ev: PointerEvent): boolean {
+  start(hit: THREE.Intersection | null, ev: PointerEvent): boolean {
     const ctx = this.ctx!;
+    if (!hit) return false;
     this.inverted = ev.shiftKey;
     this.dragging = true;
     ctx.send({ type: 'strokeStart', tool: this.name, point: point(hit.point), radius: ctx.brush.radius, strength: this.strength, inverted: this.inverted,

@@ -22,6 +22,7 @@ import { Importer } from './importer';
 import type { MessageKind, SceneInfo, Settings, Stats, Topology, UiState, Vec3 } from '../protocol';
 import { makeStroke, type Stroke, type StrokeBody, type StrokeStart } from './strokes';
 import { explainStop, type Change } from './explain';
+import { sketchBalloon, type SketchCommand } from './sketch';
 
 export const HISTORY_STEPS = 200;
 export const HISTORY_BYTES = 512 * 1024 * 1024;
@@ -235,6 +236,18 @@ export class Document {
   importFile(name: string, data: ArrayBuffer): void { this.importer.read(name, data); }
   /** The page's answers for the file waiting (null: cancelled). */
   importAnswer(a: ImportAnswer | null): void { this.importer.answer(a); }
+
+  /** The sketch tool's outline becomes a balloon replacing the model (undoable; a bad outline is one message). */
+  sketch(cmd: SketchCommand): void {
+    this.hooks.progress('inflating the sketch');
+    const ok = this.edit('sketch', true, () => {
+      const { positions, triangles } = sketchBalloon(cmd);
+      this.fresh();
+      this.world.addMesh(positions, triangles, 1, false);
+      this.useDefaults('sketch');
+    }, 'all', (why) => `sketch: ${why} — the model is unchanged`);
+    if (ok) this.hooks.message(`sketched a balloon: ${this.world.body(0).vertexCount} vertices, ${this.world.body(0).faceCount} faces`);
+  }
 
   // ----- editing and undo -----------------------------------------------------------------------
 

@@ -100,6 +100,7 @@ export class Service {
       case 'strokeStart': return doc.strokeStart(cmd);
       case 'strokeMove': return doc.strokeMove(cmd.point, cmd.inverted, cmd.pressure);
       case 'strokeEnd': return doc.strokeEnd();
+      case 'sketch': return doc.sketch(cmd);
     }
   }
 

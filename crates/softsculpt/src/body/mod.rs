@@ -29,6 +29,7 @@ mod modeling;
 mod parforces;
 mod persist;
 mod plastic;
+mod remesh;
 mod springs;
 mod stats;
 mod targets;

@@ -7,6 +7,8 @@ pub mod animation;
 pub mod obj;
 pub mod pieces;
 pub mod ply;
+pub mod quality;
+pub mod remesh;
 pub mod reorder;
 pub mod stl;
 pub mod subdivide;

@@ -1,0 +1,75 @@
+//! `softsculpt remesh` and `softsculpt sketch`: what they write and how they refuse bad input.
+
+mod common;
+
+use common::{softsculpt, stderr, Dir};
+use std::process::Output;
+
+fn assert_one_error(o: &Output, needle: &str) {
+    let e = stderr(o);
+    assert!(!o.status.success() && !e.contains("panicked"), "{e}");
+    let lines: Vec<&str> = e.lines().filter(|l| !l.starts_with("warning:")).collect();
+    assert_eq!(lines.len(), 1, "{e}");
+    assert!(lines[0].starts_with("error:") && lines[0].contains(needle), "'{}' lacks '{needle}'", lines[0]);
+}
+
+fn info_json(path: &str) -> serde_json::Value {
+    let o = softsculpt(&["info", path, "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    serde_json::from_slice(&o.stdout).unwrap()
+}
+
+#[test]
+fn remesh_writes_a_regular_closed_mesh_in_any_format() {
+    let d = Dir::new();
+    for ext in ["obj", "ply", "stl", "glb"] {
+        let out = d.s(&format!("octopus.{ext}"));
+        let o = softsculpt(&["remesh", "builtin:octopus", "--edge", "0.08", "--out", &out]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let v = info_json(&out);
+        assert_eq!(v["closed"], true, "{ext}");
+        // Band about the mean (the target is 0.08 m; the mean sits near it).
+        assert!(v["quality"]["edges_within_band_of_mean"].as_f64().unwrap() > 0.95, "{ext}: {v}");
+        assert!(v["quality"]["small_angle_share"].as_f64().unwrap() < 0.05, "{ext}: {v}");
+        assert_eq!(v["quality"]["poor"], false);
+    }
+    // The input, by contrast, is poor (square tentacles of long quads).
+    assert_eq!(info_json("builtin:octopus")["quality"]["poor"], true);
+}
+
+#[test]
+fn remesh_refuses_bad_edge_lengths_before_any_work() {
+    let d = Dir::new();
+    let out = d.s("out.obj");
+    for (edge, needle) in [("0", "positive"), ("-0.1", "positive"), ("nan", "finite"), ("inf", "finite"), ("10", "longer than the mesh"), ("0.00001", "M triangles")] {
+        let o = softsculpt(&["remesh", "builtin:sphere", "--edge", edge, "--out", &out]);
+        assert_one_error(&o, needle);
+    }
+    assert_one_error(&softsculpt(&["remesh", "builtin:sphere", "--edge", "0.1", "--out", &d.s("out.gltf")]), ".gltf");
+    assert_one_error(&softsculpt(&["remesh", "builtin:sphere", "--edge", "0.1", "--crease", "200", "--out", &out]), "crease");
+    assert!(!d.path("out.obj").exists());
+}
+
+#[test]
+fn sketch_writes_a_closed_balloon_and_refuses_bad_outlines() {
+    let d = Dir::new();
+    let square = d.file("square.txt", b"# a square, 1 m\n0 0\n1 0\n1 1\n0 1\n");
+    let out = d.s("pillow.obj");
+    let o = softsculpt(&["sketch", &square, "--out", &out]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v = info_json(&out);
+    assert_eq!(v["closed"], true);
+    assert!(v["volume"].as_f64().unwrap() > 0.0);
+    for (name, text, needle) in [
+        ("two.txt", "0 0\n1 0\n", "at least 3"),
+        ("line.txt", "0 0\n1 0\n2 0\n", "no area"),
+        ("bowtie.txt", "0 0\n1 1\n1 0\n0 1\n", "crosses itself"),
+        ("bad.txt", "0 0\n1 0\n1 one\n", "line 3"),
+    ] {
+        let p = d.file(name, text.as_bytes());
+        assert_one_error(&softsculpt(&["sketch", &p, "--out", &d.s("x.obj")]), needle);
+    }
+    assert_one_error(&softsculpt(&["sketch", &square, "--out", &d.s("x.obj"), "--gas", "-1"]), "--gas");
+    assert_one_error(&softsculpt(&["sketch", &square, "--out", &d.s("x.obj"), "--edge", "5"]), "too long");
+    assert!(!d.path("x.obj").exists());
+}

@@ -1,0 +1,204 @@
+//! Isotropic remeshing (Botsch & Kobbelt 2004): the result is a regular mesh of the same shape.
+
+use softsculpt::mesh::quality::quality;
+use softsculpt::mesh::remesh::{closest_on_triangle, remesh};
+use softsculpt::vec3::{get, norm, sub};
+use softsculpt::{Material, SoftBody};
+use softsculpt::mesh::{builtin, load_obj, TriMesh};
+use std::f64::consts::PI;
+
+/// Remesh and check the four properties: closed manifold and outward, volume within
+/// 0.5 % of the input's, 95 % of edges within [0.75, 1.33]·L, 95 % of angles above 25°.
+fn check_regular(name: &str, mesh: &TriMesh, edge: f64) -> TriMesh {
+    let before = quality(mesh, Some(edge));
+    let out = remesh(mesh, edge, None).unwrap();
+    let q = quality(&out, Some(edge));
+    let (v0, v1) = (mesh.volume(), out.volume());
+    eprintln!(
+        "{name}: L {edge}: {} -> {} triangles; in band {:.3} -> {:.3}; small angles {:.3} -> {:.3}; min angle {:.1} -> {:.1}; volume {v0:.5} -> {v1:.5} ({:+.3} %)",
+        mesh.triangles.len(), out.triangles.len(), before.edges_in_band, q.edges_in_band, before.small_angle_share, q.small_angle_share,
+        before.min_angle_deg, q.min_angle_deg, 100.0 * (v1 / v0 - 1.0)
+    );
+    assert!(out.is_closed(), "{name}: {:?}", out.edge_counts());
+    assert_eq!(out.edge_counts().inconsistent, 0, "{name}");
+    assert!(v1 > 0.0, "{name}: outward");
+    assert!((v1 / v0 - 1.0).abs() < 0.005, "{name}: volume {v0} -> {v1}");
+    assert!(q.edges_in_band >= 0.95, "{name}: {q:?}");
+    assert!(q.small_angle_share <= 0.05, "{name}: {q:?}");
+    out
+}
+
+#[test]
+fn remeshed_builtins_are_regular_closed_and_keep_their_volume() {
+    check_regular("sphere", &builtin::builtin("sphere").unwrap(), 0.12);
+    check_regular("mushroom", &builtin::builtin("mushroom").unwrap(), 0.08);
+    check_regular("octopus", &builtin::builtin("octopus").unwrap(), 0.06);
+}
+
+
+/// A UV sphere of radius 1 with many segments and few rings: long thin triangles (aspect ~4:1 at
+/// the equator, slivers of 2.8° at the poles), welded by the loader.
+fn sliver_sphere(segments: usize, rings: usize) -> TriMesh {
+    let mut s = String::new();
+    for r in 0..=rings {
+        let phi = PI * r as f64 / rings as f64;
+        for k in 0..segments {
+            let th = 2.0 * PI * k as f64 / segments as f64;
+            s += &format!("v {} {} {}\n", phi.sin() * th.cos(), phi.cos(), phi.sin() * th.sin());
+        }
+    }
+    let index = |r: usize, k: usize| 1 + r * segments + k % segments;
+    for r in 0..rings {
+        for k in 0..segments {
+            let (a, b, c, d) = (index(r, k), index(r, k + 1), index(r + 1, k + 1), index(r + 1, k));
+            s += &format!("f {a} {b} {c}\nf {a} {c} {d}\n");
+        }
+    }
+    load_obj(s.as_bytes()).unwrap().mesh
+}
+
+#[test]
+fn a_mesh_of_long_thin_triangles_becomes_regular() {
+    let bad = sliver_sphere(64, 6);
+    let before = quality(&bad, None);
+    assert!(before.small_angle_share > 0.3, "the input is bad: {before:?}");
+    check_regular("slivers", &bad, 0.1);
+}
+
+/// An open hemisphere (a UV cap, 32 × 8): its border is a circle of 32 segments in y = 0.
+fn open_cap() -> TriMesh {
+    let (segments, rings) = (32, 8);
+    let mut s = String::from("v 0 1 0\n");
+    for r in 1..=rings {
+        let phi = 0.5 * PI * r as f64 / rings as f64;
+        for k in 0..segments {
+            let th = 2.0 * PI * k as f64 / segments as f64;
+            s += &format!("v {} {} {}\n", phi.sin() * th.cos(), phi.cos(), -phi.sin() * th.sin());
+        }
+    }
+    let index = |r: usize, k: usize| 2 + (r - 1) * segments + k % segments;
+    for k in 0..segments {
+        s += &format!("f 1 {} {}\n", index(1, k), index(1, k + 1));
+    }
+    for r in 1..rings {
+        for k in 0..segments {
+            let (a, b, c, d) = (index(r, k), index(r, k + 1), index(r + 1, k + 1), index(r + 1, k));
+            s += &format!("f {a} {d} {c}\nf {a} {c} {b}\n");
+        }
+    }
+    load_obj(s.as_bytes()).unwrap().mesh
+}
+
+/// Border vertices of a mesh (on an edge of one face).
+fn border_vertices(m: &TriMesh) -> Vec<usize> {
+    let mut count = std::collections::HashMap::new();
+    for t in &m.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3]));
+            *count.entry((a, b)).or_insert(0) += 1;
+        }
+    }
+    let mut v: Vec<usize> = count.iter().filter(|(_, &c)| c == 1).flat_map(|(e, _)| [e.0 as usize, e.1 as usize]).collect();
+    v.sort();
+    v.dedup();
+    v
+}
+
+#[test]
+fn an_open_mesh_keeps_its_border() {
+    let cap = open_cap();
+    let edge = 0.1;
+    let out = remesh(&cap, edge, None).unwrap();
+    let c = out.edge_counts();
+    assert_eq!(c.non_manifold, 0);
+    assert!(c.boundary > 0, "still open");
+    // Every new border vertex lies on the old border polygon: inserted ones at midpoints of its
+    // segments (exactly, up to rounding), removed ones only where it was straight.
+    let old_border = border_vertices(&cap);
+    let old_segments: Vec<[f64; 6]> = old_border
+        .iter()
+        .flat_map(|&i| old_border.iter().map(move |&j| (i, j)))
+        .filter(|&(i, j)| i < j && cap.triangles.iter().filter(|t| t.contains(&(i as u32)) && t.contains(&(j as u32))).count() == 1)
+        .map(|(i, j)| { let (a, b) = (get(&cap.positions, i), get(&cap.positions, j)); [a[0], a[1], a[2], b[0], b[1], b[2]] })
+        .collect();
+    let new_border = border_vertices(&out);
+    let mut worst: f64 = 0.0;
+    for &v in &new_border {
+        let p = get(&out.positions, v);
+        let d = old_segments.iter().map(|s| norm(sub(closest_on_triangle(p, [s[0], s[1], s[2]], [s[3], s[4], s[5]], [s[3], s[4], s[5]]), p))).fold(f64::INFINITY, f64::min);
+        worst = worst.max(d);
+    }
+    eprintln!("cap: border {} -> {} vertices, farthest from the old border {worst:e} m", old_border.len(), new_border.len());
+    assert!(worst < 1e-12, "{worst}");
+    // The same loop length (the border polygon is kept, up to removed straight vertices: none here,
+    // a 32-gon is nowhere straight within 0.05 L).
+    let len = |m: &TriMesh, vs: &[usize]| vs.iter().map(|&v| get(&m.positions, v)).map(|p| (p[0] * p[0] + p[2] * p[2]).sqrt()).fold(0.0f64, f64::max);
+    assert!((len(&out, &new_border) - 1.0).abs() < 1e-12);
+    let q = quality(&out, Some(edge));
+    assert!(q.small_angle_share < 0.05, "{q:?}");
+}
+
+/// A unit cube, 12 triangles: remeshed with creases kept (90° > 30°), its corners and edges stay
+/// and its volume is exact (flat faces: projection is exact, and no crease is cut).
+#[test]
+fn creases_kept_keep_a_cubes_corners() {
+    let p = [[0., 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.], [0., 0., 1.], [1., 0., 1.], [1., 1., 1.], [0., 1., 1.]];
+    let quads = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [2, 3, 7, 6], [1, 2, 6, 5], [0, 4, 7, 3]];
+    let mut s = String::new();
+    for v in p {
+        s += &format!("v {} {} {}\n", v[0], v[1], v[2]);
+    }
+    for q in quads {
+        s += &format!("f {} {} {} {}\n", q[0] + 1, q[1] + 1, q[2] + 1, q[3] + 1);
+    }
+    let cube = load_obj(s.as_bytes()).unwrap().mesh;
+    let out = remesh(&cube, 0.2, Some(30.0)).unwrap();
+    assert!(out.is_closed());
+    assert!((out.volume() - 1.0).abs() < 1e-9, "{}", out.volume());
+    for c in p {
+        assert!((0..out.vertex_count()).any(|i| norm(sub(get(&out.positions, i), c)) < 1e-12), "corner {c:?} kept");
+    }
+    let q = quality(&out, Some(0.2));
+    eprintln!("cube: {} triangles, {q:?}", out.triangles.len());
+    assert!(q.edges_in_band > 0.9 && q.small_angle_share < 0.05, "{q:?}");
+}
+
+#[test]
+fn absurd_edge_lengths_are_refused_before_any_work() {
+    let m = builtin::builtin("sphere").unwrap();
+    for (edge, says) in [(0.0, "positive"), (-0.1, "positive"), (f64::NAN, "positive"), (f64::INFINITY, "positive"), (3.5, "longer than the mesh"), (1e-4, "M triangles")] {
+        let e = remesh(&m, edge, None).unwrap_err().to_string();
+        assert!(e.contains(says), "{edge}: {e}");
+    }
+}
+
+/// Remeshing a painted body: the total mass is the same, a region painted 20× heavier per vertex
+/// stays 20× heavier per vertex, pins stay where they were.
+#[test]
+fn a_remeshed_body_keeps_its_painted_masses_and_pins() {
+    let m = builtin::builtin("sphere").unwrap();
+    let mut b = SoftBody::new(&m, 1.0, Material::default()).unwrap();
+    let n = b.vertex_count();
+    let masses: Vec<f64> = (0..n).map(|i| if get(b.positions(), i)[1] > 0.5 { 0.02 } else { 0.001 }).collect();
+    b.set_masses(&masses).unwrap();
+    let pinned: Vec<usize> = (0..n).filter(|&i| get(b.positions(), i)[1] < -0.95).collect();
+    for &i in &pinned {
+        b.set_pinned(i, true).unwrap();
+    }
+    let r = b.remeshed(0.1).unwrap();
+    let total = |b: &SoftBody| b.masses().iter().sum::<f64>();
+    assert!((total(&r) - total(&b)).abs() < 1e-12 * total(&b));
+    let (heavy, light): (Vec<usize>, Vec<usize>) = (0..r.vertex_count()).partition(|&i| get(r.positions(), i)[1] > 0.7);
+    let light: Vec<usize> = light.into_iter().filter(|&i| get(r.positions(), i)[1] < 0.3).collect();
+    let mean = |s: &[usize]| s.iter().map(|&i| r.masses()[i]).sum::<f64>() / s.len() as f64;
+    let ratio = mean(&heavy) / mean(&light);
+    assert!((ratio - 20.0).abs() < 1e-9, "{ratio}");
+    // Each old pin has a new pin nearby: in a regular mesh of side L every point is within
+    // L/√3 (the circumradius) of a vertex; 10 % margin for the spread of lengths.
+    let pins: Vec<usize> = (0..r.vertex_count()).filter(|&i| r.is_pinned(i)).collect();
+    for &o in &pinned {
+        let d = pins.iter().map(|&p| norm(sub(get(r.positions(), p), get(b.positions(), o)))).fold(f64::INFINITY, f64::min);
+        assert!(d < 1.1 * 0.1 / 3f64.sqrt(), "{d}");
+    }
+    assert!(pins.iter().all(|&p| get(r.positions(), p)[1] < -0.9));
+}
