@@ -295,21 +295,7 @@ impl Multigrid {
         let free = |i: usize| m.inv_mass[i] != 0.0;
         // Level 1: centres, offsets, then the springs' CSR entries row by row.
         let s = &first.s;
-        for c in 0..s.n {
-            let mem = &s.member[s.mstart[c] as usize..s.mstart[c + 1] as usize];
-            let mut cc = [0.0; 3];
-            for &i in mem {
-                for d in 0..3 {
-                    cc[d] += x[3 * i as usize + d];
-                }
-            }
-            let inv = 1.0 / mem.len() as f64;
-            first.c[c] = [cc[0] * inv, cc[1] * inv, cc[2] * inv];
-            for &i in mem {
-                let i = i as usize;
-                first.off[i] = [x[3 * i] - first.c[c][0], x[3 * i + 1] - first.c[c][1], x[3 * i + 2] - first.c[c][2]];
-            }
-        }
+        centres(s, |i| [x[3 * i], x[3 * i + 1], x[3 * i + 2]], &mut first.c, &mut first.off);
         first.a.fill([0.0; 36]);
         for c in 0..s.n {
             let dpos = s.start[c] as usize;
@@ -346,21 +332,7 @@ impl Multigrid {
         let mut above = &*first;
         for lv in rest.iter_mut() {
             let s = &lv.s;
-            for c in 0..s.n {
-                let mem = &s.member[s.mstart[c] as usize..s.mstart[c + 1] as usize];
-                let mut cc = [0.0; 3];
-                for &u in mem {
-                    for d in 0..3 {
-                        cc[d] += above.c[u as usize][d];
-                    }
-                }
-                let inv = 1.0 / mem.len() as f64;
-                lv.c[c] = [cc[0] * inv, cc[1] * inv, cc[2] * inv];
-                for &u in mem {
-                    let u = u as usize;
-                    lv.off[u] = [above.c[u][0] - lv.c[c][0], above.c[u][1] - lv.c[c][1], above.c[u][2] - lv.c[c][2]];
-                }
-            }
+            centres(s, |u| above.c[u], &mut lv.c, &mut lv.off);
             lv.a.fill([0.0; 36]);
             for c in 0..s.n {
                 for &u in &s.member[s.mstart[c] as usize..s.mstart[c + 1] as usize] {
@@ -536,6 +508,27 @@ impl Multigrid {
         }
         sys.residual(th, m, z, res, t, slots);
         jacobi(th, sys, n, OMEGA, t, Some(res), z, slots)
+    }
+}
+
+/// Each node's centre (the mean of its members' positions `pos`) into `c`, and each member's
+/// offset from its node's centre into `off`.
+fn centres(s: &Shape, pos: impl Fn(usize) -> [f64; 3], c: &mut [[f64; 3]], off: &mut [[f64; 3]]) {
+    for (node, cn) in c.iter_mut().enumerate().take(s.n) {
+        let mem = &s.member[s.mstart[node] as usize..s.mstart[node + 1] as usize];
+        let mut acc = [0.0; 3];
+        for &u in mem {
+            let p = pos(u as usize);
+            for d in 0..3 {
+                acc[d] += p[d];
+            }
+        }
+        let inv = 1.0 / mem.len() as f64;
+        *cn = [acc[0] * inv, acc[1] * inv, acc[2] * inv];
+        for &u in mem {
+            let p = pos(u as usize);
+            off[u as usize] = [p[0] - cn[0], p[1] - cn[1], p[2] - cn[2]];
+        }
     }
 }
 
