@@ -1,11 +1,13 @@
 //! The preconditioned conjugate gradient on A δ = −r (A = M + dt D + dt² K, symmetric positive
-//! definite after the projections of `system.rs`; block-Jacobi preconditioner: the inverse of
-//! each vertex's 3×3 diagonal block). Matrix-free: A is applied row by row (`System::product`).
+//! definite after the projections of `system.rs`). Preconditioner (`multigrid.rs`): the inverse
+//! of each vertex's 3×3 diagonal block (block Jacobi), or on large bodies an aggregation
+//! multigrid V-cycle. Matrix-free: A is applied row by row (`System::product`).
 //!
 //! It stops when the mass-weighted norm of its residual ‖b − A δ‖_{M⁻¹} (with
 //! ‖y‖²_{M⁻¹} = Σ_i |y_i|² / m_i) is at most η ‖b‖_{M⁻¹} — the Newton loop chooses η — or after
 //! [`LINEAR_MAX`] iterations (Newton then goes on from the partial solution).
 
+use super::multigrid::Multigrid;
 use super::system::{System, VCHUNK};
 use super::super::Model;
 use crate::par::{chunk, Out, Threads};
@@ -29,96 +31,94 @@ impl Cg {
     }
 
     /// Solve A δ = −r to relative accuracy `eta`; δ into `delta`. Returns the iterations taken.
-    pub fn solve(&mut self, th: &Threads, sys: &System, m: &Model, r: &[f64], eta: f64, delta: &mut [f64]) -> u32 {
+    #[allow(clippy::too_many_arguments)]
+    pub fn solve(&mut self, th: &Threads, sys: &System, mg: &mut Multigrid, m: &Model, r: &[f64], eta: f64, delta: &mut [f64]) -> u32 {
         let n = m.mass.len();
         let Cg { res, z, p, q, slots } = self;
-        // δ = 0, res = −r, z = P res, p = z; rz = res · z, rn = ‖res‖²_{M⁻¹}, gp = g · p.
+        // δ = 0, res = −r; rn = ‖res‖²_{M⁻¹}.
         {
-            let (dl, rs, zz, pp) = (Out::new(delta), Out::new(res), Out::new(z), Out::new(p));
+            let (dl, rs) = (Out::new(delta), Out::new(res));
             th.each(slots, |c, slot| {
                 let vr = chunk(c, VCHUNK, n);
                 // SAFETY: chunk c writes vertices vr only.
-                let (dl, rs, zz, pp) = unsafe { (dl.range(3 * vr.start..3 * vr.end), rs.range(3 * vr.start..3 * vr.end), zz.range(3 * vr.start..3 * vr.end), pp.range(3 * vr.start..3 * vr.end)) };
+                let (dl, rs) = unsafe { (dl.range(3 * vr.start..3 * vr.end), rs.range(3 * vr.start..3 * vr.end)) };
                 let mut acc = [0.0; 4];
                 for (li, i) in vr.enumerate() {
-                    let ri = [-r[3 * i], -r[3 * i + 1], -r[3 * i + 2]];
-                    let zi = sys.precondition(i, &ri);
                     for d in 0..3 {
+                        let ri = -r[3 * i + d];
                         dl[3 * li + d] = 0.0;
-                        rs[3 * li + d] = ri[d];
-                        zz[3 * li + d] = zi[d];
-                        pp[3 * li + d] = zi[d];
-                        acc[0] += ri[d] * zi[d];
-                        acc[1] += ri[d] * ri[d] / m.mass[i];
-                        acc[2] += zi[d] * sys.g[3 * i + d];
+                        rs[3 * li + d] = ri;
+                        acc[1] += ri * ri / m.mass[i];
                     }
                 }
                 *slot = acc;
             });
         }
-        let (mut rz, mut rn, mut gp) = sum3(slots);
+        let mut rn = sum3(slots).1;
         let target = eta * eta * rn;
+        if rn <= target || rn == 0.0 {
+            return 0;
+        }
+        // z = B res (the preconditioner), p = z; rz = res · z, gp = g · p.
+        let mut rz = mg.apply(th, sys, m, res, z, slots);
         let gas = sys.gamma != 0.0;
+        let mut gp = direction(th, sys, n, z, 0.0, p, slots);
         for it in 0..LINEAR_MAX {
-            if rn <= target || rn == 0.0 {
-                return it;
-            }
             let pq = sys.product(th, m, p, if gas { gp } else { 0.0 }, q, slots);
             if !(pq > 0.0 && pq.is_finite()) {
                 return it; // only rounding can do this: A is positive definite
             }
             let alpha = rz / pq;
             {
-                let (dl, rs, zz) = (Out::new(delta), Out::new(res), Out::new(z));
+                let (dl, rs) = (Out::new(delta), Out::new(res));
                 let (p, q) = (&*p, &*q);
                 th.each(slots, |c, slot| {
                     let vr = chunk(c, VCHUNK, n);
                     // SAFETY: chunk c writes vertices vr only.
-                    let (dl, rs, zz) = unsafe { (dl.range(3 * vr.start..3 * vr.end), rs.range(3 * vr.start..3 * vr.end), zz.range(3 * vr.start..3 * vr.end)) };
+                    let (dl, rs) = unsafe { (dl.range(3 * vr.start..3 * vr.end), rs.range(3 * vr.start..3 * vr.end)) };
                     let mut acc = [0.0; 4];
                     for (li, i) in vr.enumerate() {
-                        let mut ri = [0.0; 3];
                         for d in 0..3 {
                             dl[3 * li + d] += alpha * p[3 * i + d];
-                            ri[d] = rs[3 * li + d] - alpha * q[3 * i + d];
-                            rs[3 * li + d] = ri[d];
-                        }
-                        let zi = sys.precondition(i, &ri);
-                        for d in 0..3 {
-                            zz[3 * li + d] = zi[d];
-                            acc[0] += ri[d] * zi[d];
-                            acc[1] += ri[d] * ri[d] / m.mass[i];
+                            let ri = rs[3 * li + d] - alpha * q[3 * i + d];
+                            rs[3 * li + d] = ri;
+                            acc[1] += ri * ri / m.mass[i];
                         }
                     }
                     *slot = acc;
                 });
             }
-            let (rz_new, rn_new, _) = sum3(slots);
+            rn = sum3(slots).1;
+            if rn <= target || rn == 0.0 {
+                return it + 1;
+            }
+            let rz_new = mg.apply(th, sys, m, res, z, slots);
             let beta = rz_new / rz;
             rz = rz_new;
-            rn = rn_new;
-            {
-                let pp = Out::new(p);
-                let z = &*z;
-                th.each(slots, |c, slot| {
-                    let vr = chunk(c, VCHUNK, n);
-                    // SAFETY: chunk c writes vertices vr only.
-                    let pp = unsafe { pp.range(3 * vr.start..3 * vr.end) };
-                    let mut acc = [0.0; 4];
-                    for (li, i) in vr.enumerate() {
-                        for d in 0..3 {
-                            let v = z[3 * i + d] + beta * pp[3 * li + d];
-                            pp[3 * li + d] = v;
-                            acc[2] += v * sys.g[3 * i + d];
-                        }
-                    }
-                    *slot = acc;
-                });
-            }
-            gp = sum3(slots).2;
+            gp = direction(th, sys, n, z, beta, p, slots);
         }
         LINEAR_MAX
     }
+}
+
+/// p = z + β p; returns g · p.
+fn direction(th: &Threads, sys: &System, n: usize, z: &[f64], beta: f64, p: &mut [f64], slots: &mut [[f64; 4]]) -> f64 {
+    let pp = Out::new(p);
+    th.each(slots, |c, slot| {
+        let vr = chunk(c, VCHUNK, n);
+        // SAFETY: chunk c writes vertices vr only.
+        let pp = unsafe { pp.range(3 * vr.start..3 * vr.end) };
+        let mut acc = [0.0; 4];
+        for (li, i) in vr.enumerate() {
+            for d in 0..3 {
+                let v = z[3 * i + d] + beta * pp[3 * li + d];
+                pp[3 * li + d] = v;
+                acc[2] += v * sys.g[3 * i + d];
+            }
+        }
+        *slot = acc;
+    });
+    sum3(slots).2
 }
 
 /// Sums of the first three reduction slots, in chunk order.

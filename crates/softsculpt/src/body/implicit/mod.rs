@@ -7,7 +7,8 @@
 //!   r(v⁺) = M (v⁺ − v) − dt f(x + dt v⁺, v⁺)        (kg·m/s per coordinate)
 //!
 //! each Newton step δ from A δ = −r with A = M + dt D + dt² K (K, D the projected stiffness and
-//! damping, `system.rs`) by a block-Jacobi preconditioned conjugate gradient (`cg.rs`), then a
+//! damping, `system.rs`) by a preconditioned conjugate gradient (`cg.rs`; block Jacobi, or a
+//! multigrid V-cycle from `multigrid::MULTIGRID_FROM` vertices: `multigrid.rs`), then a
 //! line search along δ ([`Implicit::line_search`]). Anchors: Baraff & Witkin 1998 (large steps in cloth simulation).
 //!
 //! **Convergence** (what `tolerance` means): with the mass-weighted norm
@@ -31,7 +32,9 @@
 //! All scratch is allocated on the first implicit step of a body and reused.
 
 mod adjacency;
+mod aggregate;
 mod cg;
+mod multigrid;
 mod system;
 
 use super::forces::Fault;
@@ -55,6 +58,7 @@ const LINE_MAX: u32 = 6;
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Implicit {
     sys: System,
+    mg: multigrid::Multigrid,
     cg: cg::Cg,
     vp: Vec<f64>,
     xt: Vec<f64>,
@@ -67,7 +71,8 @@ impl Implicit {
         let n = m.mass.len();
         let sys = System::new(m);
         let chunks = sys.vslots.len();
-        Implicit { sys, cg: cg::Cg::new(n, chunks), vp: vec![0.0; 3 * n], xt: vec![0.0; 3 * n], r: vec![0.0; 3 * n], delta: vec![0.0; 3 * n] }
+        let mg = multigrid::Multigrid::new(&sys, n, multigrid::MULTIGRID_FROM);
+        Implicit { sys, mg, cg: cg::Cg::new(n, chunks), vp: vec![0.0; 3 * n], xt: vec![0.0; 3 * n], r: vec![0.0; 3 * n], delta: vec![0.0; 3 * n] }
     }
 
     /// Built for a body with `m`'s vertex, spring and face counts.
@@ -150,7 +155,10 @@ impl Implicit {
                 return Err(Fault::NotConverged { iterations: it.newton, residual: rho });
             }
             let eta = 0.1f64.min((rho * rho).max(0.5 * w.tolerance / rho));
-            it.linear += self.cg.solve(th, &self.sys, m, &self.r, eta, &mut self.delta);
+            if it.newton == 0 {
+                self.mg.assemble(&self.sys, m, &self.xt);
+            }
+            it.linear += self.cg.solve(th, &self.sys, &mut self.mg, m, &self.r, eta, &mut self.delta);
             it.newton += 1;
             // Line search along δ on φ(λ) = ‖r(v⁺_k + λ δ)‖: see `line_search`.
             (norm, noise) = self.line_search(th, &fr)?;

@@ -437,15 +437,28 @@ impl System {
     /// out = A p, A = M + dt D + dt² K (see the module documentation); `gp` = g · p. Pinned
     /// rows are 0 (p is 0 there too).
     pub fn product(&self, th: &Threads, m: &Model, p: &[f64], gp: f64, out: &mut [f64], slots: &mut [[f64; 4]]) -> f64 {
+        self.rows_pass::<false>(th, m, p, self.gamma * gp, &[], out, slots)
+    }
+
+    /// out = b − A' p, A' = A without the gas's rank-one term (the multigrid cycle's residual:
+    /// `multigrid.rs`). Pinned rows are 0 (b and p are 0 there too).
+    pub fn residual(&self, th: &Threads, m: &Model, p: &[f64], b: &[f64], out: &mut [f64], slots: &mut [[f64; 4]]) {
+        assert!(b.len() >= 3 * m.mass.len());
+        self.rows_pass::<true>(th, m, p, 0.0, b, out, slots);
+    }
+
+    /// The chunked pass of `product` (SUB = false) and `residual` (SUB = true): out = A p or
+    /// b − A p, gg = γ (g · p); returns p · A p.
+    #[allow(clippy::too_many_arguments)]
+    fn rows_pass<const SUB: bool>(&self, th: &Threads, m: &Model, p: &[f64], gg: f64, b: &[f64], out: &mut [f64], slots: &mut [[f64; 4]]) -> f64 {
         let n = m.mass.len();
         assert!(p.len() >= 3 * n && self.diag.len() >= n && self.g.len() >= 3 * n && m.inv_mass.len() >= n);
         let o = Out::new(out);
-        let gg = self.gamma * gp;
         th.each(slots, |c, slot| {
             let vr = chunk(c, VCHUNK, n);
             // SAFETY: chunk c writes vertices vr only.
             let out = unsafe { o.range(3 * vr.start..3 * vr.end) };
-            slot[0] = self.product_rows(m, vr, p, gg, out);
+            slot[0] = self.product_rows::<SUB>(m, vr, p, gg, b, out);
         });
         slots.iter().map(|s| s[0]).sum()
     }
@@ -453,25 +466,25 @@ impl System {
     /// Rows `vr` of the product into `out`; returns their part of p · A p. On x86-64 with AVX2
     /// the same code is compiled a second time for it (VEX encoding; no FMA contraction, so the
     /// bits are the same either way) and chosen at run time, as in `springs.rs`.
-    fn product_rows(&self, m: &Model, vr: std::ops::Range<usize>, p: &[f64], gg: f64, out: &mut [f64]) -> f64 {
+    fn product_rows<const SUB: bool>(&self, m: &Model, vr: std::ops::Range<usize>, p: &[f64], gg: f64, b: &[f64], out: &mut [f64]) -> f64 {
         #[cfg(target_arch = "x86_64")]
         {
             if std::arch::is_x86_feature_detected!("avx2") {
                 // SAFETY: the CPU supports the feature the function is compiled for.
-                return unsafe { self.product_rows_avx2(m, vr, p, gg, out) };
+                return unsafe { self.product_rows_avx2::<SUB>(m, vr, p, gg, b, out) };
             }
         }
-        self.product_rows_plain(m, vr, p, gg, out)
+        self.product_rows_plain::<SUB>(m, vr, p, gg, b, out)
     }
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    unsafe fn product_rows_avx2(&self, m: &Model, vr: std::ops::Range<usize>, p: &[f64], gg: f64, out: &mut [f64]) -> f64 {
-        self.product_rows_plain(m, vr, p, gg, out)
+    unsafe fn product_rows_avx2<const SUB: bool>(&self, m: &Model, vr: std::ops::Range<usize>, p: &[f64], gg: f64, b: &[f64], out: &mut [f64]) -> f64 {
+        self.product_rows_plain::<SUB>(m, vr, p, gg, b, out)
     }
 
     #[inline(always)]
-    fn product_rows_plain(&self, m: &Model, vr: std::ops::Range<usize>, p: &[f64], gg: f64, out: &mut [f64]) -> f64 {
+    fn product_rows_plain<const SUB: bool>(&self, m: &Model, vr: std::ops::Range<usize>, p: &[f64], gg: f64, b: &[f64], out: &mut [f64]) -> f64 {
         let mut pq = 0.0;
         for (li, i) in vr.enumerate() {
             if m.inv_mass[i] == 0.0 {
@@ -490,8 +503,13 @@ impl System {
                     q[d] += gg * self.g[3 * i + d];
                 }
             }
-            out[3 * li..3 * li + 3].copy_from_slice(&q);
             pq += q[0] * pi[0] + q[1] * pi[1] + q[2] * pi[2];
+            if SUB {
+                for d in 0..3 {
+                    q[d] = b[3 * i + d] - q[d];
+                }
+            }
+            out[3 * li..3 * li + 3].copy_from_slice(&q);
         }
         pq
     }
