@@ -359,7 +359,12 @@ fn settings_v1(w: &WorldSettings) -> SettingsV1 {
 
 fn event_v1(e: &Event) -> EventV1 {
     let action = match &e.action {
-        Action::Freeze { under_load } => ActionV1::Freeze { under_load: *under_load },
+        // ---- not persisted by version 2 (the next version must add it) ----------------------
+        // A pending freeze's `keep_tension` has no place in `ActionV1::Freeze`: a snapshot taken
+        // before a scene's keep-tension freeze fires restores it as a freeze without it. The
+        // next snapshot version adds `keep_tension: bool` to the freeze action (read as false
+        // from older versions).
+        Action::Freeze { under_load, keep_tension: _ } => ActionV1::Freeze { under_load: *under_load },
         Action::Reset => ActionV1::Reset,
         Action::SetGas { amount, temperature, nrt } => ActionV1::SetGas { amount: *amount, temperature: *temperature, nrt: *nrt },
         Action::SetWind(w) => ActionV1::SetWind(*w),
@@ -641,7 +646,7 @@ fn event_from_v1(e: EventV1, sizes: &[(usize, usize)]) -> Result<Event, String> 
     let body = e.body as usize;
     let &(nv, nf) = sizes.get(body).ok_or_else(|| format!("an event for body {body} of {}", sizes.len()))?;
     let action = match e.action {
-        ActionV1::Freeze { under_load } => Action::Freeze { under_load },
+        ActionV1::Freeze { under_load } => Action::Freeze { under_load, keep_tension: false },
         ActionV1::Reset => Action::Reset,
         ActionV1::SetGas { amount, temperature, nrt } => Action::SetGas { amount, temperature, nrt },
         ActionV1::SetWind(w) => Action::SetWind(w),

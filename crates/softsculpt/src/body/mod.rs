@@ -19,6 +19,7 @@
 mod external;
 mod faces;
 mod forces;
+mod freeze;
 mod gas;
 pub mod implicit;
 mod integrate;
@@ -29,8 +30,10 @@ mod persist;
 mod springs;
 mod stats;
 mod targets;
+mod tension;
 
 pub use faces::Faces;
+pub use freeze::{FreezeOptions, FreezeReport, Supports};
 pub use gas::GasReference;
 pub use material::{Material, VolumeMode, DEFAULT_TEMPERATURE, GAS_CONSTANT};
 pub use springs::Springs;
