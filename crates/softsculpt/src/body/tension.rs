@@ -29,7 +29,7 @@
 use super::Springs;
 
 /// Relative regularisation ε of the matrix's diagonal (dimensionless).
-pub(crate) const REGULARISATION: f64 = 1e-10;
+pub(crate) const REGULARISATION: f64 = 1e-13;
 /// The conjugate gradient stops at ‖r‖ ≤ TOLERANCE ‖f‖ (dimensionless).
 pub(crate) const TOLERANCE: f64 = 1e-12;
 /// Most conjugate-gradient iterations.
