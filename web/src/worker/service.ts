@@ -120,6 +120,7 @@ export class Service {
     if (typeof patch.substeps === 'number' && patch.substeps >= 1) s.substeps = Math.round(patch.substeps);
     if (typeof patch.realTime === 'boolean') s.realTime = patch.realTime;
     if (typeof patch.playing === 'boolean') s.playing = patch.playing;
+    if (typeof patch.keepTension === 'boolean') s.keepTension = patch.keepTension;
     this.autosave();
   }
 

@@ -109,23 +109,30 @@ impl SoftBody {
                 f[3 * i + 1] -= self.model.mass[i] * g;
             }
         }
+        // What the springs must change: the net force with the current rest lengths (at rest).
         let (k, kb) = (self.material.stiffness, self.material.bending_stiffness);
-        let solved = tension::balance(&[SpringSet { springs: &self.model.springs, k }, SpringSet { springs: &self.model.bending, k: kb }], &x, &f, &free);
+        let zero = vec![0.0; 3 * n];
+        let mut net = f.clone();
+        self.model.springs.accumulate(k, 0.0, &x, &zero, &mut net);
+        if kb > 0.0 {
+            self.model.bending.accumulate(kb, 0.0, &x, &zero, &mut net);
+        }
+        let solved = tension::balance(&[SpringSet { springs: &self.model.springs, k }, SpringSet { springs: &self.model.bending, k: kb }], &x, &net, &free);
         let mut clamped = 0;
-        for (s, (t, stiffness)) in [&mut self.model.springs, &mut self.model.bending].into_iter().zip(solved.t.iter().zip([k, kb])) {
-            let mut rest = vec![0.0; s.len()];
-            s.lengths_into(&x, |e, l| {
-                let target = if stiffness > 0.0 { l - t[e] / stiffness } else { l };
+        for (s, (dt, stiffness)) in [&mut self.model.springs, &mut self.model.bending].into_iter().zip(solved.t.iter().zip([k, kb])) {
+            if stiffness == 0.0 {
+                continue;
+            }
+            for (rest, d) in s.rest.iter_mut().zip(dt) {
+                let target = *rest - d / stiffness;
                 if target < 0.0 {
                     clamped += 1;
                 }
-                rest[e] = target.max(0.0);
-            });
-            s.rest = rest;
+                *rest = target.max(0.0);
+            }
         }
         // What is left: springs + loads on the balanced rows, at rest.
         let mut r = f.clone();
-        let zero = vec![0.0; 3 * n];
         self.model.springs.accumulate(k, 0.0, &x, &zero, &mut r);
         if kb > 0.0 {
             self.model.bending.accumulate(kb, 0.0, &x, &zero, &mut r);

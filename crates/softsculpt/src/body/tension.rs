@@ -24,14 +24,16 @@
 //! any tension and is what remains as the residual. Solved by the conjugate gradient with a
 //! block-Jacobi preconditioner on A K Aᵀ + ε diag(A K Aᵀ) (ε = [`REGULARISATION`], which keeps
 //! the mechanism directions bounded: they change u, never t = K Aᵀ u), to a relative residual
-//! of [`TOLERANCE`].
+//! of [`TOLERANCE`]: the balance must be as exact as the spring forces' own rounding
+//! (~ε k |x| per spring), since the implicit step takes anything above its rounding estimate
+//! for motion to resolve, and Newton iterating on rounding does not converge.
 
 use super::Springs;
 
 /// Relative regularisation ε of the matrix's diagonal (dimensionless).
-pub(crate) const REGULARISATION: f64 = 1e-13;
+pub(crate) const REGULARISATION: f64 = 1e-15;
 /// The conjugate gradient stops at ‖r‖ ≤ TOLERANCE ‖f‖ (dimensionless).
-pub(crate) const TOLERANCE: f64 = 1e-12;
+pub(crate) const TOLERANCE: f64 = 1e-15;
 /// Most conjugate-gradient iterations.
 pub(crate) const MAX_ITERATIONS: usize = 20_000;
 
