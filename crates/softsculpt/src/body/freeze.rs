@@ -11,13 +11,15 @@
 //!   pushed onto its support: any shape, at rest or moving, grabbed or not, is held exactly.
 //!   Without any support the weight is not carried (a falling body carries nothing): f_p = 0.
 //! - **keeping the tension** ([`SoftBody::freeze_keeping_tension`]): the gas keeps its
-//!   reference (P_ref unchanged, so it keeps pressing with P − P_ref), and new rest lengths L_e
-//!   (edge and bending springs) are solved so that the current shape is an equilibrium under the
-//!   gas (and under load, the weight, with the supports taking what they carry): the least
-//!   elastic energy tensions t_e = k_e (l_e − L_e) that balance the loads at every free vertex
-//!   (`tension.rs`), then L_e = l_e − t_e / k_e. The skin stays taut as an inflated one is, so a
-//!   press dents it locally, as before the freeze. No prestress. The remaining net force on the
-//!   free vertices is the [`FreezeReport`]'s residual.
+//!   reference (P_ref unchanged, so it keeps pressing with P − P_ref), and the rest lengths L_e
+//!   (edge and bending springs) are corrected so that the current shape is an equilibrium under
+//!   the gas (and under load, the weight, with the supports taking what they carry): the least
+//!   change of tension Δt (Σ Δt² / k = Σ k ΔL², `tension.rs`) that cancels the net force F the
+//!   springs with the current rest lengths, the gas and the weight leave on every free vertex,
+//!   then L_e −= Δt_e / k_e. A body at rest has F = 0 and keeps its rest lengths: the skin stays
+//!   taut as it is, so a press dents it as before the freeze. (The least tension from scratch,
+//!   closest to the current lengths, balances too but was unstable: docs/model.md.) No
+//!   prestress. The net force left on the free vertices is the [`FreezeReport`]'s residual.
 //!
 //! Every kind zeroes the velocities, sets the gas energy's reference volume V0 to the current
 //! volume and records the frozen state for [`SoftBody::reset`].
@@ -83,9 +85,9 @@ impl SoftBody {
         self.frozen.prestress = self.model.prestress.clone();
     }
 
-    /// Freeze keeping the tension: the gas reference is kept and rest lengths are solved so that
-    /// the current shape is an equilibrium under the gas, and under `load` (if given) the weight
-    /// too (module documentation, `tension.rs`). Returns the residual.
+    /// Freeze keeping the tension: the gas reference is kept and the rest lengths are corrected
+    /// (least change) so that the current shape is an equilibrium under the gas, and under `load`
+    /// (if given) the weight too (module documentation, `tension.rs`). Returns the residual.
     pub fn freeze_keeping_tension(&mut self, load: Option<Supports>) -> FreezeReport {
         let n = self.vertex_count();
         let x = self.state.x.clone();

@@ -1,6 +1,7 @@
 //! The tension that holds a shape: spring tensions t_e (N) that balance given loads f_i (N) at
-//! every free vertex of the current shape, as close to zero as possible (least elastic energy).
-//! What [`SoftBody::freeze_keeping_tension`](super::SoftBody) solves for.
+//! every free vertex of the current shape, as small as possible (Σ t² / k). What
+//! [`SoftBody::freeze_keeping_tension`](super::SoftBody) solves for, as the change of tension
+//! that cancels the net force the current rest lengths leave (f = that net force).
 //!
 //! Spring e joins i and j, l_e = |x_j − x_i|, d_e = (x_j − x_i) / l_e, stiffness k_e (edge or
 //! bending). A tension t_e = k_e (l_e − L_e) pulls i by +t_e d_e and j by −t_e d_e; in matrix
