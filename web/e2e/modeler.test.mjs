@@ -25,7 +25,7 @@ test('the default model renders: the mushroom on the ground, pixels not uniform'
   await page.context().close();
 });
 
-test('a trackball drag on empty space turns the view', async () => {
+test('a drag on empty space turns the view', async () => {
   const { page } = await openModeler(suite.browser, suite.server.url);
   const before = await inspect(page, () => window.softsculpt.camera());
   await drag(page, { x: 150, y: 300 }, { x: 400, y: 350 });
@@ -171,6 +171,8 @@ test('importing an OBJ changes the model; garbage shows the error and keeps the 
   assert.equal(await inspect(page, () => window.softsculpt.vertexCount()), 362, 'the model is untouched');
   await shot(page, '06-import-error');
   await input.setInputFiles(join(dir, 'cube.obj'));
+  await page.waitForSelector('.import-dialog'); // OBJ does not say its up axis: Enter takes the offer
+  await page.keyboard.press('Enter');
   await page.waitForFunction(() => window.softsculpt.vertexCount() === 8);
   assert.equal(await inspect(page, () => window.softsculpt.faceCount()), 12);
   await page.waitForTimeout(800);
@@ -196,6 +198,7 @@ test('reload restores the autosaved project', async () => {
   const ctx = await suite.browser.newContext({ viewport: { width: 1280, height: 800 } });
   const { page } = await openModeler(suite.browser, suite.server.url, ctx);
   await settle(page);
+  const pins0 = (await inspect(page, () => window.softsculpt.pinned())).filter(Boolean).length; // the stem's foot
   await page.keyboard.press('n');
   const top = await topVertex(page);
   await drag(page, top.screen, top.screen, 2, 50);
@@ -205,12 +208,25 @@ test('reload restores the autosaved project', async () => {
   const n = await inspect(page, () => window.softsculpt.vertexCount());
   const pins = (await inspect(page, () => window.softsculpt.pinned())).filter(Boolean).length;
   assert.ok(n > 362 && pins > 0);
+  // The camera as the user left it comes back too.
+  await page.mouse.move(150, 500);
+  await page.mouse.down();
+  await page.mouse.move(230, 480, { steps: 6 });
+  await page.mouse.up();
+  const camera = await inspect(page, () => window.softsculpt.camera());
+  await page.waitForTimeout(1500); // the autosave's debounce
   await page.reload();
   await page.waitForFunction(() => window.softsculpt?.ready === true);
   assert.equal(await inspect(page, () => window.softsculpt.vertexCount()), n);
   assert.equal((await inspect(page, () => window.softsculpt.pinned())).filter(Boolean).length, pins);
-  assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /restored/);
+  assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /restored.*with 2 undo steps/);
+  assert.ok(dist(await inspect(page, () => window.softsculpt.camera()), camera) < 1e-9, 'the camera where it was');
   await shot(page, '08-restored-after-reload');
+  // The undo history survived the reload: undo the subdivision, then the pins.
+  await page.keyboard.press('Control+z');
+  await page.waitForFunction(() => window.softsculpt.vertexCount() === 362);
+  await page.keyboard.press('Control+z');
+  await page.waitForFunction((p0) => window.softsculpt.pinned().filter(Boolean).length === p0, pins0);
   await ctx.close();
 });
 

@@ -6,7 +6,7 @@
 // A frame: the worker's latest positions (a transferred buffer) replace the drawn ones, the view
 // renders them, and the buffer drawn before goes back to the worker.
 
-import { Vector3 } from 'three';
+import { Vector3, type Camera } from 'three';
 import type { Command, Frame, MessageKind, ParamValue, Reply, Settings, UiState } from './protocol';
 import { SimulationClient } from './client';
 import { Mirror } from './mirror';
@@ -19,7 +19,17 @@ import { GrabTool } from './tools/grab';
 import { PressTool } from './tools/press';
 import { InflateTool, MassTool, PinTool } from './tools/paint';
 import { download, exportShape, type ExportFormat } from './io/export';
+import { askImport } from './io/dialog';
 import { baseName } from './project';
+import { sig3 } from './format';
+import { boxCentre, isSymmetric, meanEdge, type Axes, type Symmetry } from './tools/symmetry';
+import { BrushCursor, clampStrength, RADIUS_MAX, RADIUS_MIN } from './tools/cursor';
+
+const CAMERA_KEY = 'softsculpt.camera';
+/** A model is symmetric if its mirror image matches it to this fraction of its mean edge length. */
+const SYMMETRY_TOLERANCE = 0.75;
+/** Tools that act through the simulation's steps (nothing happens while paused). */
+const ACTS_WHILE_PLAYING = new Set(['grab', 'press', 'inflate', 'mass']);
 
 export class App implements ToolContext {
   readonly viewport: Viewport;
@@ -29,6 +39,13 @@ export class App implements ToolContext {
   readonly plots: Plots;
   readonly hud: Hud;
   wireframe = false;
+  /** Mirror symmetry axes (X, Y, Z) for every tool; X turns on for a model symmetric across x. */
+  readonly symmetryAxes: Axes = [false, false, false];
+  /** The strain view: springs' stretch as colours (blue compressed, red stretched). */
+  strainView = false;
+  /** The brush ring under the cursor and the radius/strength adjusting (B, Shift+B). */
+  readonly cursor: BrushCursor;
+  private adjustText: string | null = null;
   private readonly client: SimulationClient;
   /** A frame received and not drawn yet. */
   private pending: Frame | null = null;
@@ -38,13 +55,20 @@ export class App implements ToolContext {
   private listeners: (() => void)[] = [];
   private lastMessage = '';
   private onReady: (() => void) | null = null;
+  /** The model the view was last framed on (null: none yet). */
+  private framedModel: string | null = null;
+  /** Where the symmetry axes came from: a restored session's page state, or the model. */
+  private symmetryFrom: 'ui' | 'model' = 'model';
 
   constructor(canvas: HTMLCanvasElement, plotCanvas: HTMLCanvasElement, hudRoot: HTMLElement, helpText: string, wasmUrl: string) {
     this.viewport = new Viewport(canvas);
     this.plots = new Plots(plotCanvas);
     this.hud = new Hud(hudRoot, helpText);
+    this.viewport.rig.onSettled(() => this.saveCamera());
     const tools: Tool[] = [new GrabTool(), new PressTool(), new InflateTool(), new MassTool(), new PinTool()];
-    this.tools = new ToolManager(this, tools, () => { this.refreshOverlay(); this.sendUi(); this.changed(); }, () => this.busyLabel === null && this.mirror.ready);
+    this.tools = new ToolManager(this, tools, () => { this.refreshOverlay(); this.sendUi(); this.changed(); },
+      () => this.busyLabel === null && this.mirror.ready, (t) => this.mayAct(t));
+    this.cursor = new BrushCursor(this, (text) => { this.adjustText = text; if (text === null) this.sendUi(); });
     this.client = new SimulationClient(wasmUrl, {
       reply: (r) => this.onReply(r),
       failed: (text) => { this.setBusy(null); this.message(text, 'error'); },
@@ -58,6 +82,37 @@ export class App implements ToolContext {
   }
 
   body(): Mirror { return this.mirror; }
+  /** Symmetry for a stroke starting now: the chosen axes through the body's box centre. */
+  symmetry(): Symmetry | undefined {
+    if (!this.symmetryAxes.some(Boolean)) return undefined;
+    return { axes: [...this.symmetryAxes] as Axes, centre: boxCentre(this.mirror.positions) };
+  }
+  setSymmetry(axis: 0 | 1 | 2, on: boolean): void {
+    this.symmetryAxes[axis] = on;
+    this.cursor.poke();
+    this.sendUi();
+    this.changed();
+  }
+  /** Brush radius × `f` (keys [ and ]), within its range. */
+  scaleRadius(f: number): void {
+    this.brush.radius = Math.min(RADIUS_MAX, Math.max(RADIUS_MIN, this.brush.radius * f));
+    this.cursor.poke();
+    this.sendUi();
+  }
+  /** The active tool's strength × `f` (keys { and }), within its range. */
+  scaleStrength(f: number): void {
+    const t = this.tools.tool;
+    if (!t.strengthInfo) { this.message(`the ${t.label.toLowerCase()} has no strength`); return; }
+    t.strength = clampStrength(t, t.strength * f);
+    this.cursor.poke();
+    this.sendUi();
+    this.message(`${t.label.toLowerCase()} ${t.strengthInfo.label}: ${sig3(t.strength)}`);
+  }
+  setStrainView(on: boolean): void {
+    this.strainView = on;
+    this.setSettings({ strain: on });
+    this.refreshOverlay();
+  }
   send(cmd: Command, transfer: Transferable[] = []): void { this.client.send(cmd, transfer); }
 
   /** Called whenever the mirrored state changed (the panel refreshes itself). */
@@ -66,6 +121,16 @@ export class App implements ToolContext {
 
   /** The long operation under way in the worker ("subdividing"…), or null. */
   get busy(): string | null { return this.busyLabel; }
+
+  /**
+   * Whether `tool` can act now: the grab, press and the growing brushes act through the
+   * simulation's steps, so while paused they would do nothing (and leave an empty undo step).
+   */
+  private mayAct(tool: Tool): boolean {
+    if (this.mirror.settings.playing || !ACTS_WHILE_PLAYING.has(tool.name)) return true;
+    this.message(`paused: the ${tool.label.toLowerCase()} acts while the simulation plays — press Space to play`, 'warn');
+    return false;
+  }
 
   /** Send a modeling operation, unless a long one is still running (then say so). */
   private operate(cmd: Command, transfer: Transferable[] = []): void {
@@ -115,14 +180,19 @@ export class App implements ToolContext {
     return Array.isArray(w) ? w : [0, 0, 0];
   }
 
-  /** Download the shape as drawn (the latest frame's positions and triangles). */
+  /** Download the shapes as drawn (every body), in the imported file's units and frame. */
   async export(format: ExportFormat): Promise<void> {
-    const blob = await exportShape(format, this.mirror.positions, this.mirror.triangles);
-    download(blob, `${baseName(this.mirror.settings.model)}.${format}`);
+    const blob = await exportShape(format, this.mirror.shapes(), undefined, this.mirror.settings.frame);
+    const name = `${baseName(this.mirror.settings.model)}.${format}`;
+    download(blob, name);
+    this.message(`exported ${name}: ${this.mirror.vertexCount} vertices, ${this.mirror.faceCount} faces (${sig3(blob.size / 1024)} KB, in your downloads)`);
   }
+  /** Start or stop recording (io: worker/recorder.ts); export the recording as GLB morph targets. */
+  record(on = !this.mirror.recording): void { this.send({ type: 'record', on }); }
+  exportRecording(): void { this.send({ type: 'exportRecording' }); }
 
   ui(): UiState {
-    return { brush: { ...this.brush }, tool: this.tools.tool.name, strengths: Object.fromEntries(this.tools.tools.map((t) => [t.name, t.strength])) };
+    return { brush: { ...this.brush }, tool: this.tools.tool.name, strengths: Object.fromEntries(this.tools.tools.map((t) => [t.name, t.strength])), symmetry: [...this.symmetryAxes] as Axes };
   }
   /** Tell the worker the tool state (kept in project files and the autosave). */
   sendUi(): void { this.send({ type: 'ui', ui: this.ui() }); }
@@ -136,6 +206,10 @@ export class App implements ToolContext {
       if (typeof v === 'number' && t.strengthInfo) t.strength = Math.min(Math.max(v, t.strengthInfo.min), t.strengthInfo.max);
     }
     if (ui.tool) this.tools.select(ui.tool);
+    if (Array.isArray(ui.symmetry) && ui.symmetry.length === 3) {
+      ui.symmetry.forEach((v, d) => (this.symmetryAxes[d] = v === true));
+      this.symmetryFrom = 'ui';
+    }
     this.changed();
   }
 
@@ -155,7 +229,8 @@ export class App implements ToolContext {
         return;
       case 'message': return this.message(r.text, r.kind);
       case 'progress': return this.setBusy(r.label, r.fraction);
-      case 'download': return download(new Blob([r.text], { type: r.mime }), r.filename);
+      case 'download': return download(new Blob([r.bytes ? (r.bytes as Uint8Array<ArrayBuffer>) : r.text], { type: r.mime }), r.filename);
+      case 'importQuestion': void askImport(r.question).then((answer) => this.send({ type: 'importAnswer', answer })); return;
       case 'ui': return this.applyUi(r.ui);
       case 'fatal': this.message(r.text, 'error'); return;
     }
@@ -172,9 +247,21 @@ export class App implements ToolContext {
 
   private applyFrame(f: Frame): void {
     const m = this.mirror;
+    const wasRecording = m.recording !== null;
     const old = m.apply(f);
     if (f.topology) {
       this.viewport.attach(m.triangles, m.springs, m.positions);
+      this.viewport.measureModel();
+      // Another model (loaded, imported, opened): framed in the view. The same model changed
+      // (subdivided, undone) keeps the user's view.
+      if (m.settings.model !== this.framedModel) {
+        if (this.framedModel !== null) this.hud.clearMessages();
+        // A new model: X symmetry on if it is symmetric across x (the first model keeps a
+        // restored session's choice).
+        if (this.framedModel !== null || this.symmetryFrom !== 'ui') this.symmetryAxes.splice(0, 3, isSymmetric(m.positions, 0, SYMMETRY_TOLERANCE * meanEdge(m.positions, m.springs)), false, false);
+        if (this.framedModel !== null || !this.restoreCamera()) this.viewport.resetView();
+        this.framedModel = m.settings.model;
+      }
       this.viewport.extras.setBodies(m.others);
       this.viewport.extras.setObstacles(m.obstacles);
       this.plots.clear();
@@ -182,10 +269,10 @@ export class App implements ToolContext {
       this.viewport.update(m.positions);
     }
     this.viewport.extras.update(m.all, m.positions.length);
-    if (f.topology || f.body) this.refreshOverlay();
+    if (f.topology || f.body || (this.strainView && f.strain)) this.refreshOverlay();
     if (f.params) this.syncScene();
     this.plots.push(m.stats.time, [m.stats.volume, m.stats.pressure, m.stats.kinetic, m.stats.elastic, m.stats.gas]);
-    if (f.topology || f.body || f.params || f.table || f.settings || f.history) this.changed();
+    if (f.topology || f.body || f.params || f.table || f.settings || f.history || (m.recording !== null) !== wasRecording) this.changed();
     if (old) this.drawn = old;
     if (!m.ready) {
       m.ready = true;
@@ -198,6 +285,7 @@ export class App implements ToolContext {
   refreshOverlay(): void {
     const t = this.tools.tool;
     const m = this.mirror;
+    if (this.strainView && m.strain.length === m.vertexCount) { this.viewport.setColors((c) => strainColors(c, m.strain)); return; }
     this.viewport.setColors(t.overlay && m.masses.length === m.vertexCount ? (c) => t.overlay!(c, m) : null);
   }
 
@@ -216,16 +304,35 @@ export class App implements ToolContext {
     const m = this.mirror, s = m.stats;
     this.hud.tick();
     if (m.ready) {
+      // How fast the simulation goes comes first (the drawing's fps can be high while it crawls).
+      const pace = !m.settings.playing ? 'paused' : m.slowMotion ? `${(m.realTimeFraction * 100).toFixed(0)}% of real time (slow motion)` : 'real time';
       this.hud.show([
-        `${this.hud.fps.toFixed(0)} fps   sim ${m.simMs.toFixed(1)} ms/frame${m.slowMotion ? `   SLOW MOTION (${(m.realTimeFraction * 100).toFixed(0)}% of real time)` : ''}${m.settings.playing ? '' : '   PAUSED'}`,
+        `simulation: ${pace}   ${m.simMs.toFixed(1)} ms of steps/frame   view ${this.hud.fps.toFixed(0)} fps` +
+          (m.recording ? `   ● REC ${m.recording.frames} frames, ${m.recording.seconds.toFixed(1)} s` : ''),
         `${m.vertexCount} vertices   ${m.springCount} springs   ${m.faceCount} faces   tool: ${this.tools.tool.label}`,
-        `t ${s.time.toFixed(2)} s   V ${s.volume.toFixed(4)} m³   P ${s.pressure.toFixed(2)} Pa   max speed ${s.maxSpeed.toFixed(3)} m/s`,
+        `t ${s.time.toFixed(2)} s   V ${sig3(s.volume)} m³   P ${sig3(s.pressure)} Pa   max speed ${sig3(s.maxSpeed)} m/s`,
+        ...(this.windStrength > 0 ? [windLine(this.wind, this.viewport.camera)] : []),
         ...(m.scene ? [sceneLine(m.scene)] : []),
       ]);
+      this.hud.setState(this.adjustText ?? (!m.settings.playing ? 'Paused — Space to play' : null));
       if (f) this.plots.draw();
     }
+    this.cursor.update(f !== null);
     this.viewport.render();
     if (this.drawn) { this.giveBack(this.drawn); this.drawn = null; }
+  }
+
+  /** The camera as the user left it (kept across reloads, like the model). */
+  private restoreCamera(): boolean {
+    try {
+      const s = JSON.parse(localStorage.getItem(CAMERA_KEY) ?? 'null');
+      if (!s || !Array.isArray(s.position) || !Array.isArray(s.target)) return false;
+      this.viewport.rig.restore(s);
+      return true;
+    } catch { return false; }
+  }
+  saveCamera(): void {
+    try { localStorage.setItem(CAMERA_KEY, JSON.stringify(this.viewport.rig.state())); } catch { /* private mode: not kept */ }
   }
 
   message(text: string, kind: MessageKind = 'info'): void {
@@ -233,6 +340,31 @@ export class App implements ToolContext {
     this.hud.message(text, kind);
   }
   get lastMessageText(): string { return this.lastMessage; }
+}
+
+/**
+ * The wind as seen from the camera (its 3D arrow is end-on when it blows along the view, as W
+ * makes it): speed, an arrow for its direction across the screen, and whether it blows away from
+ * or towards the viewer.
+ */
+export function windLine(w: [number, number, number], camera: Camera): string {
+  const v = new Vector3(...w);
+  const speed = v.length();
+  v.transformDirection(camera.matrixWorldInverse);
+  const across = Math.hypot(v.x, v.y);
+  const arrows = ['→', '↗', '↑', '↖', '←', '↙', '↓', '↘'];
+  const arrow = across > 0.2 ? arrows[(Math.round(Math.atan2(v.y, v.x) / (Math.PI / 4)) + 8) % 8] : '';
+  const depth = v.z < -0.5 ? ' away from you' : v.z > 0.5 ? ' towards you' : '';
+  return `wind ${sig3(speed)} m/s ${arrow}${arrow && depth ? ' and' : ''}${depth}`;
+}
+
+/** Strain → colour: 0 white, ±STRAIN_FULL and beyond full red (stretched) or blue (compressed). */
+export const STRAIN_FULL = 0.1;
+export function strainColors(colors: Float32Array, strain: Float32Array): void {
+  for (let i = 0; i < strain.length; i++) {
+    const t = Math.max(-1, Math.min(1, strain[i] / STRAIN_FULL));
+    colors.set(t >= 0 ? [1, 1 - t, 1 - t] : [1 + t, 1 + t, 1], 3 * i);
+  }
 }
 
 function stripUndefined<T extends object>(o: T): T {

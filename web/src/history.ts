@@ -75,6 +75,33 @@ export class History<S> {
   get redoLabel(): string | undefined { return this.redoStack.at(-1)?.label; }
   get sizes(): [number, number] { return [this.undoStack.length, this.redoStack.length]; }
   clear(): void { this.undoStack = []; this.redoStack = []; this.bytes = 0; }
+
+  /**
+   * The newest entries of both stacks (oldest first in each) that fit in `maxBytes` together,
+   * the undo stack's first: what is kept across a reload.
+   */
+  newest(maxBytes: number): { undo: Item<S>[]; redo: Item<S>[] } {
+    let left = maxBytes;
+    const pick = (stack: Item<S>[]) => {
+      const out: Item<S>[] = [];
+      for (let i = stack.length - 1; i >= 0; i--) {
+        const n = this.size(stack[i].state);
+        if (n > left) break;
+        left -= n;
+        out.unshift(stack[i]);
+      }
+      return out;
+    };
+    const undo = pick(this.undoStack);
+    return { undo, redo: pick(this.redoStack) };
+  }
+
+  /** Replace both stacks (entries oldest first), within the limits. */
+  load(undo: Item<S>[], redo: Item<S>[]): void {
+    this.clear();
+    for (const r of redo) this.putRedo(r);
+    for (const u of undo) this.putUndo(u);
+  }
 }
 
 /** Undo (or redo) one step: `apply` performs an entry and returns its inverse. */

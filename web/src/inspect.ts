@@ -23,6 +23,8 @@ export function inspector(app: App) {
   return {
     get ready() { return m.ready; },
     vertexCount: () => m.vertexCount,
+    /** Bodies drawn: the active one and the others (a scene's, an import's pieces). */
+    bodies: () => 1 + m.others.length,
     faceCount: () => m.faceCount,
     springCount: () => m.springCount,
     positions: () => Array.from(m.positions),
@@ -44,6 +46,24 @@ export function inspector(app: App) {
     busy: () => app.busy,
     helpVisible: () => app.hud.helpVisible,
     camera: () => app.viewport.camera.position.toArray(),
+    /** The camera controls: mode, target, and the camera's up and right axes (a level horizon: right.y = 0). */
+    view: () => {
+      const c = app.viewport.camera;
+      c.updateMatrixWorld();
+      const e = c.matrixWorld.elements;
+      return { mode: app.viewport.rig.mode, target: app.viewport.rig.target.toArray(), position: c.position.toArray(), right: [e[0], e[1], e[2]], up: [e[4], e[5], e[6]] };
+    },
+    /** The brush ring as last drawn: radius (m), strength fraction, copies (mirror images), or null. */
+    ring: () => (app.cursor.ring.shown ? { ...app.cursor.ring.shown } : null),
+    brush: () => ({ radius: app.brush.radius, strength: app.tools.tool.strength }),
+    symmetry: () => [...app.symmetryAxes],
+    /** Each vertex's strain l/L − 1 while the strain view is on, else []. */
+    strain: () => Array.from(m.strain),
+    /** The banner at the top ("Paused — Space to play", an adjusting value) or null. */
+    banner: () => app.hud.stateText,
+    hintVisible: () => app.hud.hintVisible,
+    /** Every message shown now: { text, kind }. */
+    messages: () => app.hud.shownMessages(),
     pixels: () => {
       // Distinct colours in a 64×64 sample of the rendered view (the canvas keeps its buffer).
       const c = document.createElement('canvas');

@@ -8,19 +8,21 @@ import { IMPORT_EXTENSIONS } from './io/import';
 import { inspector } from './inspect';
 
 const HELP = `<h2>SoftSculpt</h2>
-<p>Shape a soft body with the mouse. Drag on empty space to turn the view (right button: pan, wheel: zoom).</p>
+<p>Shape a soft body with the mouse, a pen (pressure sets the strength) or a finger. Drag on empty space to turn the view (right button: pan, wheel: zoom; two fingers: turn and pinch-zoom).</p>
 <table>
 <tr><td>G</td><td>Grab: drag the surface, it follows the mouse on a spring</td></tr>
 <tr><td>P</td><td>Press: push the faces under the brush inward</td></tr>
 <tr><td>I</td><td>Inflate brush (Shift: deflate)</td></tr>
 <tr><td>M</td><td>Mass brush: heavier (Shift: lighter) — heavy parts move less</td></tr>
 <tr><td>N</td><td>Pin brush (Shift: unpin)</td></tr>
-<tr><td>[ ]</td><td>Brush radius smaller / larger</td></tr>
+<tr><td>[ ] / { }</td><td>Brush radius / strength smaller, larger (shown on the ring under the cursor)</td></tr>
+<tr><td>B / Shift+B</td><td>Set the radius / strength by moving the mouse; click or Enter sets it, Esc puts it back</td></tr>
+<tr><td>Tool › mirror X Y Z</td><td>Symmetry: every tool also acts on the mirror image (X on for symmetric models)</td></tr>
 <tr><td>F / R</td><td>Freeze the shape as the rest shape / reset to the last frozen shape</td></tr>
 <tr><td>U</td><td>Subdivide (Loop)</td></tr>
 <tr><td>W</td><td>Wind from the view direction</td></tr>
 <tr><td>Space / .</td><td>Play-pause / single step</td></tr>
-<tr><td>X / V</td><td>Springs wireframe / reset view</td></tr>
+<tr><td>X / V</td><td>Springs wireframe / frame the model (level horizon)</td></tr>
 <tr><td>Ctrl+Z / Ctrl+Shift+Z</td><td>Undo / redo</td></tr>
 <tr><td>Ctrl+S / Ctrl+O / Ctrl+I / E</td><td>Save project / open project / import / export OBJ</td></tr>
 <tr><td>Files › Open scene…</td><td>A scene file (.toml) with its mesh files: bodies, obstacles, timed events (or drop them on the page)</td></tr>
@@ -77,8 +79,26 @@ function main(): void {
   const gui = buildPanel(app, { importFile, openProject, openScene });
   gui.domElement.id = 'panel';
 
+  // The panel keeps no keyboard focus after a click (a checkbox, a button, a list): the shortcuts
+  // work at once, and letter keys never change a list or Space a checkbox. Text and number
+  // fields keep it while the user types in them.
+  const release = (ev: Event) => {
+    const t = ev.target as HTMLElement;
+    if (!isTextField(t)) queueMicrotask(() => t.blur?.());
+  };
+  gui.domElement.addEventListener('change', release);
+  gui.domElement.addEventListener('click', (ev) => {
+    // Not a list: a click opens its menu, which a blur would close.
+    if (!(ev.target as HTMLElement).closest?.('select')) release(ev);
+  });
+
   window.addEventListener('keydown', (ev) => {
-    if ((ev.target as HTMLElement).closest?.('input, select, textarea')) return;
+    if (isTextField(ev.target as HTMLElement)) return;
+    // Anything else focused (a list, a checkbox, a button): the key is a shortcut, not for it.
+    if ((ev.target as HTMLElement).closest?.('input, select, button') && !ev.ctrlKey && !ev.metaKey && ev.key !== 'Tab') {
+      ev.preventDefault();
+      (ev.target as HTMLElement).blur();
+    }
     const key = ev.key.toLowerCase();
     const ctrl = ev.ctrlKey || ev.metaKey;
     if (ctrl && key === 'z') { ev.preventDefault(); if (ev.shiftKey) app.redo(); else app.undo(); return; }
@@ -99,14 +119,19 @@ function main(): void {
       case 'v': case 'V': app.viewport.resetView(); break;
       case 'e': case 'E': void app.export('obj'); break;
       case 'w': case 'W': app.windFromView(Math.max(5, app.windStrength)); break;
-      case '[': app.brush.radius = Math.max(0.02, app.brush.radius / 1.2); app.sendUi(); break;
-      case ']': app.brush.radius = Math.min(3, app.brush.radius * 1.2); app.sendUi(); break;
+      case '[': app.scaleRadius(1 / 1.2); break;
+      case ']': app.scaleRadius(1.2); break;
+      case '{': app.scaleStrength(1 / 1.2); break;
+      case '}': app.scaleStrength(1.2); break;
+      case 'b': app.cursor.startAdjust('radius'); break;
+      case 'B': app.cursor.startAdjust('strength'); break;
+      case 'Enter': app.cursor.finishAdjust(true); break;
       case '?': case 'h': case 'H': app.hud.toggleHelp(); break;
-      case 'Escape': app.hud.toggleHelp(false); break;
+      case 'Escape': if (app.cursor.adjusting) app.cursor.finishAdjust(false); else app.hud.toggleHelp(false); break;
       default: return;
     }
     gui.controllersRecursive().forEach((c) => c.updateDisplay());
-  });
+  }, { capture: true }); // before the panel's controllers, which stop keys from reaching the page
 
   // Drag and drop: model files import, project files open, a scene file (with its meshes) opens.
   window.addEventListener('dragover', (ev) => { ev.preventDefault(); document.body.classList.add('dropping'); });
@@ -122,6 +147,14 @@ function main(): void {
     else app.importFile(f.name, await f.arrayBuffer());
   });
 
+}
+
+/** Where keys are text the user types (a number or text field), not shortcuts. */
+function isTextField(t: HTMLElement | null): boolean {
+  if (!t || !t.closest) return false;
+  if (t.closest('textarea, [contenteditable="true"]')) return true;
+  const input = t.closest('input') as HTMLInputElement | null;
+  return !!input && !['checkbox', 'radio', 'button', 'range', 'color', 'file'].includes(input.type);
 }
 
 main();

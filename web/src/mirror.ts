@@ -3,7 +3,8 @@
 // picking and overlays, the panel, the HUD and `window.softsculpt` all read it; it is only ever
 // written by `apply`, one frame at a time, so what it holds is always one consistent frame.
 
-import type { Frame, Obstacle, ParamInfo, Params, SceneInfo, Settings, Stats, Topology } from './protocol';
+import type { Frame, Obstacle, ParamInfo, Params, Recording, SceneInfo, Settings, Stats, Topology } from './protocol';
+import type { Shape } from './io/export';
 import type { BodyView } from './tools/tool';
 
 const NO_STATS: Stats = {
@@ -36,6 +37,12 @@ export class Mirror implements BodyView {
   /** The simulation's settings (updated in place; the panel binds to it). */
   readonly settings: Settings = { dt: 1e-3, substeps: 16, realTime: true, playing: true, keepTension: false, model: 'mushroom' };
   history: [number, number] = [0, 0];
+  /** The active body's surface is closed (open: cloth-like, no gas). */
+  closed = true;
+  /** A recording under way, or null. */
+  recording: Recording | null = null;
+  /** Each vertex's strain l / L − 1 (when the strain view is on), else empty. */
+  strain: Float32Array = new Float32Array(0);
 
   get vertexCount(): number { return this.positions.length / 3; }
   get faceCount(): number { return this.triangles.length / 3; }
@@ -51,6 +58,7 @@ export class Mirror implements BodyView {
       this.others = f.topology.others;
       this.obstacles = f.topology.obstacles;
       this.positions = f.positions.subarray(0, 3 * f.topology.vertexCount);
+      this.closed = f.topology.closed ?? true;
     } else {
       this.positions = f.positions.subarray(0, this.positions.length);
     }
@@ -60,11 +68,21 @@ export class Mirror implements BodyView {
     if (f.table) this.table = f.table;
     if (f.settings) Object.assign(this.settings, f.settings);
     if (f.history) this.history = f.history;
+    this.strain = f.strain ?? new Float32Array(0);
     this.stats = f.stats;
     this.simMs = f.simMs;
     this.slowMotion = f.slowMotion;
     this.realTimeFraction = f.realTimeFraction;
     this.scene = f.scene;
+    this.recording = f.recording ?? null;
     return old;
+  }
+
+  /** Every body's shape as drawn: the active body, then the others. */
+  shapes(): Shape[] {
+    const out: Shape[] = [{ positions: this.positions, triangles: this.triangles }];
+    let at = this.positions.length;
+    for (const o of this.others) { out.push({ positions: this.all.subarray(at, at + 3 * o.vertexCount), triangles: o.triangles }); at += 3 * o.vertexCount; }
+    return out;
   }
 }

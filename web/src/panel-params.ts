@@ -66,10 +66,20 @@ export function addParams(table: ParamInfo[], folders: Record<string, GUI>, valu
     else if (typeof r.default === 'boolean') c = folder.add(values, r.id).onChange((v: boolean) => set(r.id, v));
     else {
       const [min, max, step] = s.slider ?? [];
-      c = folder.add(values, r.id, min, max, step).onFinishChange((v: number) => set(r.id, Number(v)));
+      c = folder.add(values, r.id, min, max, step).onFinishChange((v: number) => set(r.id, Number(v))).decimals(decimalsFor(max, step));
     }
     tip(c.name(label), tooltip(r));
   }
+}
+
+/**
+ * Decimals shown for a number: those of the slider's step, else three significant digits of the
+ * slider's largest value (5000 → 0, 5 → 2, 0.05 → 4); fields without a slider show 4.
+ */
+export function decimalsFor(max?: number, step?: number): number {
+  if (step !== undefined && step > 0) return Math.max(0, Math.min(8, Math.ceil(-Math.log10(step) - 1e-9)));
+  if (max === undefined || !(max > 0)) return 4;
+  return Math.max(0, Math.min(8, 2 - Math.floor(Math.log10(max))));
 }
 
 /** Copy the mirror's parameters into the controllers' object (a parameter without a value keeps its last). */

@@ -26,7 +26,7 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   let paramsBuilt = false;
   const view: Record<string, any> = {
     tool: app.tools.tool.name,
-    model: app.mirror.settings.model,
+    model: (MODELS as readonly string[]).includes(app.mirror.settings.model) ? app.mirror.settings.model : '',
     pressure: '', volume: '',
     windStrength: 0,
   };
@@ -46,6 +46,14 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
     strength = tip(tools.add(t, 'strength', t.strengthInfo.min, t.strengthInfo.max).name(t.strengthInfo.label).onFinishChange(() => app.sendUi()), `${t.label} strength: ${t.strengthInfo.label}`);
   };
   showStrength();
+  // Mirror symmetry: strokes also act at the mirror images (X on for a symmetric model).
+  const sym = { x: false, y: false, z: false };
+  (['x', 'y', 'z'] as const).forEach((a, d) => tip(tools.add(sym, a).name(`mirror ${a.toUpperCase()}`).onChange((v: boolean) => app.setSymmetry(d as 0 | 1 | 2, v)),
+    `Mirror symmetry across the ${a.toUpperCase()} plane through the model's centre: every tool acts on the mirror image too`));
+  const keysTip = document.createElement('div');
+  keysTip.className = 'panel-note';
+  keysTip.textContent = '[ ] radius, { } strength; B / Shift+B: set by moving the mouse';
+  tools.$children.appendChild(keysTip);
 
   const model = gui.addFolder('Model');
   tip(model.add(view, 'model', [...MODELS]).name('built-in').onChange((v: ModelName) => app.loadBuiltin(v)), 'Load a built-in model (undoable)');
@@ -61,6 +69,9 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   tip(files.add({ f: () => app.export('obj') }, 'f').name('Export OBJ (E)'), 'Download the current shape as OBJ (E)');
   tip(files.add({ f: () => app.export('stl') }, 'f').name('Export STL'), 'Download the current shape as binary STL');
   tip(files.add({ f: () => app.export('glb') }, 'f').name('Export GLB'), 'Download the current shape as glTF binary');
+  // Recording (worker/recorder.ts): the button's label follows the mirror's state.
+  const rec = tip(files.add({ f: () => app.record() }, 'f').name('● Record'), 'Record the bodies while the simulation plays (30 frames per simulated second); press again to stop');
+  tip(files.add({ f: () => app.exportRecording() }, 'f').name('Export recording (GLB)'), 'Download the recording as GLB morph targets (Blender: shape keys), as `softsculpt run --frames` writes');
   tip(files.add({ f: () => app.saveProject() }, 'f').name('Save project (Ctrl+S)'), 'Download a project file: mesh, rest lengths, masses, pins, every parameter');
   tip(files.add({ f: () => actions.openProject() }, 'f').name('Open project (Ctrl+O)'), 'Open a saved project file');
   tip(files.add({ f: () => actions.openScene() }, 'f').name('Open scene…'),
@@ -73,7 +84,7 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   tip(sim.add(settings, 'playing').name('play (Space)').onChange((v: boolean) => app.setSettings({ playing: v })), 'Play / pause the simulation (Space)');
   tip(sim.add({ f: () => app.step() }, 'f').name('single step (.)'), 'Advance one frame of steps while paused (.)');
   tip(sim.add({ f: () => app.restartScene() }, 'f').name('restart scene'), 'Play the open scene again from its start');
-  tip(sim.add(settings, 'dt', 1e-6, 0.02).name('dt (s)').onFinishChange((v: number) => app.setSettings({ dt: v })), 'Time step in seconds: implicit (the default) is stable at 1/60 s; the explicit integrators need small steps (picked when chosen)');
+  tip(sim.add(settings, 'dt', 1e-6, 0.02).decimals(5).name('dt (s)').onFinishChange((v: number) => app.setSettings({ dt: v })), 'Time step in seconds: implicit (the default) is stable at 1/60 s; the explicit integrators need small steps (picked when chosen)');
   tip(sim.add(settings, 'realTime').name('real time').onChange((v: boolean) => app.setSettings({ realTime: v })), 'Simulated time follows the clock (steps per frame follow the frame rate); off: a fixed number of steps per frame');
   tip(sim.add(settings, 'substeps', 1, 500, 1).name('steps per frame').onFinishChange((v: number) => app.setSettings({ substeps: v })), 'Steps per frame when not in real time');
 
@@ -98,9 +109,18 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
 
   const display = gui.addFolder('View');
   tip(display.add(app, 'wireframe').name('springs (wireframe, X)').onChange(() => app.syncScene()), 'Show the springs (X)');
-  tip(display.add({ f: () => app.viewport.resetView() }, 'f').name('reset view (V)'), 'Camera back home (V)');
+  tip(display.add({ f: () => app.viewport.resetView() }, 'f').name('frame model (V)'), 'Fit the model in the view, horizon level (V)');
+  const cam = { mode: app.viewport.rig.mode };
+  tip(display.add(cam, 'mode', { 'turntable (level horizon)': 'turntable', 'free trackball': 'trackball' }).name('camera').onChange((m: 'turntable' | 'trackball') => { app.viewport.rig.setMode(m); }),
+    'Turntable: drag turns the view about the vertical axis and tilts it, the horizon stays level (Blender, SculptGL). Free trackball: the paper\'s rotation in any direction');
+  const strain = { on: false };
+  tip(display.add(strain, 'on').name('strain view').onChange((v: boolean) => app.setStrainView(v)),
+    'Colour each vertex by its springs\' stretch l/L − 1: blue compressed, white at rest, red stretched (full colour at ±10 %): what would spring back if released');
   tip(display.add({ f: () => app.hud.toggleHelp() }, 'f').name('help (?)'), 'Tools and shortcuts (?)');
 
+
+  // Rarely used folders start closed, so the panel fits the window.
+  for (const f of [sim, world, wind, display]) f.close();
 
   function refresh(): void {
     if (!paramsBuilt && app.mirror.table.length > 0) {
@@ -109,12 +129,21 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
       paramsBuilt = true;
     }
     takeParams(p, app.mirror.params);
+    // An open surface (cloth-like) has no gas: its controls stay off, the folder says why.
+    const closed = app.mirror.closed;
+    gas.title(closed ? 'Gas' : 'Gas — off: open surface (cloth-like)');
+    for (const c of gas.controllers) if (typeof c.property === 'string' && c.property.startsWith('gas.')) c.enable(closed);
+    rec.name(app.mirror.recording ? '■ Stop recording' : '● Record');
     gravity.on = g() !== 0;
     if (g() !== 0) gravity.last = g();
     if (view.tool !== app.tools.tool.name) showStrength();
     view.tool = app.tools.tool.name;
-    view.model = app.mirror.settings.model;
+    // The list shows built-in models only: an import or a scene leaves it blank.
+    view.model = (MODELS as readonly string[]).includes(app.mirror.settings.model) ? app.mirror.settings.model : '';
     view.windStrength = app.windStrength;
+    [sym.x, sym.y, sym.z] = app.symmetryAxes;
+    cam.mode = app.viewport.rig.mode;
+    strain.on = app.strainView;
     gui.controllersRecursive().forEach((c) => c.updateDisplay());
   }
   app.onChange(refresh);

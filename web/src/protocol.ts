@@ -15,6 +15,7 @@
 // stepping meanwhile; only publishing waits).
 
 import type { Obstacle, ParamInfo, ParamValue, Stats } from './engine/world';
+import type { ImportAnswer, ImportFrame, ImportQuestion } from './io/import';
 
 export type { Stats, Obstacle, ParamInfo, ParamValue };
 /** Parameter values by the engine's table ids (null: not set, e.g. the ground's without ground). */
@@ -36,6 +37,10 @@ export interface Settings {
   keepTension: boolean;
   /** Name of the model, file or scene (used for file names). */
   model: string;
+  /** An imported model's frame: how the file's coordinates became the engine's (exports go back); null otherwise. */
+  frame?: ImportFrame | null;
+  /** Send each vertex's strain with the frames (the strain view). */
+  strain?: boolean;
 }
 
 /** What the page keeps in a project file besides the body: brush, tool, tool strengths. */
@@ -43,6 +48,8 @@ export interface UiState {
   brush: { radius: number };
   tool: string;
   strengths: Record<string, number>;
+  /** Mirror symmetry axes (X, Y, Z) for the tools. */
+  symmetry?: [boolean, boolean, boolean];
 }
 
 /** The tools whose strokes act on the body (see worker/strokes.ts). */
@@ -58,6 +65,12 @@ export type Command =
   | { type: 'loadBuiltin'; name: string }
   /** A model file (OBJ, PLY, STL, glTF/GLB); `data` is transferred. */
   | { type: 'import'; name: string; data: ArrayBuffer }
+  /** The user's answers for the file waiting (`importQuestion`); null cancels. */
+  | { type: 'importAnswer'; answer: ImportAnswer | null }
+  /** Start (true) or stop recording the bodies' shapes while the simulation plays. */
+  | { type: 'record'; on: boolean }
+  /** Reply: a `download` of the recording as GLB morph targets. */
+  | { type: 'exportRecording' }
   | { type: 'openProject'; name: string; text: string }
   /** A scene file with the mesh files it names (by file name). */
   | { type: 'openScene'; name: string; text: string; files: Map<string, Uint8Array> }
@@ -87,9 +100,15 @@ export type Command =
    * press the faces, the brushes paint the vertices. `strength` in the tool's unit; `inverted`:
    * Shift (deflate, lighter, unpin). One undo entry per stroke.
    */
-  | { type: 'strokeStart'; tool: StrokeTool; point: Vec3; radius: number; strength: number; inverted: boolean }
+  | {
+    type: 'strokeStart'; tool: StrokeTool; point: Vec3; radius: number; strength: number; inverted: boolean;
+    /** Mirror symmetry: the axes and the plane's centre (m); the stroke acts at the mirror images too. */
+    mirror?: { axes: [boolean, boolean, boolean]; centre: Vec3 };
+    /** Pen pressure in (0, 1] scaling the strength (absent: 1, a mouse). */
+    pressure?: number;
+  }
   /** Grab: the cursor's point on the grab plane; press and brushes: the brush centre (null: off the body). */
-  | { type: 'strokeMove'; point: Vec3 | null; inverted: boolean }
+  | { type: 'strokeMove'; point: Vec3 | null; inverted: boolean; pressure?: number }
   | { type: 'strokeEnd' }
   /** A frame's position buffer, drawn and handed back (transferred). */
   | { type: 'returnBuffer'; buffer: ArrayBuffer }
@@ -107,7 +126,12 @@ export interface Topology {
   /** A scene's other bodies, in order; their positions follow the active body's in the frame buffer. */
   others: { vertexCount: number; triangles: Uint32Array }[];
   obstacles: Obstacle[];
+  /** The active body's surface is closed (an open one, cloth-like, has no gas). */
+  closed?: boolean;
 }
+
+/** A recording under way: frames and simulated seconds so far. */
+export interface Recording { frames: number; seconds: number }
 
 export interface Frame {
   /** xyz per vertex (m): the active body, then each other body; transfer back with `returnBuffer`. */
@@ -130,6 +154,10 @@ export interface Frame {
   settings?: Settings;
   /** Undo and redo stack sizes, when they changed. */
   history?: [number, number];
+  /** A recording under way (absent: none). */
+  recording?: Recording;
+  /** With `settings.strain`: each vertex's mean spring strain l / L − 1 (active body). */
+  strain?: Float32Array;
 }
 
 export type Reply =
@@ -137,7 +165,10 @@ export type Reply =
   | { type: 'message'; text: string; kind: MessageKind }
   /** A long operation started (`label`, e.g. "subdividing", with `fraction` done if known) or ended (null). */
   | { type: 'progress'; label: string | null; fraction?: number }
-  | { type: 'download'; filename: string; mime: string; text: string }
+  /** A file to save: `text`, or `bytes` when given (binary). */
+  | { type: 'download'; filename: string; mime: string; text: string; bytes?: Uint8Array }
+  /** An imported file needs answers (up axis, pieces): the page asks and sends `importAnswer`. */
+  | { type: 'importQuestion'; question: ImportQuestion }
   /** An opened project's page state (brush, tool, strengths). */
   | { type: 'ui'; ui: Partial<UiState> }
   /** The engine could not start at all. */

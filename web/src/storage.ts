@@ -19,6 +19,12 @@ export interface AutosaveRecord {
   /** World snapshot bytes (docs/snapshot.md). */
   snapshot: Uint8Array;
   savedAt: number;
+  /**
+   * The newest undo and redo steps (oldest first), taken with the snapshot, so a reload can
+   * still undo. Each entry's state is opaque here (the document's: an engine delta, settings,
+   * the open scene). Absent in older autosaves.
+   */
+  history?: { undo: { label: string; state: unknown }[]; redo: { label: string; state: unknown }[] };
 }
 
 /** What the autosave holds: a record, or a version-1 project's text. */
@@ -75,7 +81,8 @@ export async function loadAutosave(): Promise<Autosave | null> {
     if (typeof slot === 'string') {
       const r = (await get(store, slot)) as Partial<AutosaveRecord> | undefined;
       if (!r || !(r.snapshot instanceof Uint8Array)) throw new Error('the autosave is corrupted (its record has no snapshot)');
-      return { record: { name: typeof r.name === 'string' ? r.name : 'autosave', ui: r.ui && typeof r.ui === 'object' ? r.ui : {}, snapshot: r.snapshot, savedAt: Number(r.savedAt) || 0 } };
+      const history = r.history && Array.isArray(r.history.undo) && Array.isArray(r.history.redo) ? r.history : undefined;
+      return { record: { name: typeof r.name === 'string' ? r.name : 'autosave', ui: r.ui && typeof r.ui === 'object' ? r.ui : {}, snapshot: r.snapshot, savedAt: Number(r.savedAt) || 0, history } };
     }
     const legacy = await get(store, LEGACY);
     return typeof legacy === 'string' ? { legacyText: legacy } : null;

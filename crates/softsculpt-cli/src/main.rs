@@ -6,7 +6,6 @@
 
 mod args;
 mod bench;
-mod gltf;
 mod info;
 mod input;
 mod output;

@@ -7,7 +7,8 @@
 //! - with `--frames N`: `frames/NAME_0000.obj` … (N frames at equal intervals from the start to
 //!   the end, both included) and `animation.glb`, a glTF 2.0 with the motion as morph targets.
 
-use crate::{gltf, output};
+use crate::output;
+use softsculpt::mesh::animation as gltf;
 use clap::Args;
 use serde_json::json;
 use softsculpt::scene::SceneRun;
@@ -110,7 +111,7 @@ pub fn run(a: RunArgs) -> Result<(), String> {
             .enumerate()
             .map(|(k, name)| gltf::Track { name, triangles: scene.world.bodies[k].triangles(), frames: &frames[k] })
             .collect();
-        output::write_atomic(&a.out.join("animation.glb"), &gltf::animation_glb(&tracks, &times))?;
+        output::write_atomic(&a.out.join("animation.glb"), &gltf::animation_glb(&tracks, &times, "softsculpt run"))?;
     }
     let text = serde_json::to_string_pretty(&json!(summary)).expect("JSON of plain values");
     output::write_atomic(&a.out.join("summary.json"), format!("{text}\n").as_bytes())?;

@@ -11,7 +11,8 @@
 //!   `{"kind": K, "message": "…", …}` with K one of `mesh`, `parameter`, `step`, `snapshot`,
 //!   `scene`, `delta`, `project`, `usage`, and optional fields: `parameter` and `unit`
 //!   (parameter errors), `time` (s), `step`, `line` and `rolled_back_to` (s) (step errors;
-//!   `converged: false` when an implicit step did not converge: a shorter step may succeed),
+//!   `converged: false` when an implicit step did not converge: a shorter step may succeed;
+//!   `cause`: `non_finite`, `collapsed` (with the gas `volume`, m³) or `not_converged`),
 //!   `line` and `key` (scene errors). The error slot holds only errors.
 //! - **Results** (`ss_result_ptr`/`ss_result_len`): data a call returns — JSON, TOML, snapshot
 //!   or delta bytes, load warnings — valid until the next call that writes a result.
@@ -36,6 +37,9 @@
 //! | `ss_add_builtin(w, name, len, mass) -> b` | a built-in model (`sphere`, `mushroom`, `octopus`…) of `mass` kg |
 //! | `ss_add_mesh(w, pos, n_vertices, idx, n_indices, mass, prepare) -> b` | an indexed mesh (f64 xyz, u32 indices); `prepare` 1 = weld, check, orient and reorder like a file, 0 = exactly as given; result: warnings JSON |
 //! | `ss_add_obj(w, bytes, len, mass) -> b` | an OBJ file; result: warnings JSON (array of strings) |
+//! | `ss_add_file(w, name, len, bytes, len, split, mass) -> b` | a mesh file of any format (`softsculpt::mesh::load`), one body or one per piece (`split` = 1, largest first); result: `{format, up_axis, pieces, …}` (`import.rs`) |
+//! | `ss_apply_preset_scaled(w, b, name, len, size)` | `World::apply_preset_scaled`: the preset for a model `size` times as large (similarity); result: gas parameters skipped on an open body |
+//! | `ss_animation_glb(times, n, counts, tracks, tris, frames)` | result: the GLB of recorded frames (`softsculpt::mesh::animation`, as `softsculpt run --frames` writes) |
 //! | `ss_clear(w)` | drop bodies, events and loads, forget the open scene; keep settings |
 //! | `ss_step(w, n)` | `World::step_n`: n steps or none (the whole world rolls back; `step` error with `time`) |
 //! | `ss_sync(w)` | refresh every body's f32 render positions, pins and stats |
@@ -62,6 +66,7 @@
 //! | `ss_open_project_v1(w, ptr, len)` | a version-1 project file of the modeler becomes the world; result `{name, ui}` |
 
 mod history;
+mod import;
 mod scene;
 mod views;
 mod world;

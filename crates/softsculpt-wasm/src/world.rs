@@ -117,13 +117,18 @@ pub fn sim_fail(e: SimError) -> Fail {
             Fail::new("parameter", e.to_string()).with("parameter", *name)
         }
         SimError::Length { .. } => Fail::usage(e.to_string()),
-        SimError::NonFinite { step } | SimError::Collapsed { step, .. } => {
-            Fail::new("step", e.to_string()).with("step", *step)
-        }
+        SimError::NonFinite { step } => Fail::new("step", e.to_string())
+            .with("step", *step)
+            .with("cause", "non_finite"),
+        SimError::Collapsed { step, volume } => Fail::new("step", e.to_string())
+            .with("step", *step)
+            .with("cause", "collapsed")
+            .with("volume", *volume),
         SimError::NotConverged { step, time, .. } => Fail::new("step", e.to_string())
             .with("step", *step)
             .with("time", *time)
-            .with("converged", false),
+            .with("converged", false)
+            .with("cause", "not_converged"),
     }
 }
 
@@ -146,9 +151,14 @@ fn step_fail(e: StepError) -> Fail {
     let mut f = Fail::new("step", e.to_string())
         .with("time", e.time)
         .with("step", e.step);
-    // An implicit step that did not converge (not a blow-up): a shorter step may succeed.
-    if matches!(e.error, SimError::NotConverged { .. }) {
-        f = f.with("converged", false);
+    // What went wrong, for the page to say in the user's terms: `cause` is `non_finite` (a
+    // blow-up), `collapsed` (the gas volume fell to zero or below; `volume` m³) or
+    // `not_converged` (an implicit step did not converge: a shorter step may succeed).
+    match e.error {
+        SimError::NotConverged { .. } => f = f.with("converged", false).with("cause", "not_converged"),
+        SimError::NonFinite { .. } => f = f.with("cause", "non_finite"),
+        SimError::Collapsed { volume, .. } => f = f.with("cause", "collapsed").with("volume", volume),
+        _ => {}
     }
     if let Some(l) = e.line {
         f = f.with("line", l);
@@ -196,7 +206,7 @@ pub extern "C" fn ss_workload(level: u32) -> i32 {
     })
 }
 
-fn add(w: u32, mesh: &TriMesh, mass: f64, warnings: &[String]) -> Res<usize> {
+pub(crate) fn add(w: u32, mesh: &TriMesh, mass: f64, warnings: &[String]) -> Res<usize> {
     with_world(w, |h| {
         let body = SoftBody::new(mesh, mass, Material::default()).map_err(body_fail)?;
         set_result(serde_json::to_vec(warnings).unwrap_or_default());

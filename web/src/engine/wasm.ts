@@ -20,6 +20,9 @@ export interface RawEngine {
   ss_add_builtin(w: number, name: number, len: number, mass: number): number;
   ss_add_mesh(w: number, pos: number, nVertices: number, idx: number, nIndices: number, mass: number, prepare: number): number;
   ss_add_obj(w: number, ptr: number, len: number, mass: number): number;
+  ss_add_file(w: number, name: number, nameLen: number, ptr: number, len: number, split: number, mass: number): number;
+  ss_apply_preset_scaled(w: number, b: number, name: number, len: number, size: number): number;
+  ss_animation_glb(times: number, nFrames: number, counts: number, nTracks: number, tris: number, frames: number): number;
   ss_clear(w: number): number;
   ss_step(w: number, n: number): number;
   ss_sync(w: number): number;
@@ -109,7 +112,7 @@ export function withBytes<T>(bytes: Uint8Array, f: (ptr: number, len: number) =>
 }
 
 /** Copy typed arrays into temporary wasm buffers for the duration of `f`. */
-export function withArrays<T>(arrays: (Float64Array | Uint32Array | Uint8Array)[], f: (...ptrs: number[]) => T): T {
+export function withArrays<T>(arrays: (Float64Array | Float32Array | Uint32Array | Uint8Array)[], f: (...ptrs: number[]) => T): T {
   const e = raw();
   const blocks = arrays.map((a) => ({ a, len: a.byteLength, ptr: e.ss_alloc(a.byteLength) }));
   try {

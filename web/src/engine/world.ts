@@ -78,6 +78,34 @@ export type Obstacle =
   | { kind: 'capsule'; friction: number; a: number[]; b: number[]; radius: number }
   | { kind: 'mesh'; friction: number; positions: Float64Array; indices: Uint32Array };
 
+/** What a mesh file held (`World.addFile`): its format, the up axis it declares, its pieces. */
+export interface FileReport {
+  format: string | null;
+  /** 'y' (glTF says so) or 'unknown' (OBJ, PLY, STL). */
+  up_axis: 'y' | 'z' | 'unknown';
+  pieces: { vertices: number; faces: number; area: number; closed: boolean; boundary_edges: number }[];
+  boundary_edges: number;
+  non_manifold_edges: number;
+  warnings: string[];
+}
+
+/**
+ * A recording as a GLB of morph targets (the core's animation writer, the format of `softsculpt
+ * run --frames`): `times` (s); per track its triangles and its frames (xyz, f32, one per time).
+ */
+export function animationGlb(times: Float64Array, tracks: { triangles: Uint32Array; frames: Float32Array[] }[]): Uint8Array {
+  const counts = new Uint32Array(tracks.flatMap((t) => [t.frames[0].length / 3, t.triangles.length / 3]));
+  const tris = new Uint32Array(tracks.reduce((n, t) => n + t.triangles.length, 0));
+  const frames = new Float32Array(tracks.reduce((n, t) => n + t.frames.length * t.frames[0].length, 0));
+  let at = 0, af = 0;
+  for (const t of tracks) {
+    tris.set(t.triangles, at); at += t.triangles.length;
+    for (const f of t.frames) { frames.set(f, af); af += f.length; }
+  }
+  check(withArrays([times, counts, tris, frames], (tp, cp, ip, fp) => raw().ss_animation_glb(tp, times.length, cp, tracks.length, ip, fp)));
+  return resultBytes();
+}
+
 export type DeltaScope = 'none' | 'touched' | 'all';
 
 /** What a freeze leaves unbalanced (`softsculpt::body::FreezeReport`): forces in N. */
@@ -207,6 +235,27 @@ export class World {
     return this.added(this.call((w) => withArrays([positions, indices], (p, i) =>
       raw().ss_add_mesh(w, p, positions.length / 3, i, indices.length, mass, prepare ? 1 : 0))));
   }
+  /**
+   * A mesh file of any format, read as the command line reads it (weld, checks, orientation):
+   * one body, or one per piece (`split`, largest area first), each of `mass` kg; not rotated.
+   * Returns the first body's index and what the file held.
+   */
+  addFile(name: string, bytes: Uint8Array, split: boolean, mass = 1): { first: number; report: FileReport } {
+    const first = this.call((w) => withBytes(encode(name), (np, nl) => withBytes(bytes, (p, n) => raw().ss_add_file(w, np, nl, p, n, split ? 1 : 0, mass))));
+    const report = JSON.parse(resultText()) as FileReport;
+    this.warnings = report.warnings;
+    return { first, report };
+  }
+  /**
+   * Preset `name` for a model `size` times as large as the one it was tuned for (the core's
+   * similarity rules, params/similarity.rs); returns the gas parameters skipped because body
+   * `b` is open.
+   */
+  applyPresetScaled(b: number, name: string, size: number): string[] {
+    this.call((w) => withBytes(encode(name), (p, n) => raw().ss_apply_preset_scaled(w, b, p, n, size)));
+    return JSON.parse(resultText()) as string[];
+  }
+
   /** Drop bodies, events and loads; keep the settings. */
   clear(): void { this.call((w) => raw().ss_clear(w)); }
 

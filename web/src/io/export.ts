@@ -1,11 +1,16 @@
-// Export the current shape as OBJ, STL or GLB (three.js exporters), and download files.
+// Export the current shapes as OBJ, STL or GLB (three.js exporters), in the imported file's own
+// units, up axis and placement (GLB always Y-up, as glTF is), and download files.
 
 import * as THREE from 'three';
 import { OBJExporter } from 'three/examples/jsm/exporters/OBJExporter.js';
 import { STLExporter } from 'three/examples/jsm/exporters/STLExporter.js';
 import { GLTFExporter } from 'three/examples/jsm/exporters/GLTFExporter.js';
+import { IDENTITY_FRAME, toFile, type ImportFrame } from './import';
 
 export type ExportFormat = 'obj' | 'stl' | 'glb';
+
+/** One body's shape: positions (xyz, m, the engine's frame) and triangles. */
+export interface Shape { positions: ArrayLike<number>; triangles: ArrayLike<number> }
 
 /** A three.js mesh of the shape (positions f64 xyz, triangles). */
 export function shapeMesh(positions: ArrayLike<number>, triangles: ArrayLike<number>, name = 'softsculpt'): THREE.Mesh {
@@ -18,22 +23,31 @@ export function shapeMesh(positions: ArrayLike<number>, triangles: ArrayLike<num
   return m;
 }
 
-export async function exportShape(format: ExportFormat, positions: ArrayLike<number>, triangles: ArrayLike<number>): Promise<Blob> {
-  const mesh = shapeMesh(positions, triangles);
+/**
+ * The shapes as a file: each body one mesh (`softsculpt`, `softsculpt.001`, …), positions taken
+ * back to the file's frame (`frame`: the import's; none for built-in models).
+ */
+export async function exportShape(format: ExportFormat, positions: ArrayLike<number> | Shape[], triangles?: ArrayLike<number>, frame: ImportFrame | null = null): Promise<Blob> {
+  const shapes: Shape[] = Array.isArray(positions) ? positions : [{ positions: positions as ArrayLike<number>, triangles: triangles! }];
+  const f = frame ?? IDENTITY_FRAME;
+  const root = new THREE.Group();
+  shapes.forEach((s, i) => root.add(shapeMesh(toFile(s.positions, f, format === 'glb'), s.triangles, i === 0 ? 'softsculpt' : `softsculpt.${String(i).padStart(3, '0')}`)));
+  const object = shapes.length === 1 ? root.children[0] : root;
   switch (format) {
     case 'obj':
-      return new Blob([new OBJExporter().parse(mesh)], { type: 'text/plain' });
+      return new Blob([new OBJExporter().parse(object)], { type: 'text/plain' });
     case 'stl': {
-      const data = new STLExporter().parse(mesh, { binary: true }) as unknown as DataView;
+      const data = new STLExporter().parse(object, { binary: true }) as unknown as DataView;
       return new Blob([data.buffer as ArrayBuffer], { type: 'model/stl' });
     }
     case 'glb': {
-      const buf = (await new GLTFExporter().parseAsync(mesh, { binary: true })) as ArrayBuffer;
+      const buf = (await new GLTFExporter().parseAsync(object, { binary: true })) as ArrayBuffer;
       return new Blob([buf], { type: 'model/gltf-binary' });
     }
   }
 }
 
+/** Save `blob` as `filename` (a link clicked). */
 export function download(blob: Blob, filename: string): void {
   const a = document.createElement('a');
   a.href = URL.createObjectURL(blob);

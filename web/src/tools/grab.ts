@@ -4,7 +4,7 @@
 // angular frequency ω (1/s): stiffness m w ω² per vertex, critically damped.
 
 import * as THREE from 'three';
-import { BaseTool, point } from './tool';
+import { BaseTool, penPressure, point } from './tool';
 import { verticesAround } from './brush';
 
 /** Default pull: stiff enough that the grabbed point stays within a few pixels of the cursor. */
@@ -34,7 +34,7 @@ export class GrabTool extends BaseTool {
   move(ev: PointerEvent): void {
     if (!this.dragging || !this.ctx) return;
     if (this.ctx.viewport.rayAt(ev).ray.intersectPlane(this.plane, this.cursor)) {
-      this.ctx.send({ type: 'strokeMove', point: point(this.cursor), inverted: false });
+      this.ctx.send({ type: 'strokeMove', point: point(this.cursor), inverted: false, pressure: penPressure(ev) });
     }
   }
 }

@@ -1,5 +1,6 @@
-// Routes pointer events to the active tool. A press on the body starts the tool's drag and
-// switches the camera off until the button is released; elsewhere the trackball has the mouse.
+// Routes pointer events (mouse, pen, touch) to the active tool. A press on the body starts the
+// tool's drag and switches the camera off until the button is released; elsewhere the camera's
+// controls have the pointer; a second finger is the camera's too (turn and pinch-zoom).
 
 import type { Tool, ToolContext } from './tool';
 
@@ -10,8 +11,12 @@ export class ToolManager {
   private readonly moveHandler = (ev: PointerEvent) => { if (this.dragging) this.dragging.move(ev); };
   private readonly up = () => this.onUp();
 
-  /** `enabled`: whether a press may start a stroke now (not while the simulation is busy loading). */
-  constructor(private readonly ctx: ToolContext, readonly tools: Tool[], private readonly onChange: (t: Tool) => void, private readonly enabled: () => boolean = () => true) {
+  /**
+   * `enabled`: whether a press may start a stroke now (not while the simulation is busy loading);
+   * `allowed`: whether this tool can act now (it says why not itself).
+   */
+  constructor(private readonly ctx: ToolContext, readonly tools: Tool[], private readonly onChange: (t: Tool) => void,
+    private readonly enabled: () => boolean = () => true, private readonly allowed: (t: Tool) => boolean = () => true) {
     this.active = tools[0];
     this.active.connect(ctx);
     const canvas = ctx.viewport.canvas;
@@ -36,9 +41,14 @@ export class ToolManager {
   }
 
   private onDown(ev: PointerEvent): void {
+    // A second finger: the camera's gesture (turn, pinch-zoom), not a stroke; one under way ends.
+    if (!ev.isPrimary) { this.onUp(); return; }
     if (ev.button !== 0 || !this.enabled()) return;
     const hit = this.ctx.viewport.pick(ev);
-    if (!hit || !this.active.start(hit, ev)) return;
+    if (!hit) return;
+    // A tool that can do nothing now (a drag while paused) says so and takes nothing.
+    if (!this.allowed(this.active)) { ev.stopImmediatePropagation(); ev.preventDefault(); return; }
+    if (!this.active.start(hit, ev)) return;
     this.dragging = this.active;
     this.ctx.viewport.controls.enabled = false;
     ev.stopImmediatePropagation();

@@ -8,6 +8,7 @@
 import type * as THREE from 'three';
 import type { Command, StrokeTool, Vec3 } from '../protocol';
 import type { Viewport } from '../view/viewport';
+import type { Symmetry } from './symmetry';
 
 export interface Brush {
   /** Radius of the brush (m), shared by the tools. */
@@ -35,6 +36,13 @@ export interface ToolContext {
   body(): BodyView;
   /** Send a stroke command to the simulation. */
   send(cmd: Command): void;
+  /** Mirror symmetry for a stroke starting now (undefined: off). */
+  symmetry(): Symmetry | undefined;
+}
+
+/** A pen's pressure in (0, 1] (it scales the tool's strength); a mouse or a finger: undefined (full). */
+export function penPressure(ev: PointerEvent): number | undefined {
+  return ev.pointerType === 'pen' && ev.pressure > 0 ? ev.pressure : undefined;
 }
 
 export interface Tool {
@@ -80,7 +88,8 @@ export abstract class BaseTool implements Tool {
     const ctx = this.ctx!;
     this.inverted = ev.shiftKey;
     this.dragging = true;
-    ctx.send({ type: 'strokeStart', tool: this.name, point: point(hit.point), radius: ctx.brush.radius, strength: this.strength, inverted: this.inverted });
+    ctx.send({ type: 'strokeStart', tool: this.name, point: point(hit.point), radius: ctx.brush.radius, strength: this.strength, inverted: this.inverted,
+      mirror: ctx.symmetry(), pressure: penPressure(ev) });
     return true;
   }
 
@@ -88,7 +97,7 @@ export abstract class BaseTool implements Tool {
     if (!this.dragging || !this.ctx) return;
     this.inverted = ev.shiftKey;
     const hit = this.ctx.viewport.pick(ev);
-    this.ctx.send({ type: 'strokeMove', point: hit ? point(hit.point) : null, inverted: this.inverted });
+    this.ctx.send({ type: 'strokeMove', point: hit ? point(hit.point) : null, inverted: this.inverted, pressure: penPressure(ev) });
   }
 
   end(): void {

@@ -8,6 +8,8 @@ export class Hud {
   private readonly messages: HTMLElement;
   private readonly help: HTMLElement;
   private readonly busy: HTMLElement;
+  private readonly state: HTMLElement;
+  private readonly hint: HTMLElement;
   private frames = 0;
   private lastFps = performance.now();
   fps = 0;
@@ -21,6 +23,34 @@ export class Hud {
     this.help.innerHTML = helpText;
     this.help.hidden = true;
     this.help.addEventListener('click', () => (this.help.hidden = true));
+    // What the simulation is doing, where one looks: "paused — Space to play".
+    this.state = el(root, 'div', 'state');
+    this.state.hidden = true;
+    // First visit: where the shortcuts are (until `?` is pressed once).
+    this.hint = el(root, 'div', 'hint');
+    this.hint.textContent = 'Press ? for the tools and shortcuts';
+    this.hint.hidden = seenHelp();
+  }
+
+  /** The paused / slow-motion banner (null: none). */
+  setState(text: string | null): void {
+    this.state.hidden = text === null;
+    if (text !== null && this.state.textContent !== text) this.state.textContent = text;
+  }
+  get stateText(): string | null { return this.state.hidden ? null : this.state.textContent; }
+
+  shownMessages(): { text: string; kind: string }[] {
+    return Array.from(this.messages.children).map((m) => ({ text: m.textContent ?? '', kind: m.className.replace('message ', '') }));
+  }
+
+  /**
+   * Drop the messages that are not errors (a new model: what they said is about the old one),
+   * except those of the last half second: the new model's own report (an import's "imported …,
+   * cloth-like") comes just before its first frame.
+   */
+  clearMessages(): void {
+    const now = performance.now();
+    for (const m of Array.from(this.messages.children) as HTMLElement[]) if (!m.classList.contains('error') && now - Number(m.dataset.at ?? 0) > 500) m.remove();
   }
 
   tick(): void {
@@ -47,7 +77,11 @@ export class Hud {
 
   /** A message; kind 'error' stays until dismissed, others fade after a few seconds. */
   message(text: string, kind: 'info' | 'warn' | 'error' = 'info'): void {
+    // The same text again replaces itself; at most four messages stay (the oldest go first).
+    for (const old of Array.from(this.messages.children)) if (old.textContent === text) old.remove();
+    while (this.messages.children.length >= 4) this.messages.firstElementChild!.remove();
     const m = el(this.messages, 'div', `message ${kind}`);
+    m.dataset.at = String(performance.now());
     m.textContent = text;
     m.title = 'click to dismiss';
     m.addEventListener('click', () => m.remove());
@@ -56,13 +90,23 @@ export class Hud {
 
   toggleHelp(show?: boolean): void {
     this.help.hidden = show === undefined ? !this.help.hidden : !show;
+    if (!this.help.hidden) {
+      this.hint.hidden = true;
+      try { localStorage.setItem(HELP_SEEN, '1'); } catch { /* not kept */ }
+    }
   }
+  get hintVisible(): boolean { return !this.hint.hidden; }
   get helpVisible(): boolean { return !this.help.hidden; }
 }
 
 /** The HUD line of an open scene. */
 export function sceneLine({ name, time, duration, bodies }: SceneInfo): string {
   return `scene ${name}: ${bodies} ${bodies === 1 ? 'body' : 'bodies'}   t ${time.toFixed(2)} of ${duration} s${time >= duration ? ' (events done)' : ''}`;
+}
+
+const HELP_SEEN = 'softsculpt.helpSeen';
+function seenHelp(): boolean {
+  try { return localStorage.getItem(HELP_SEEN) === '1'; } catch { return false; }
 }
 
 function el(parent: HTMLElement, tag: string, cls: string): HTMLElement {

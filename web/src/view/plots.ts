@@ -4,16 +4,28 @@ export interface Series {
   label: string;
   color: string;
   values: number[];
+  /** Series of one group (the energies) share one noise floor: see `draw`. */
+  group?: string;
+  /** Shown after the label while the latest value is negative: why it can be. */
+  whyNegative?: string;
 }
+
+/**
+ * A variation smaller than this fraction of its group's magnitude is drawn flat: the plots show
+ * physics, not round-off (a resting body's kinetic energy of 1e-22 J next to 30 J of gas).
+ */
+export const NOISE_FRACTION = 1e-3;
+/** Pixels at the top of each row for its label (the curve stays below it). */
+const LABEL_PX = 12;
 
 export class Plots {
   private readonly ctx: CanvasRenderingContext2D;
   readonly series: Series[] = [
     { label: 'volume m³', color: '#7fd1ff', values: [] },
     { label: 'pressure Pa', color: '#ffd27f', values: [] },
-    { label: 'kinetic J', color: '#ff8f8f', values: [] },
-    { label: 'elastic J', color: '#9dff8f', values: [] },
-    { label: 'gas J', color: '#d59dff', values: [] },
+    { label: 'kinetic J', color: '#ff8f8f', values: [], group: 'energy' },
+    { label: 'elastic J', color: '#9dff8f', values: [], group: 'energy', whyNegative: '< 0: a frozen load is doing work' },
+    { label: 'gas J', color: '#d59dff', values: [], group: 'energy', whyNegative: '< 0: expanded since loading or the last freeze' },
   ];
   private times: number[] = [];
 
@@ -36,6 +48,23 @@ export class Plots {
     }
   }
 
+  /** The value range a series is drawn over: its own, widened to its group's noise floor. */
+  range(s: Series): [number, number] {
+    const vals = s.values;
+    let lo = Infinity, hi = -Infinity;
+    for (const v of vals) { lo = Math.min(lo, v); hi = Math.max(hi, v); }
+    let scale = Math.max(Math.abs(lo), Math.abs(hi));
+    if (s.group) for (const o of this.series) if (o.group === s.group) for (const v of o.values) scale = Math.max(scale, Math.abs(v));
+    const floor = Math.max(NOISE_FRACTION * scale, 1e-12);
+    if (hi - lo < floor) {
+      const mid = (hi + lo) / 2;
+      // Never below zero for a series that is not (the kinetic energy sits on the bottom).
+      const base = lo >= 0 ? Math.max(0, mid - floor / 2) : mid - floor / 2;
+      return [base, base + floor];
+    }
+    return [lo, hi];
+  }
+
   draw(): void {
     const { ctx, canvas } = this;
     const w = canvas.width, h = canvas.height;
@@ -49,18 +78,20 @@ export class Plots {
       const y0 = r * rh;
       const vals = s.values;
       if (vals.length < 2) return;
-      let lo = Math.min(...vals), hi = Math.max(...vals);
-      if (hi - lo < 1e-12 * Math.max(1, Math.abs(hi))) { lo -= 0.5; hi += 0.5; }
+      const [lo, hi] = this.range(s);
+      const top = y0 + LABEL_PX, span = rh - LABEL_PX - 3;
       ctx.strokeStyle = s.color;
       ctx.beginPath();
       vals.forEach((v, i) => {
         const x = (i / (vals.length - 1)) * (w - 4) + 2;
-        const y = y0 + rh - 3 - ((v - lo) / (hi - lo)) * (rh - 6);
+        const y = top + span - ((v - lo) / (hi - lo)) * span;
         if (i === 0) ctx.moveTo(x, y); else ctx.lineTo(x, y);
       });
       ctx.stroke();
       ctx.fillStyle = s.color;
-      ctx.fillText(`${s.label} ${fmt(vals[vals.length - 1])}`, 4, y0 + 11);
+      const last = vals[vals.length - 1];
+      const note = last < 0 && s.whyNegative ? `  (${s.whyNegative})` : '';
+      ctx.fillText(`${s.label} ${fmt(last)}${note}`, 4, y0 + 10);
     });
   }
 }

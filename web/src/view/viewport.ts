@@ -1,18 +1,17 @@
-// The 3D view: renderer, camera, trackball, ground grid, the body's surface and springs.
-// The surface draws the positions of the simulation's frames (transferred buffers) without copying.
+// The 3D view: renderer, camera and its controls (view/camera.ts), ground grid, the body's surface
+// and springs. The surface draws the positions of the simulation's frames (transferred buffers)
+// without copying.
 
 import * as THREE from 'three';
-import { TrackballControls } from 'three/examples/jsm/controls/TrackballControls.js';
+import { CameraRig } from './camera';
 import { SceneExtras } from './extras';
-
-const HOME = new THREE.Vector3(3.2, 2.4, 4.2);
-const TARGET = new THREE.Vector3(0, 0.8, 0);
 
 export class Viewport {
   readonly renderer: THREE.WebGLRenderer;
   readonly scene = new THREE.Scene();
   readonly camera = new THREE.PerspectiveCamera(45, 1, 0.01, 200);
-  readonly controls: TrackballControls;
+  /** Turntable (default) or trackball, zoom limits from the model's size, framing (V). */
+  readonly rig: CameraRig;
   readonly surface: THREE.Mesh<THREE.BufferGeometry, THREE.MeshStandardMaterial>;
   readonly springs: THREE.LineSegments<THREE.BufferGeometry, THREE.LineBasicMaterial>;
   readonly grid = new THREE.GridHelper(20, 40, 0x667788, 0x3a4450);
@@ -34,13 +33,7 @@ export class Viewport {
     const sun = new THREE.DirectionalLight(0xffffff, 2.2);
     sun.position.set(3, 6, 4);
     this.scene.add(sun);
-    this.camera.position.copy(HOME);
-    this.controls = new TrackballControls(this.camera, canvas);
-    this.controls.rotateSpeed = 3;
-    this.controls.zoomSpeed = 1.2;
-    this.controls.panSpeed = 0.6;
-    this.controls.target.copy(TARGET);
-    this.controls.addEventListener('change', () => this.invalidate());
+    this.rig = new CameraRig(this.camera, canvas, () => this.invalidate());
 
     const geometry = new THREE.BufferGeometry();
     this.surface = new THREE.Mesh(geometry, new THREE.MeshStandardMaterial({ color: 0xd9a066, roughness: 0.55, metalness: 0.05, vertexColors: false, side: THREE.DoubleSide }));
@@ -64,16 +57,25 @@ export class Viewport {
     this.invalidate();
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
-    this.controls.handleResize();
+    this.rig.resized();
   }
 
-  resetView(): void {
-    this.camera.position.copy(HOME);
-    this.camera.up.set(0, 1, 0);
-    this.controls.target.copy(TARGET);
-    this.controls.addEventListener('change', () => this.invalidate());
-    this.camera.lookAt(TARGET);
-    this.controls.update();
+  /** The active camera controls (the tools switch them off while they drag). */
+  get controls() { return this.rig.controls; }
+
+  /** Fit the model in the view, level (V). */
+  resetView(): void { this.rig.frame(); }
+
+  /** The model's bounding sphere (from the drawn positions): zoom limits follow it. */
+  measureModel(): void {
+    const g = this.surface.geometry;
+    g.computeBoundingSphere();
+    if (g.boundingSphere && Number.isFinite(g.boundingSphere.radius)) this.rig.setModel(g.boundingSphere.center, g.boundingSphere.radius);
+    // The ground grid follows the model's size (imports keep their units): 20 × 20 squares
+    // of a power of ten metres near the model's diameter / 2.5 (1 m for the built-in models).
+    const grid = g.boundingSphere && g.boundingSphere.radius > 0 ? Math.pow(10, Math.round(Math.log10(g.boundingSphere.radius / 1.25))) : 1;
+    this.grid.scale.setScalar(grid);
+    this.groundPlane.scale.setScalar(grid);
   }
 
   /** Point the surface and the springs at a (new) mesh: its triangles, springs and positions. */
@@ -132,7 +134,7 @@ export class Viewport {
     if (len > 0) {
       this.windArrow.setDirection(v.clone().normalize());
       this.windArrow.setLength(0.4 + 0.1 * Math.min(len, 20), 0.25, 0.15);
-      this.windArrow.position.copy(this.controls.target).addScaledVector(v.clone().normalize(), -2).add(new THREE.Vector3(0, 1.2, 0));
+      this.windArrow.position.copy(this.rig.target).addScaledVector(v.clone().normalize(), -2).add(new THREE.Vector3(0, 1.2, 0));
     }
   }
 
@@ -144,7 +146,7 @@ export class Viewport {
    * paused or loading model costs nothing per frame, which matters where drawing is slow).
    */
   render(): void {
-    this.controls.update();
+    this.rig.update();
     if (!this.dirty) return;
     this.dirty = false;
     this.renderer.render(this.scene, this.camera);
@@ -166,7 +168,7 @@ export class Viewport {
   }
 
   dispose(): void {
-    this.controls.dispose();
+    this.rig.dispose();
     this.renderer.dispose();
   }
 }

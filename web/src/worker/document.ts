@@ -10,19 +10,23 @@
 // are limited to HISTORY_STEPS and HISTORY_BYTES in all, the oldest dropped first.
 
 import { initEngine } from '../engine/wasm';
-import { EngineError, World, type DeltaScope, type FreezeReport, type ParamInfo, type ParamValue } from '../engine/world';
+import { World, type DeltaScope, type FreezeReport, type ParamInfo, type ParamValue } from '../engine/world';
 import { addModel, dtFor, stableDt, useDefaults } from '../engine/models';
-import { notConverged, stepSplitting } from './split';
+import { stepSplitting } from './split';
 import { History, travel } from '../history';
 import { parse, ProjectError, serialize } from '../project';
 import type { Autosave, AutosaveRecord } from '../storage';
-import { MODELS, placeOnGround, type ModelName } from '../models';
-import { importModel } from '../io/import';
+import { MODELS, type ModelName } from '../models';
+import { isClosed, type ImportAnswer, type ImportFrame, type ImportQuestion } from '../io/import';
+import { Importer } from './importer';
 import type { MessageKind, SceneInfo, Settings, Stats, Topology, UiState, Vec3 } from '../protocol';
 import { makeStroke, type Stroke, type StrokeBody, type StrokeStart } from './strokes';
+import { explainStop, type Change } from './explain';
 
 export const HISTORY_STEPS = 200;
 export const HISTORY_BYTES = 512 * 1024 * 1024;
+/** Undo steps kept across a reload: the newest that fit in this many bytes (the autosave is written after every operation). */
+export const HISTORY_KEPT_BYTES = 48 * 1024 * 1024;
 /** Frames with split steps before the modeler says so (once per model). */
 export const SPLIT_NOTICE = 10;
 
@@ -41,6 +45,8 @@ export interface DocumentHooks {
   changed(): void;
   /** An opened project brought the page's state. */
   ui(ui: Partial<UiState>): void;
+  /** An imported file needs the user's answers (up axis, pieces): `importAnswer` brings them. */
+  ask?(q: ImportQuestion): void;
 }
 
 /** Load the engine (the wasm module's bytes, or its URL). */
@@ -55,7 +61,7 @@ export class Document {
   /** The open scene, if any (its first body is the active body). */
   private session: SceneSource | null = null;
   readonly history = new History<Entry>({ limit: HISTORY_STEPS, maxBytes: HISTORY_BYTES, size: (e) => e.delta.byteLength });
-  readonly settings: Settings = { dt: 1e-3, substeps: 16, realTime: true, playing: true, keepTension: false, model: 'mushroom' };
+  readonly settings: Settings = { dt: 1e-3, substeps: 16, realTime: true, playing: true, keepTension: false, model: 'mushroom', frame: null };
   ui: UiState = { brush: { radius: 0.35 }, tool: 'grab', strengths: {} };
   private stroke: Stroke | null = null;
   private strokeScope: DeltaScope = 'all';
@@ -65,8 +71,18 @@ export class Document {
   topologyVersion = 0;
   /** Bumped when masses or pins may have changed. */
   bodyVersion = 0;
+  /** The simulation paused itself on a failure (a new model plays again). */
+  pausedByError = false;
+  /** Parameters the user changed on this model, with the simulated time (to name a failure's likely cause). */
+  private changes: Change[] = [];
+  /** Part of the body was below the ground when it was last switched on. */
+  private groundUnderBody = false;
 
-  constructor(private readonly hooks: DocumentHooks) {}
+  readonly importer: Importer;
+
+  constructor(private readonly hooks: DocumentHooks) {
+    this.importer = new Importer(this, { message: hooks.message, progress: hooks.progress, ask: (q) => hooks.ask?.(q) });
+  }
 
   get loaded(): boolean { return this.w !== null && this.w.bodyCount > 0; }
   /** The engine world (for tests and the service; operations go through the methods below). */
@@ -117,13 +133,33 @@ export class Document {
     const w = this.world, b = w.body(0);
     const others = [];
     for (let i = 1; i < w.bodyCount; i++) others.push({ vertexCount: w.body(i).vertexCount, triangles: w.body(i).triangles.slice() });
-    return { vertexCount: b.vertexCount, triangles: b.triangles.slice(), springs: b.springs.slice(), others, obstacles: w.obstacles() };
+    const triangles = b.triangles.slice();
+    return { vertexCount: b.vertexCount, triangles, springs: b.springs.slice(), others, obstacles: w.obstacles(), closed: isClosed(triangles) };
   }
   bodyData(): { masses: Float64Array; pinned: Uint8Array } {
     this.synced();
     const b = this.world.body(0);
     return { masses: b.masses.slice(), pinned: b.pinned.slice() };
   }
+  /**
+   * Each vertex's strain: the mean over its springs of l / L − 1 (l the current length, L the
+   * rest length; > 0 stretched, < 0 compressed), what would spring back if released.
+   */
+  strain(): Float32Array {
+    const b = this.world.body(0), x = b.positions, e = b.springs, rest = b.rest;
+    const n = b.vertexCount, sum = new Float64Array(n), count = new Uint32Array(n);
+    for (let k = 0; k < rest.length; k++) {
+      const i = 3 * e[2 * k], j = 3 * e[2 * k + 1];
+      const l = Math.hypot(x[i] - x[j], x[i + 1] - x[j + 1], x[i + 2] - x[j + 2]);
+      const s = rest[k] > 0 ? l / rest[k] - 1 : 0;
+      sum[e[2 * k]] += s; count[e[2 * k]]++;
+      sum[e[2 * k + 1]] += s; count[e[2 * k + 1]]++;
+    }
+    const out = new Float32Array(n);
+    for (let i = 0; i < n; i++) out[i] = count[i] ? sum[i] / count[i] : 0;
+    return out;
+  }
+
   /** Every parameter of the active body and the world, by the table's ids. */
   params(): Record<string, ParamValue | null> { return this.world.params(0); }
   /** The engine's parameter table (ids, units, ranges, help). */
@@ -137,7 +173,8 @@ export class Document {
       try {
         if ('record' in autosave) this.openRecordOrThrow(autosave.record, false);
         else this.openProjectText(autosave.legacyText, false);
-        this.hooks.message('restored your last session (autosaved)');
+        const kept = 'record' in autosave ? this.takeHistory(autosave.record.history) : 0;
+        this.hooks.message(`restored your last session (autosaved)${kept > 0 ? `, with ${kept} undo ${kept === 1 ? 'step' : 'steps'}` : ''}`);
         return;
       } catch (e) {
         this.hooks.message(`the autosave could not be read (${errorText(e)}); opened the default model instead`, 'warn');
@@ -147,13 +184,28 @@ export class Document {
   }
 
   /** A fresh world: no bodies, no scene, no obstacles, the table's defaults. */
-  private fresh(): void {
+  fresh(): void {
     this.world.clear();
     this.world.restore(this.empty!);
     this.session = null;
+    this.settings.frame = null;
   }
 
+  /** A model built in the world (an import): its name, the settings from the world's dt, its file's frame. */
+  adopt(model: string, frame: ImportFrame): void {
+    this.splitFrames = 0;
+    this.settings.dt = this.world.params(0).dt as number;
+    this.settings.substeps = Math.max(1, Math.round(1 / 60 / this.settings.dt));
+    this.settings.model = model;
+    this.settings.frame = frame;
+  }
+
+  /** Tell the page new tool state (the brush radius fitted to an imported model). */
+  hooksUi(ui: Partial<UiState>): void { this.hooks.ui(ui); }
+
   private useDefaults(model: string): void {
+    this.changes = [];
+    if (this.pausedByError) { this.pausedByError = false; this.settings.playing = true; }
     const dt = useDefaults(this.world, 0);
     this.splitFrames = 0;
     this.settings.dt = dt;
@@ -179,32 +231,10 @@ export class Document {
     });
   }
 
-  async importFile(name: string, data: ArrayBuffer): Promise<void> {
-    this.hooks.progress(`importing ${name}`);
-    const scratch = World.create();
-    try {
-      const imported = await importModel(name, data);
-      if (imported.kind === 'obj') scratch.addObj(imported.bytes); else scratch.addMesh(imported.positions, imported.indices);
-      const read = scratch.body(0);
-      const placed = placeOnGround(read.positions.slice(), 2.5);
-      const triangles = read.triangles.slice();
-      const warnings = scratch.warnings;
-      const ok = this.edit(`import ${name}`, true, () => {
-        this.fresh();
-        this.world.addMesh(placed.positions, triangles, 1, false);
-        this.useDefaults(name);
-      });
-      if (!ok) return;
-      const b = this.world.body(0);
-      this.hooks.message(`imported ${name}: ${b.vertexCount} vertices, ${b.faceCount} faces (scaled ×${placed.scale.toPrecision(3)} to fit)`);
-      if (warnings.length) this.hooks.message(warnings.join('\n'), 'warn');
-    } catch (e) {
-      this.hooks.message(`could not import ${name}: ${errorText(e)} — the current model is unchanged`, 'error');
-    } finally {
-      scratch.free();
-      this.hooks.progress(null);
-    }
-  }
+  /** Read a model file; the page is asked what the file does not say (`importAnswer`). */
+  importFile(name: string, data: ArrayBuffer): void { this.importer.read(name, data); }
+  /** The page's answers for the file waiting (null: cancelled). */
+  importAnswer(a: ImportAnswer | null): void { this.importer.answer(a); }
 
   // ----- editing and undo -----------------------------------------------------------------------
 
@@ -246,7 +276,9 @@ export class Document {
 
   /** Change a parameter by its table id (undoable); a refused value is reported and leaves the old one. */
   setParam(id: string, value: ParamValue): boolean {
+    if (id === 'ground' && value === true) this.groundUnderBody = this.belowGround();
     const ok = this.edit(`set ${id}`, true, () => this.world.setParam(0, id, value), 'none');
+    if (ok) this.changes = [...this.changes.slice(-7), { id, value, time: this.stats().time }];
     if (ok && id === 'dt') this.settings.dt = value as number;
     // Another integrator gets a step it is stable at: 1/60 s implicit, else the explicit limit.
     if (ok && id === 'integrator') {
@@ -258,6 +290,15 @@ export class Document {
   }
 
   setMass(total: number): void { this.setParam('mass', total); }
+
+  /** Whether some vertex of the active body is below the ground's height. */
+  private belowGround(): boolean {
+    const h = this.world.params(0)['ground.height'];
+    const x = this.world.body(0).positions;
+    if (typeof h !== 'number') return false;
+    for (let i = 1; i < x.length; i += 3) if (x[i] < h - 1e-9) return true;
+    return false;
+  }
 
   /** Wind along `direction` at `strength` m/s (0: calm); undoable. */
   wind(direction: Vec3, strength: number): void {
@@ -361,7 +402,10 @@ export class Document {
     this.stroke.start(this.strokeBody());
     if (this.stroke.paintsBodyData) this.bodyVersion++;
   }
-  strokeMove(point: Vec3 | null, inverted: boolean): void { this.stroke?.move(point, inverted, this.strokeBody()); }
+  strokeMove(point: Vec3 | null, inverted: boolean, pressure?: number): void {
+    this.stroke?.press(pressure);
+    this.stroke?.move(point, inverted, this.strokeBody());
+  }
   strokeEnd(): void {
     if (!this.stroke) return;
     const stroke = this.stroke;
@@ -406,14 +450,12 @@ export class Document {
       return true;
     } catch (e) {
       this.settings.playing = false;
-      if (notConverged(e)) {
-        this.hooks.message(`an implicit step did not converge even as 8 steps of dt/8 (${errorText(e)}). Paused.`, 'error');
-      } else if (e instanceof EngineError && e.kind === 'step') {
-        this.hooks.message(`the simulation blew up at t = ${fmt(e.time)} s; the whole world was rolled back to t = ${fmt(e.rolledBackTo)} s. Paused. ` +
-          `Try a smaller dt (now ${this.settings.dt} s), more damping, or another integrator.`, 'error');
-      } else {
-        this.hooks.message(`${errorText(e)}. Paused.`, 'error');
-      }
+      this.pausedByError = true;
+      const integrator = String(this.world.params(0).integrator);
+      this.hooks.message(explainStop(e, {
+        integrator, dt: this.settings.dt, changes: this.changes, groundUnderBody: this.groundUnderBody,
+        stableDt: integrator === 'implicit' ? undefined : stableDt(this.world, 0),
+      }), 'error');
       return false;
     }
   }
@@ -443,13 +485,18 @@ export class Document {
     const ok = this.edit(`open ${name}`, true, () => {
       opened = this.world.openScene(text, files);
       this.session = { name, text, files, duration: opened.duration };
+      this.settings.frame = null;
       this.settings.dt = opened.dt;
       this.settings.substeps = Math.max(1, Math.round(1 / 60 / opened.dt));
       this.settings.model = name;
+      // A scene opens paused at t = 0, so its first events are seen when the user plays it.
+      this.settings.playing = false;
+      this.pausedByError = false;
+      this.changes = [];
     }, 'all', (why) => `could not open ${name}: ${why} — the current model is unchanged`);
     if (!ok) return false;
     const n = opened.names.length;
-    this.hooks.message(`opened scene ${name}: ${n} ${n === 1 ? 'body' : 'bodies'}, ${opened.duration} s of events — play to run it`);
+    this.hooks.message(`opened scene ${name}: ${n} ${n === 1 ? 'body' : 'bodies'}, ${opened.duration} s of events — paused at t = 0; Space plays it`);
     return true;
   }
 
@@ -469,9 +516,19 @@ export class Document {
     return serialize({ name: this.settings.model, ui: { ...this.settings, ...this.ui }, snapshot: this.world.snapshot() });
   }
 
-  /** The autosave's record of the world as it is now. */
+  /** The autosave's record of the world as it is now, with the newest undo steps (HISTORY_KEPT_BYTES). */
   autosaveRecord(now: number): AutosaveRecord {
-    return { name: this.settings.model, ui: { ...this.settings, ...this.ui }, snapshot: this.world.snapshot(), savedAt: now };
+    return { name: this.settings.model, ui: { ...this.settings, ...this.ui }, snapshot: this.world.snapshot(), savedAt: now, history: this.history.newest(HISTORY_KEPT_BYTES) };
+  }
+
+  /** Undo steps from an autosave (taken with its snapshot): well-formed ones only. Returns how many. */
+  private takeHistory(h: AutosaveRecord['history']): number {
+    if (!h) return 0;
+    const ok = (i: { label: string; state: unknown }) => typeof i.label === 'string' && i.state !== null && typeof i.state === 'object' &&
+      (i.state as Entry).delta instanceof Uint8Array && typeof (i.state as Entry).settings === 'object';
+    if (!h.undo.every(ok) || !h.redo.every(ok)) return 0;
+    this.history.load(h.undo as { label: string; state: Entry }[], h.redo as { label: string; state: Entry }[]);
+    return this.history.sizes[0];
   }
 
   private openRecord(r: { name: string; ui: Record<string, unknown>; snapshot: Uint8Array }, undoable: boolean, label?: string): void {
@@ -520,6 +577,7 @@ export class Document {
     if (typeof u.realTime === 'boolean') this.settings.realTime = u.realTime;
     if (typeof u.keepTension === 'boolean') this.settings.keepTension = u.keepTension;
     this.settings.model = name;
+    this.settings.frame = validFrame(u.frame);
     const page: Partial<UiState> = {};
     if (u.brush && typeof u.brush.radius === 'number') page.brush = { radius: u.brush.radius };
     if (typeof u.tool === 'string') page.tool = u.tool;
@@ -536,6 +594,13 @@ export class Document {
       this.hooks.message(`could not open ${name}: ${errorText(e)} — the current model is unchanged`, 'error');
     }
   }
+}
+
+/** An import frame from a project file, if it is one. */
+function validFrame(f: unknown): ImportFrame | null {
+  const x = f as ImportFrame | null | undefined;
+  if (!x || (x.up !== 'y' && x.up !== 'z') || !Array.isArray(x.offset) || x.offset.length !== 3 || !x.offset.every(Number.isFinite)) return null;
+  return { up: x.up, offset: [x.offset[0], x.offset[1], x.offset[2]] };
 }
 
 function fmt(t: number | undefined): string {

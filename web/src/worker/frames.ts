@@ -60,6 +60,7 @@ export class FramePublisher {
     if (!this.sent.table) { frame.table = doc.paramTable(); this.sent.table = true; }
     if (settingsKey !== this.sent.settings) { frame.settings = { ...doc.settings }; this.sent.settings = settingsKey; }
     if (historyKey !== this.sent.history) { frame.history = doc.history.sizes; this.sent.history = historyKey; }
+    if (doc.settings.strain) frame.strain = doc.strain();
     return frame;
   }
 }

@@ -10,6 +10,7 @@ import { baseName } from '../project';
 import type { Autosave, AutosaveRecord } from '../storage';
 import { FramePublisher } from './frames';
 import { Stepper } from './stepper';
+import { Recorder } from './recorder';
 
 export interface ServiceHost {
   post(reply: Reply, transfer: Transferable[]): void;
@@ -25,6 +26,7 @@ export class Service {
   readonly doc: Document;
   readonly frames = new FramePublisher();
   readonly stepper: Stepper;
+  readonly recorder: Recorder;
   private progressLabel: string | null = null;
   private progressAt = 0;
   private saveTimer: unknown = null;
@@ -39,7 +41,9 @@ export class Service {
       progress: (label, fraction) => this.progress(label, fraction),
       changed: () => this.autosave(),
       ui: (ui) => this.post({ type: 'ui', ui }),
+      ask: (question) => this.post({ type: 'importQuestion', question }),
     });
+    this.recorder = new Recorder((text, kind) => this.message(text, kind));
   }
 
   private post(r: Reply): void { this.host.post(r, transferables(r)); }
@@ -75,6 +79,9 @@ export class Service {
     switch (cmd.type) {
       case 'loadBuiltin': return doc.loadBuiltin(cmd.name);
       case 'import': return doc.importFile(cmd.name, cmd.data);
+      case 'importAnswer': return doc.importAnswer(cmd.answer);
+      case 'record': if (cmd.on) this.recorder.start(doc); else this.recorder.stop(); return;
+      case 'exportRecording': return this.exportRecording();
       case 'openProject': return doc.openProject(cmd.name, cmd.text);
       case 'openScene': doc.openScene(cmd.name, cmd.text, cmd.files); return;
       case 'restartScene': return doc.restartScene();
@@ -85,13 +92,13 @@ export class Service {
       case 'subdivide': return doc.subdivide();
       case 'undo': return doc.undo();
       case 'redo': return doc.redo();
-      case 'step': this.stepper.run(doc, doc.settings.dt, doc.settings.substeps); return;
+      case 'step': this.stepper.run(doc, doc.settings.dt, doc.settings.substeps); this.recorder.sample(doc); return;
       case 'setParam': if (!doc.setParam(cmd.name, cmd.value)) this.frames.resendParams(); return;
       case 'setMass': return doc.setMass(cmd.total);
       case 'wind': return doc.wind(cmd.direction, cmd.strength);
       case 'settings': return this.settings(cmd.patch);
       case 'strokeStart': return doc.strokeStart(cmd);
-      case 'strokeMove': return doc.strokeMove(cmd.point, cmd.inverted);
+      case 'strokeMove': return doc.strokeMove(cmd.point, cmd.inverted, cmd.pressure);
       case 'strokeEnd': return doc.strokeEnd();
     }
   }
@@ -119,7 +126,8 @@ export class Service {
     if (typeof patch.dt === 'number' && Number.isFinite(patch.dt) && patch.dt > 0) this.doc.setDt(patch.dt);
     if (typeof patch.substeps === 'number' && patch.substeps >= 1) s.substeps = Math.round(patch.substeps);
     if (typeof patch.realTime === 'boolean') s.realTime = patch.realTime;
-    if (typeof patch.playing === 'boolean') s.playing = patch.playing;
+    if (typeof patch.playing === 'boolean') { s.playing = patch.playing; this.doc.pausedByError = false; }
+    if (typeof patch.strain === 'boolean') s.strain = patch.strain;
     if (typeof patch.keepTension === 'boolean') s.keepTension = patch.keepTension;
     this.autosave();
   }
@@ -127,6 +135,12 @@ export class Service {
   private saveProject(ui: UiState): void {
     this.doc.ui = ui;
     this.post({ type: 'download', filename: `${baseName(this.doc.settings.model)}.softsculpt.json`, mime: 'application/json', text: this.doc.projectText() });
+  }
+
+  private exportRecording(): void {
+    const bytes = this.recorder.glb();
+    if (!bytes) { this.message('nothing recorded yet: Record, play, then export', 'warn'); return; }
+    this.post({ type: 'download', filename: `${baseName(this.doc.settings.model)}-recording.glb`, mime: 'model/gltf-binary', text: '', bytes });
   }
 
   private saveScene(): void {
@@ -156,11 +170,14 @@ export class Service {
     if (!this.doc.loaded) return;
     try {
       const stepped = this.stepper.tick(this.doc);
+      if (stepped) this.recorder.sample(this.doc);
       const sim = { simMs: 0, slowMotion: this.stepper.slowMotion, realTimeFraction: this.stepper.realTimeFraction };
       const frame = this.frames.next(this.doc, stepped || this.doc.stroking || this.poked, sim);
       if (frame) {
         this.poked = false;
         frame.simMs = this.stepper.take();
+        const rec = this.recorder.status;
+        if (rec) frame.recording = rec;
         this.post({ type: 'frame', frame });
       }
       this.lastTickError = '';

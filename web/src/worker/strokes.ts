@@ -12,6 +12,12 @@
 import type { StrokeTool, Vec3 } from '../protocol';
 import type { BodyView } from '../engine/world';
 import { inflateFactor, targetSpring, vertexNormals, verticesAround, type Weighted } from '../tools/brush';
+import { reflect, reflections, type Symmetry } from '../tools/symmetry';
+
+/** Pen pressure as a strength scale: (0, 1], 1 when not given (a mouse). */
+function clampPressure(p: number | undefined): number {
+  return p === undefined || !Number.isFinite(p) || p <= 0 ? 1 : Math.min(1, Math.max(0.05, p));
+}
 
 /** What a stroke needs from the body (the document hands over its active body). */
 export interface StrokeBody {
@@ -28,14 +34,50 @@ export interface StrokeBody {
   setTargets(records: Float64Array): void;
 }
 
-export interface StrokeStart { tool: StrokeTool; point: Vec3; radius: number; strength: number; inverted: boolean }
+export interface StrokeStart {
+  tool: StrokeTool; point: Vec3; radius: number; strength: number; inverted: boolean;
+  /** Mirror symmetry: the stroke also acts at the point's mirror images (tools/symmetry.ts). */
+  mirror?: Symmetry;
+  /** Pen pressure in (0, 1] scaling the strength (1: a mouse). */
+  pressure?: number;
+}
 
 export abstract class Stroke {
   protected point: Vec3 | null;
   protected inverted: boolean;
+  /** The strength scale from pen pressure, in (0, 1]. */
+  protected pressure: number;
+  /** Sign triples of the reflections the stroke acts through (the identity first). */
+  protected readonly signs: Vec3[];
+  protected readonly centre: Vec3;
   constructor(protected readonly s: StrokeStart) {
     this.point = s.point;
     this.inverted = s.inverted;
+    this.pressure = clampPressure(s.pressure);
+    this.signs = s.mirror ? reflections(s.mirror.axes) : [[1, 1, 1]];
+    this.centre = s.mirror?.centre ?? [0, 0, 0];
+  }
+  /** The strength as the pen presses now. */
+  protected get strength(): number { return this.s.strength * this.pressure; }
+  /** The pen pressure changed (a move). */
+  press(pressure: number | undefined): void { if (pressure !== undefined) this.pressure = clampPressure(pressure); }
+  /**
+   * The vertices within the brush of `point` and of its mirror images, with their falloff
+   * weights (a vertex under two images keeps the larger weight), and for each the reflection
+   * (index into `signs`) it was taken through.
+   */
+  protected around(x: ArrayLike<number>, point: Vec3, signs = this.signs): Weighted & { image: number[] } {
+    const best = new Map<number, { w: number; image: number }>();
+    signs.forEach((sg, image) => {
+      const under = verticesAround(x, reflect(point, sg, this.centre), this.s.radius);
+      under.indices.forEach((i, k) => {
+        const had = best.get(i);
+        if (!had || under.weights[k] > had.w) best.set(i, { w: under.weights[k], image });
+      });
+    });
+    const out = { indices: [] as number[], weights: [] as number[], image: [] as number[] };
+    for (const [i, { w, image }] of best) { out.indices.push(i); out.weights.push(w); out.image.push(image); }
+    return out;
   }
   /** The undo step's name. */
   get label(): string { return this.s.tool; }
@@ -50,13 +92,25 @@ export abstract class Stroke {
 }
 
 class Grab extends Stroke {
-  private picked: Weighted = { indices: [], weights: [] };
+  private picked: Weighted & { image: number[] } = { indices: [], weights: [], image: [] };
+  /** Each picked vertex's offset from the (mirrored) grab point. */
   private offsets: number[] = [];
   private records = new Float64Array(0);
+  /** The reflections this grab acts through: an image whose brush overlaps the grab's own is left out. */
+  private images: Vec3[] = [[1, 1, 1]];
   start(body: StrokeBody): void {
     const x = body.view.positions, p = this.s.point;
-    this.picked = verticesAround(x, p, this.s.radius);
-    this.offsets = this.picked.indices.flatMap((i) => [x[3 * i] - p[0], x[3 * i + 1] - p[1], x[3 * i + 2] - p[2]]);
+    // A grab on (or within a brush radius of) the mirror plane would pull the same vertices
+    // towards the cursor and towards its mirror image at once: it acts once, as without mirror.
+    this.images = this.signs.filter((sg, k) => {
+      const q = reflect(p, sg, this.centre);
+      return k === 0 || Math.hypot(q[0] - p[0], q[1] - p[1], q[2] - p[2]) >= 2 * this.s.radius;
+    });
+    this.picked = this.around(x, p, this.images);
+    this.offsets = this.picked.indices.flatMap((i, k) => {
+      const q = reflect(p, this.images[this.picked.image[k]], this.centre);
+      return [x[3 * i] - q[0], x[3 * i + 1] - q[1], x[3 * i + 2] - q[2]];
+    });
     this.records = new Float64Array(6 * this.picked.indices.length);
     this.update(body);
   }
@@ -64,9 +118,12 @@ class Grab extends Stroke {
   move(point: Vec3 | null): void { if (point) this.point = point; }
   update(body: StrokeBody): void {
     const m = body.view.masses, r = this.records;
-    const c = this.point ?? this.s.point;
+    const cursor = this.point ?? this.s.point;
+    // Each image of the cursor pulls the vertices taken through that image (mirrored drags).
+    const images = this.images.map((sg) => reflect(cursor, sg, this.centre));
     this.picked.indices.forEach((i, k) => {
-      const t = targetSpring(m[i], this.picked.weights[k], this.s.strength);
+      const c = images[this.picked.image[k]];
+      const t = targetSpring(m[i], this.picked.weights[k], this.strength);
       r.set([i, c[0] + this.offsets[3 * k], c[1] + this.offsets[3 * k + 1], c[2] + this.offsets[3 * k + 2], t.stiffness, t.damping], 6 * k);
     });
     body.setTargets(r);
@@ -88,11 +145,11 @@ class Press extends Stroke {
   }
   private apply(body: StrokeBody): void {
     const x = body.view.positions;
-    const under = verticesAround(x, this.point!, this.s.radius);
+    const under = this.around(x, this.point!);
     const fresh = under.indices.filter((i) => !this.anchors.has(i));
     if (fresh.length === 0 && this.anchors.size > 0) return;
     const n = vertexNormals(x, body.view.triangles);
-    const depth = this.inverted ? -this.s.strength : this.s.strength;
+    const depth = this.inverted ? -this.strength : this.strength;
     under.indices.forEach((i, k) => {
       if (this.anchors.has(i)) return;
       const w = under.weights[k];
@@ -115,7 +172,7 @@ abstract class Paint extends Stroke {
   start(body: StrokeBody): void { this.update(body, 0); }
   update(body: StrokeBody, dt: number): void {
     if (!this.point) return;
-    const w = verticesAround(body.view.positions, this.point, this.s.radius);
+    const w = this.around(body.view.positions, this.point);
     if (w.indices.length > 0) this.paint(body, w, dt);
   }
   end(): void {}
@@ -127,7 +184,7 @@ class Inflate extends Paint {
     if (dt <= 0) return;
     if (this.factors.length !== body.view.vertexCount) this.factors = new Float64Array(body.view.vertexCount);
     const factors = this.factors.fill(1);
-    w.indices.forEach((i, k) => (factors[i] = inflateFactor(w.weights[k], this.s.strength, dt, this.inverted)));
+    w.indices.forEach((i, k) => (factors[i] = inflateFactor(w.weights[k], this.strength, dt, this.inverted)));
     body.scaleRest(factors);
   }
 }
@@ -138,7 +195,7 @@ class Mass extends Paint {
     if (dt <= 0) return;
     const m = body.view.masses.slice();
     w.indices.forEach((i, k) => {
-      const f = inflateFactor(w.weights[k], this.s.strength, dt, this.inverted);
+      const f = inflateFactor(w.weights[k], this.strength, dt, this.inverted);
       m[i] = Math.min(Math.max(m[i] * f, 1e-9), 1e9);
     });
     body.setMasses(m);

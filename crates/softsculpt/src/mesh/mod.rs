@@ -3,7 +3,9 @@
 pub mod builtin;
 pub mod format;
 pub mod gltf;
+pub mod animation;
 pub mod obj;
+pub mod pieces;
 pub mod ply;
 pub mod reorder;
 pub mod stl;

@@ -10,6 +10,7 @@
 
 mod access;
 pub mod presets;
+pub mod similarity;
 pub mod table;
 
 pub use access::choice;

@@ -6,8 +6,10 @@
 //! blend of the two — exactly how the frames were sampled. (Blender imports morph targets as
 //! shape keys and the weights as their animation.)
 //!
-//! Layout: the core's GLB container ([`softsculpt::mesh::gltf::glb_container`]); every accessor
-//! has its own buffer view; POSITION accessors carry min/max as the specification requires.
+//! Layout: the GLB container ([`super::gltf::glb_container`]); every accessor has its own buffer
+//! view; POSITION accessors carry min/max as the specification requires. Written by `softsculpt
+//! run --frames` and by the modeler's recording (the binding's `ss_animation_*`), so both give
+//! the same file.
 
 use serde_json::{json, Value};
 
@@ -61,8 +63,9 @@ impl Builder {
     }
 }
 
-/// The .glb bytes of `tracks` sampled at `times` (s, one per frame, increasing).
-pub fn animation_glb(tracks: &[Track], times: &[f64]) -> Vec<u8> {
+/// The .glb bytes of `tracks` sampled at `times` (s, one per frame, increasing); `generator`
+/// names the writer in the asset block.
+pub fn animation_glb(tracks: &[Track], times: &[f64], generator: &str) -> Vec<u8> {
     let mut b = Builder { bin: Vec::new(), views: Vec::new(), accessors: Vec::new() };
     let mut meshes = Vec::new();
     let mut nodes = Vec::new();
@@ -101,7 +104,7 @@ pub fn animation_glb(tracks: &[Track], times: &[f64]) -> Vec<u8> {
         b.bin.push(0);
     }
     let doc = json!({
-        "asset": { "version": "2.0", "generator": "softsculpt run" },
+        "asset": { "version": "2.0", "generator": generator },
         "scene": 0,
         "scenes": [{ "nodes": (0..tracks.len()).collect::<Vec<_>>() }],
         "nodes": nodes,
@@ -111,5 +114,5 @@ pub fn animation_glb(tracks: &[Track], times: &[f64]) -> Vec<u8> {
         "bufferViews": b.views,
         "accessors": b.accessors,
     });
-    softsculpt::mesh::gltf::glb_container(&doc, b.bin)
+    super::gltf::glb_container(&doc, b.bin)
 }

@@ -1,0 +1,152 @@
+// Importing as a user meets it (issue #10 items 3-5) and recording (GLB morph targets): real
+// files from e2e/fixtures through the file picker and the import dialog, in Debian's chromium.
+
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import validator from 'gltf-validator';
+import { browserSuite, inspect, openModeler, shot } from './harness.mjs';
+
+const suite = browserSuite();
+const FIXTURES = fileURLToPath(new URL('./fixtures/', import.meta.url));
+
+/** Choose `file` in the import picker; returns once the dialog shows (or the model changed). */
+async function pick(page, file) {
+  await page.locator('input[data-picker=import]').setInputFiles(file);
+  await page.waitForSelector('.import-dialog', { timeout: 15000 });
+}
+/** The model named `name` is the one drawn (its first frame has arrived). */
+const drawn = (page, name) => page.waitForFunction((n) => window.softsculpt.settings().model === n, name, { timeout: 15000 });
+/** Every message the page showed so far (text and kind), from the HUD. */
+const shown = (page) => page.evaluate(() => Array.from(document.querySelectorAll('#hud .message, .message')).map((m) => ({ text: m.textContent, kind: m.className })));
+const extent = (x, d) => { let lo = Infinity, hi = -Infinity; for (let i = d; i < x.length; i += 3) { lo = Math.min(lo, x[i]); hi = Math.max(hi, x[i]); } return [lo, hi]; };
+
+test('an open cloth-like mesh loads without gas, says so, and the gas controls are off with the reason', async () => {
+  const { page, errors } = await openModeler(suite.browser, suite.server.url);
+  await pick(page, join(FIXTURES, 'cloth.obj'));
+  assert.match(await page.locator('.import-dialog').innerText(), /open \(cloth-like\)/);
+  await shot(page, 'import-01-cloth-dialog');
+  await page.keyboard.press('Enter');
+  await drawn(page, 'cloth.obj');
+  assert.equal(await inspect(page, () => window.softsculpt.vertexCount()), 289);
+  assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /imported cloth\.obj.*cloth-like \(an open surface\): no gas/);
+  assert.deepEqual((await shown(page)).filter((m) => /error/.test(m.kind)), [], 'no error shown');
+  assert.ok((await shown(page)).some((m) => /cloth-like/.test(m.text)), 'the cloth-like report stays on screen with the new model');
+  assert.equal(await inspect(page, () => window.softsculpt.param('gas.nrt')), 0);
+  // The gas folder says why its controls are off, and they are.
+  const gas = page.locator('.lil-gui', { has: page.locator(':scope > .lil-title', { hasText: 'Gas — off: open surface (cloth-like)' }) });
+  assert.equal(await gas.count(), 1);
+  // Its gas parameters (amount, temperature, volume mode) are disabled.
+  assert.ok(await gas.locator('.lil-controller.lil-disabled').count() >= 3, 'the gas controls are disabled');
+  await page.waitForTimeout(1500);
+  const x = await inspect(page, () => window.softsculpt.positions());
+  assert.ok(x.every(Number.isFinite), 'it simulates');
+  await shot(page, 'import-02-cloth-loaded');
+  assert.deepEqual(errors, []);
+  await page.context().close();
+});
+
+test('a file of two shells: the dialog counts them; largest only, or one body per piece that stay apart', async () => {
+  const { page } = await openModeler(suite.browser, suite.server.url);
+  await pick(page, join(FIXTURES, 'two-shells.obj'));
+  assert.match(await page.locator('.import-dialog').innerText(), /2 separate pieces/);
+  await page.locator('.import-dialog input[value=largest]').check();
+  await shot(page, 'import-03-pieces-dialog');
+  await page.locator('.import-dialog button[type=submit]').click();
+  await drawn(page, 'two-shells.obj');
+  assert.equal(await inspect(page, () => window.softsculpt.bodies()), 1);
+  assert.equal(await inspect(page, () => window.softsculpt.vertexCount()), 42); // the 0.5 m ball (an icosphere of 42 vertices)
+  // Again, one body per piece.
+  await pick(page, join(FIXTURES, 'two-shells.obj'));
+  await page.locator('.import-dialog button[type=submit]').click();
+  await page.waitForFunction(() => window.softsculpt.bodies() === 2);
+  assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /2 pieces as 2 bodies/);
+  await page.waitForTimeout(3000);
+  await shot(page, 'import-04-pieces-as-bodies');
+  // Not a pile: the larger ball keeps its height (diameter 1 m), both finite.
+  const x = await inspect(page, () => window.softsculpt.positions());
+  const [lo, hi] = extent(x, 1);
+  assert.ok(x.every(Number.isFinite));
+  assert.ok(hi - lo > 0.8, `the larger ball is ${hi - lo} m tall`);
+  await page.context().close();
+});
+
+test('a Z-up STL stands upright at its own size, fills the view, and its export comes back the same', async () => {
+  const { page, ctx } = await openModeler(suite.browser, suite.server.url);
+  await pick(page, join(FIXTURES, 'zup-tower.stl'));
+  const dialog = await page.locator('.import-dialog').innerText();
+  assert.match(dialog, /Which way is up/);
+  assert.equal(await page.locator('.import-dialog input[value=z]').isChecked(), true, 'Z-up offered first');
+  await shot(page, 'import-05-up-dialog');
+  await page.keyboard.press('Enter');
+  await drawn(page, 'zup-tower.stl');
+  assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /turned from Z-up to Y-up/);
+  await page.waitForTimeout(1500);
+  // Upright, 0.1 m tall as in the file (the file's z), not rescaled to 2.5 m.
+  const x = await inspect(page, () => window.softsculpt.positions());
+  const [lo, hi] = extent(x, 1);
+  assert.ok(Math.abs(hi - lo - 0.1) < 0.01, `height ${hi - lo} m`);
+  // The view is fitted: the tower spans a good part of the 800 px tall view.
+  const px = await inspect(page, () => { const s = window.softsculpt; const x = s.positions(); let a = 0, b = 0; for (let i = 0; i < x.length / 3; i++) { if (x[3 * i + 1] < x[3 * a + 1]) a = i; if (x[3 * i + 1] > x[3 * b + 1]) b = i; } return s.screenOf(a).y - s.screenOf(b).y; });
+  assert.ok(px > 150, `the tower is ${px} px tall on screen`);
+  await shot(page, 'import-06-zup-upright');
+  // Export STL: in the file's own frame (Z-up, same place, same units).
+  const [download] = await Promise.all([page.waitForEvent('download'), page.locator('.lil-gui button', { hasText: 'Export STL' }).click()]);
+  const path = join(tmpdir(), 'tower-export.stl');
+  await download.saveAs(path);
+  const zs = stlVertices(readFileSync(path));
+  const [zlo, zhi] = extent(zs, 2);
+  assert.ok(Math.abs(zlo) < 0.005 && Math.abs(zhi - 0.1) < 0.01, `exported z from ${zlo} to ${zhi}`);
+  // Re-imported: the same size (×1.00, not ×0.71).
+  await pick(page, path);
+  await page.keyboard.press('Enter');
+  await drawn(page, 'tower-export.stl');
+  const y = await inspect(page, () => window.softsculpt.positions());
+  const [ylo, yhi] = extent(y, 1);
+  assert.ok(Math.abs((yhi - ylo) / (hi - lo) - 1) < 0.02, `re-imported height ${yhi - ylo} m vs ${hi - lo} m`);
+  // GLB: Y-up by specification, so it comes back without a question, upright, the same size.
+  const [glb] = await Promise.all([page.waitForEvent('download'), page.locator('.lil-gui button', { hasText: 'Export GLB' }).click()]);
+  const glbPath = join(tmpdir(), 'tower-export.glb');
+  await glb.saveAs(glbPath);
+  await page.locator('input[data-picker=import]').setInputFiles(glbPath);
+  await drawn(page, 'tower-export.glb');
+  assert.equal(await page.locator('.import-dialog').count(), 0, 'no dialog: glTF says Y is up');
+  const g = await inspect(page, () => window.softsculpt.positions());
+  const [glo, ghi] = extent(g, 1);
+  assert.ok(Math.abs((ghi - glo) / (hi - lo) - 1) < 0.02, `GLB re-imported height ${ghi - glo} m vs ${hi - lo} m`);
+  await ctx.close();
+});
+
+/** Binary STL: xyz of every triangle corner. */
+function stlVertices(buf) {
+  const n = buf.readUInt32LE(80), out = [];
+  for (let t = 0; t < n; t++) for (let k = 0; k < 3; k++) for (let d = 0; d < 3; d++) out.push(buf.readFloatLE(84 + 50 * t + 12 + 12 * k + 4 * d));
+  return out;
+}
+
+test('recording while playing exports a GLB of morph targets that the Khronos validator accepts', async () => {
+  const { page } = await openModeler(suite.browser, suite.server.url);
+  await page.locator('.lil-gui button', { hasText: '● Record' }).click();
+  await page.waitForTimeout(2000);
+  await shot(page, 'import-07-recording');
+  await page.locator('.lil-gui button', { hasText: 'Stop recording' }).click();
+  const [download] = await Promise.all([page.waitForEvent('download'), page.locator('.lil-gui button', { hasText: 'Export recording' }).click()]);
+  assert.match(download.suggestedFilename(), /-recording\.glb$/);
+  const path = join(tmpdir(), 'recording.glb');
+  await download.saveAs(path);
+  const bytes = new Uint8Array(readFileSync(path));
+  const report = await validator.validateBytes(bytes);
+  assert.equal(report.issues.numErrors, 0, JSON.stringify(report.issues.messages.slice(0, 5)));
+  assert.equal(report.issues.numWarnings, 0, JSON.stringify(report.issues.messages.slice(0, 5)));
+  // One morph target per frame, ~30 frames a simulated second for ~2 s.
+  assert.equal(report.info.animationCount, 1);
+  const len = new DataView(bytes.buffer).getUint32(12, true);
+  const json = JSON.parse(new TextDecoder().decode(bytes.slice(20, 20 + len)));
+  const targets = json.meshes[0].primitives[0].targets.length;
+  assert.ok(targets >= 20, `${targets} frames`);
+  assert.equal(json.accessors[json.animations[0].samplers[0].input].count, targets);
+  await page.context().close();
+});

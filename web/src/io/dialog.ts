@@ -1,0 +1,92 @@
+// The import dialog: what the engine found in a file (format, size in the file's units, pieces,
+// open surfaces) and the questions the file leaves open — which way is up (offered first: what
+// the format declares, else a guess with its reason) and, for a file of several pieces, one body
+// per piece or the largest only. Enter imports, Escape cancels.
+
+import type { ImportAnswer, ImportQuestion } from './import';
+
+const CSS = `
+.import-dialog { position: fixed; inset: 0; display: flex; align-items: center; justify-content: center; background: rgba(10, 12, 16, 0.55); z-index: 50; }
+.import-dialog form { background: #2a3039; color: #e8ecf0; font: 13px/1.45 system-ui, sans-serif; padding: 16px 20px; border-radius: 8px; width: min(440px, 92vw); box-shadow: 0 8px 32px rgba(0,0,0,0.5); }
+.import-dialog h2 { margin: 0 0 6px; font-size: 15px; }
+.import-dialog fieldset { border: 1px solid #47505c; border-radius: 6px; margin: 10px 0; padding: 6px 10px; }
+.import-dialog legend { padding: 0 4px; color: #aeb8c4; }
+.import-dialog label { display: block; margin: 3px 0; }
+.import-dialog .why, .import-dialog .note { color: #aeb8c4; font-size: 12px; }
+.import-dialog .note { margin: 6px 0; }
+.import-dialog .buttons { display: flex; justify-content: flex-end; gap: 8px; margin-top: 12px; }
+.import-dialog button { font: inherit; padding: 4px 14px; border-radius: 4px; border: 1px solid #5a6572; background: #39414c; color: inherit; cursor: pointer; }
+.import-dialog button[type=submit] { background: #3d6fb0; border-color: #5088d0; }
+`;
+
+const esc = (s: string) => s.replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]!);
+const num = (x: number) => x.toPrecision(3);
+
+/** The dialog's HTML for `q` (a form with radio groups `up` and `pieces`). */
+export function dialogHtml(q: ImportQuestion): string {
+  const p = q.pieces, n = p.length;
+  const vertices = p.reduce((s, x) => s + x.vertices, 0), faces = p.reduce((s, x) => s + x.faces, 0);
+  const open = p.filter((x) => !x.closed).length;
+  const radio = (group: string, value: string, checked: boolean, label: string, why = '') =>
+    `<label><input type="radio" name="${group}" value="${value}"${checked ? ' checked' : ''}> ${label}${why ? ` <span class="why">— ${esc(why)}</span>` : ''}</label>`;
+  const up = q.declaredUp
+    ? `<p class="note">Up axis: ${q.declaredUp.toUpperCase()} — ${esc(q.guessReason)}.</p><input type="hidden" name="up" value="${q.declaredUp}">`
+    : `<fieldset><legend>Which way is up? (${esc(q.format)} does not say)</legend>
+        ${radio('up', 'y', q.guessedUp === 'y', 'Y is up', q.guessedUp === 'y' ? q.guessReason : '')}
+        ${radio('up', 'z', q.guessedUp === 'z', 'Z is up (Blender, CAD): turned upright', q.guessedUp === 'z' ? q.guessReason : '')}
+      </fieldset>`;
+  const largest = n > 1 ? `${p[0].vertices} vertices${p[0].closed ? '' : ', open'}` : '';
+  const pieces = n > 1
+    ? `<fieldset><legend>The file is ${n} separate pieces</legend>
+        ${radio('pieces', 'each', true, `one body per piece (${n} bodies)`)}
+        ${radio('pieces', 'largest', false, `the largest piece only (${largest})`)}
+      </fieldset>`
+    : '<input type="hidden" name="pieces" value="each">';
+  const cloth = open
+    ? `<p class="note">${open === n ? (n === 1 ? 'The surface is' : 'Every piece is') : `${open} of ${n} pieces are`} open (cloth-like): no gas inside ${open === 1 ? 'it' : 'them'}; it hangs and drapes on its springs.</p>`
+    : '';
+  return `<form method="dialog">
+    <h2>Import ${esc(q.name)}</h2>
+    <div class="note">${esc(q.format)}: ${vertices} vertices, ${faces} faces, ${q.size.map(num).join(' × ')} in the file's units, kept as metres (the view is fitted to it).</div>
+    ${up}${pieces}${cloth}
+    <div class="buttons"><button type="button" value="cancel">Cancel</button><button type="submit" value="import">Import</button></div>
+  </form>`;
+}
+
+/** Show the dialog for `q`; resolves with the answers, or null if cancelled. */
+export function askImport(q: ImportQuestion): Promise<ImportAnswer | null> {
+  if (!document.getElementById('import-dialog-css')) {
+    const style = document.createElement('style');
+    style.id = 'import-dialog-css';
+    style.textContent = CSS;
+    document.head.appendChild(style);
+  }
+  document.querySelector('.import-dialog')?.remove();
+  const root = document.createElement('div');
+  root.className = 'import-dialog';
+  root.setAttribute('role', 'dialog');
+  root.innerHTML = dialogHtml(q);
+  document.body.appendChild(root);
+  const form = root.querySelector('form')!;
+  return new Promise((resolve) => {
+    const close = (a: ImportAnswer | null) => {
+      root.remove();
+      window.removeEventListener('keydown', onKey, true);
+      resolve(a);
+    };
+    // Keys go to the dialog only: the modeler's shortcuts wait until it is closed.
+    const onKey = (ev: KeyboardEvent) => {
+      ev.stopPropagation();
+      if (ev.key === 'Escape') { ev.preventDefault(); close(null); }
+      if (ev.key === 'Enter') { ev.preventDefault(); form.requestSubmit(); }
+    };
+    window.addEventListener('keydown', onKey, true);
+    form.addEventListener('submit', (ev) => {
+      ev.preventDefault();
+      const d = new FormData(form);
+      close({ up: d.get('up') === 'z' ? 'z' : 'y', pieces: d.get('pieces') === 'largest' ? 'largest' : 'each' });
+    });
+    root.querySelector('button[value=cancel]')!.addEventListener('click', () => close(null));
+    (form.querySelector('button[type=submit]') as HTMLButtonElement).focus();
+  });
+}

@@ -1,0 +1,152 @@
+// The camera's controls. Turntable by default (three.js OrbitControls, the convention of Blender,
+// SculptGL and most modelers): left drag turns the view about the vertical axis and tilts it,
+// the horizon stays level, right drag pans, the wheel zooms; no inertia, so the view stops when
+// the mouse stops. The paper's free trackball (TrackballControls) stays selectable, also without
+// inertia (`staticMoving`). Zoom is limited relative to the model's size so the camera never goes
+// inside it nor loses it in the distance; "frame" (V) fits the model in the view.
+//
+// Rates: OrbitControls turns 2π·rotateSpeed per canvas height of drag; at 0.8 a 60 px drag on an
+// 800 px view turns 0.8·360°·60/800 ≈ 22° (the issue measured 60° for the trackball before).
+
+import * as THREE from 'three';
+import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { TrackballControls } from 'three/examples/jsm/controls/TrackballControls.js';
+
+export type CameraMode = 'turntable' | 'trackball';
+
+/** Where the camera looks from, relative to the model's centre, before any model is known. */
+const HOME_DIRECTION = new THREE.Vector3(3.2, 1.6, 4.2).normalize();
+/** The camera stays at least this many model radii from the target (outside the model)… */
+export const MIN_DISTANCE_RADII = 1.3;
+/** …and at most this many (the model stays more than a few pixels wide). */
+export const MAX_DISTANCE_RADII = 25;
+
+export interface CameraState { position: number[]; target: number[]; mode: CameraMode }
+
+export class CameraRig {
+  mode: CameraMode = 'turntable';
+  private orbit: OrbitControls;
+  private trackball: TrackballControls | null = null;
+  /** The model's bounding sphere (centre, radius in m), for framing and zoom limits. */
+  private centre = new THREE.Vector3(0, 0.8, 0);
+  private radius = 1.25;
+
+  constructor(readonly camera: THREE.PerspectiveCamera, private readonly dom: HTMLElement, private readonly changed: () => void) {
+    this.orbit = this.makeOrbit();
+    this.camera.position.copy(this.centre).addScaledVector(HOME_DIRECTION, this.frameDistance());
+    this.orbit.target.copy(this.centre);
+    this.orbit.update();
+  }
+
+  /** The active controls (the tools switch `enabled` off while they drag). */
+  get controls(): OrbitControls | TrackballControls { return this.mode === 'turntable' ? this.orbit : this.trackball!; }
+  get target(): THREE.Vector3 { return this.controls.target; }
+
+  private makeOrbit(): OrbitControls {
+    const c = new OrbitControls(this.camera, this.dom);
+    c.enableDamping = false;
+    c.rotateSpeed = 0.8;
+    c.zoomSpeed = 1;
+    c.panSpeed = 0.8;
+    c.screenSpacePanning = true;
+    // Touch: one finger on empty space turns the view; two fingers turn and pinch-zoom.
+    c.touches = { ONE: THREE.TOUCH.ROTATE, TWO: THREE.TOUCH.DOLLY_ROTATE };
+    c.addEventListener('change', this.changed);
+    c.addEventListener('end', this.ended);
+    return c;
+  }
+
+  /** Called when the user has finished moving the camera (a drag or a wheel turn), and after framing. */
+  onSettled(f: () => void): void { this.settled.push(f); }
+  private settled: (() => void)[] = [];
+  private readonly ended = () => { for (const f of this.settled) f(); };
+
+  private makeTrackball(): TrackballControls {
+    const c = new TrackballControls(this.camera, this.dom);
+    c.staticMoving = true; // no inertia: the view stops with the mouse
+    c.rotateSpeed = 1.5;
+    c.zoomSpeed = 1.2;
+    c.panSpeed = 0.6;
+    c.addEventListener('change', this.changed);
+    c.addEventListener('end', this.ended);
+    return c;
+  }
+
+  /** Turntable or free trackball; the view stays where it is (turntable levels the horizon). */
+  setMode(mode: CameraMode): void {
+    if (mode === this.mode) return;
+    const target = this.target.clone();
+    this.controls.enabled = false;
+    if (mode === 'trackball') {
+      this.trackball ??= this.makeTrackball();
+      this.trackball.enabled = true;
+    } else {
+      this.camera.up.set(0, 1, 0);
+      this.orbit.enabled = true;
+    }
+    this.mode = mode;
+    this.controls.target.copy(target);
+    this.limit();
+    this.camera.lookAt(target);
+    this.controls.update();
+    this.changed();
+    this.ended();
+  }
+
+  /** The model's bounding sphere changed (a new model): the zoom limits follow it. */
+  setModel(centre: THREE.Vector3, radius: number): void {
+    this.centre.copy(centre);
+    this.radius = Math.max(radius, 1e-6);
+    this.limit();
+  }
+
+  private limit(): void {
+    for (const c of [this.orbit, this.trackball]) {
+      if (!c) continue;
+      c.minDistance = MIN_DISTANCE_RADII * this.radius;
+      c.maxDistance = MAX_DISTANCE_RADII * this.radius;
+    }
+    this.camera.near = Math.max(1e-4, 0.02 * this.radius);
+    this.camera.far = 200 * this.radius;
+    this.camera.updateProjectionMatrix();
+  }
+
+  /** The distance at which the model's bounding sphere fills the view's height with a margin. */
+  private frameDistance(): number {
+    const half = THREE.MathUtils.degToRad(this.camera.fov / 2);
+    const fit = this.radius / Math.sin(Math.min(half, Math.atan(Math.tan(half) * this.camera.aspect)));
+    return Math.max(1.6 * fit, MIN_DISTANCE_RADII * this.radius);
+  }
+
+  /** Fit the model in the view from the current direction, level (V). */
+  frame(): void {
+    const dir = this.camera.position.clone().sub(this.target);
+    if (dir.lengthSq() < 1e-12) dir.copy(HOME_DIRECTION);
+    // Level: no roll, and not straight down or up (a turntable cannot turn from there).
+    dir.normalize();
+    dir.y = Math.max(-0.85, Math.min(0.85, dir.y));
+    dir.normalize();
+    this.camera.up.set(0, 1, 0);
+    this.controls.target.copy(this.centre);
+    this.camera.position.copy(this.centre).addScaledVector(dir, this.frameDistance());
+    this.camera.lookAt(this.centre);
+    this.controls.update();
+    this.changed();
+    this.ended();
+  }
+
+  state(): CameraState { return { position: this.camera.position.toArray(), target: this.target.toArray(), mode: this.mode }; }
+
+  restore(s: CameraState): void {
+    this.setMode(s.mode);
+    this.camera.position.fromArray(s.position);
+    this.controls.target.fromArray(s.target);
+    this.camera.lookAt(this.controls.target);
+    this.controls.update();
+    this.changed();
+  }
+
+  resized(): void { this.trackball?.handleResize(); }
+  update(): void { this.controls.update(); }
+  dispose(): void { this.orbit.dispose(); this.trackball?.dispose(); }
+}

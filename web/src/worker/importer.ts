@@ -1,0 +1,95 @@
+// Importing a model file in the worker: the engine reads it (every format, one body per piece,
+// into a scratch world), the page is asked what the file does not say (the up axis, which
+// pieces), and the answer builds the model — at the file's own size, turned upright, standing on
+// the ground, each piece a body, an open surface (cloth-like) without gas — as one undo step.
+
+import { World } from '../engine/world';
+import { FRAME_DT } from '../engine/models';
+import { needsAnswer, place, question, sizeFactor, type ImportAnswer, type ImportQuestion } from '../io/import';
+import type { MessageKind } from '../protocol';
+import type { Document } from './document';
+
+/** Brush radius (m) for the reference-size model (the mushroom); scaled with the model. */
+const BRUSH_RADIUS = 0.35;
+
+export interface ImporterHooks {
+  message(text: string, kind?: MessageKind): void;
+  progress(label: string | null): void;
+  /** Ask the page (it answers with `Document.importAnswer`). */
+  ask(q: ImportQuestion): void;
+}
+
+interface Pending { name: string; lists: Float64Array[]; triangles: Uint32Array[]; areas: number[]; warnings: string[]; question: ImportQuestion }
+
+export class Importer {
+  private pending: Pending | null = null;
+
+  constructor(private readonly doc: Document, private readonly hooks: ImporterHooks) {}
+
+  /** The file waiting for the page's answer, if any. */
+  get waiting(): ImportQuestion | null { return this.pending?.question ?? null; }
+
+  /** Read `data`; ask what the file does not say, or import it at once. */
+  read(name: string, data: ArrayBuffer): void {
+    this.pending = null;
+    this.hooks.progress(`importing ${name}`);
+    const scratch = World.create();
+    try {
+      const { first, report } = scratch.addFile(name, new Uint8Array(data), true);
+      const bodies = report.pieces.map((_, k) => scratch.body(first + k));
+      const lists = bodies.map((b) => b.positions.slice());
+      // What the import's own message says anyway (pieces, an open surface) is not repeated.
+      const warnings = report.warnings.filter((t) => !/separate pieces|surface is open/.test(t));
+      const p: Pending = { name, lists, triangles: bodies.map((b) => b.triangles.slice()), areas: report.pieces.map((x) => x.area), warnings, question: question(name, report, lists) };
+      this.pending = p;
+      if (needsAnswer(p.question)) this.hooks.ask(p.question);
+      else this.answer({ up: p.question.guessedUp, pieces: 'each' });
+    } catch (e) {
+      this.hooks.message(`could not import ${name}: ${e instanceof Error ? e.message : String(e)} — the current model is unchanged`, 'error');
+    } finally {
+      scratch.free();
+      this.hooks.progress(null);
+    }
+  }
+
+  /** The page's answer (null: cancelled). */
+  answer(a: ImportAnswer | null): void {
+    const p = this.pending;
+    this.pending = null;
+    if (!p) { this.hooks.message('no import is waiting for an answer', 'warn'); return; }
+    if (!a) { this.hooks.message(`import of ${p.name} cancelled — the current model is unchanged`); return; }
+    const chosen = a.pieces === 'largest' ? [0] : p.lists.map((_, k) => k);
+    const { positions, frame } = place(chosen.map((k) => p.lists[k]), a.up);
+    const size = sizeFactor(positions);
+    const area = chosen.reduce((s, k) => s + p.areas[k], 0);
+    let gasless = 0;
+    const w = this.doc.world;
+    this.hooks.progress(`importing ${p.name}`);
+    const ok = this.doc.edit(`import ${p.name}`, true, () => {
+      this.doc.fresh();
+      chosen.forEach((k, i) => {
+        const b = w.addMesh(positions[i], p.triangles[k], 1, false);
+        if (w.applyPresetScaled(b, 'modeler', size).length > 0) gasless++;
+        // The mass the preset gives the whole model (1 kg at the reference size, × size³),
+        // shared by area: the same surface density on every piece.
+        w.setParam(b, 'mass', (w.params(b).mass as number) * (chosen.length > 1 ? p.areas[k] / area : 1));
+      });
+      this.doc.adopt(p.name, frame);
+    }, 'all', (why) => `could not import ${p.name}: ${why} — the current model is unchanged`);
+    if (!ok) return;
+    this.doc.ui = { ...this.doc.ui, brush: { radius: BRUSH_RADIUS * size } };
+    this.doc.hooksUi({ brush: { radius: BRUSH_RADIUS * size } });
+    const q = p.question, n = chosen.length;
+    const v = chosen.reduce((s, k) => s + q.pieces[k].vertices, 0), f = chosen.reduce((s, k) => s + q.pieces[k].faces, 0);
+    const dims = q.size.map((x) => x.toPrecision(3)).join(' × ');
+    const parts = [
+      `imported ${p.name}: ${v} vertices, ${f} faces, ${dims} m as in the file`,
+      a.up === 'z' ? 'turned from Z-up to Y-up' : '',
+      q.pieces.length > 1 ? (n > 1 ? `${n} pieces as ${n} bodies` : `the largest of ${q.pieces.length} pieces`) : '',
+      gasless ? `${gasless === n ? '' : `${gasless} of ${n} bodies `}cloth-like (an open surface): no gas` : '',
+      (w.params(0).dt as number) < FRAME_DT / 1.5 ? `steps of ${(w.params(0).dt as number).toPrecision(2)} s (finer for its small size)` : '',
+    ];
+    this.hooks.message(parts.filter(Boolean).join('; '));
+    if (p.warnings.length) this.hooks.message(p.warnings.join('\n'), 'warn');
+  }
+}
