@@ -35,7 +35,7 @@ export class Mirror implements BodyView {
   /** The engine's parameter table: ids, units, ranges, help (empty until the first frame). */
   table: ParamInfo[] = [];
   /** The simulation's settings (updated in place; the panel binds to it). */
-  readonly settings: Settings = { dt: 1e-3, substeps: 16, realTime: true, playing: true, model: 'mushroom' };
+  readonly settings: Settings = { dt: 1e-3, substeps: 16, realTime: true, playing: true, keepTension: false, model: 'mushroom' };
   history: [number, number] = [0, 0];
   /** The active body's surface is closed (open: cloth-like, no gas). */
   closed = true;

@@ -32,6 +32,9 @@ export interface Settings {
   /** Advance simulated time at the pace of the clock (as many steps as wall-clock time allows). */
   realTime: boolean;
   playing: boolean;
+  /** Freeze keeps the skin's tension (the gas keeps pressing, rest lengths are corrected so the
+   *  shape holds: `World::freeze` with keep_tension) instead of leaving it slack. Off by default. */
+  keepTension: boolean;
   /** Name of the model, file or scene (used for file names). */
   model: string;
   /** An imported model's frame: how the file's coordinates became the engine's (exports go back); null otherwise. */

@@ -48,7 +48,7 @@
 //! | `ss_params(w, b)` | result: `{id: value}` of every body and world parameter (null: no ground) |
 //! | `ss_set_param(w, b, id, id_len, json, json_len)` | `World::set_param` with a JSON value (number, [x,y,z], "name", true/false) |
 //! | `ss_apply_preset(w, b, name, len)` | `World::apply_preset`: a named set of values from `softsculpt::params::presets` (`modeler`) |
-//! | `ss_freeze(w, b, under_load)`, `ss_reset(w, b)` | rest shape := current shape (keeping the loads); back to the frozen shape |
+//! | `ss_freeze(w, b, under_load, keep_tension)`, `ss_reset(w, b)` | `World::freeze`: rest shape := current shape (carrying the weight; keeping the gas's tension), result `{"residual", "load", "iterations", "clamped"}`; back to the frozen shape |
 //! | `ss_subdivide(w, b)` | Loop subdivision (body replaced; result `{"dropped_events": n}`) |
 //! | `ss_scale_rest(w, b)` | rest lengths × the per-vertex factors in the vertex scratch |
 //! | `ss_set_masses(w, b)` | vertex masses (kg) from the vertex scratch |

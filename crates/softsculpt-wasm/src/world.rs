@@ -5,7 +5,7 @@
 use crate::scene::SceneInfo;
 use crate::views::BodyViews;
 use crate::{bytes, index, set_result, status, text, Fail, Res};
-use softsculpt::body::BodyError;
+use softsculpt::body::{BodyError, FreezeOptions};
 use softsculpt::mesh::{self, builtin, LoadedMesh, ObjData, TriMesh};
 use softsculpt::params::{self, ParamError, Scope, Value};
 use softsculpt::snapshot::SnapshotError;
@@ -414,17 +414,16 @@ pub unsafe extern "C" fn ss_set_param(
 
 // ----- operations on a body --------------------------------------------------------------------
 
-/// Rest shape := current shape; `under_load` = 1 keeps the current loads balanced.
+/// Rest shape := current shape; `under_load` = 1 keeps carrying the weight, `keep_tension` = 1
+/// keeps the gas pressing (rest lengths solved); result `{"residual": N, "load": N,
+/// "iterations": n, "clamped": n}`.
 #[no_mangle]
-pub extern "C" fn ss_freeze(w: u32, b: u32, under_load: u32) -> i32 {
+pub extern "C" fn ss_freeze(w: u32, b: u32, under_load: u32, keep_tension: u32) -> i32 {
     status(|| {
         with_body(w, b, |h, i| {
-            let body = &mut h.world.bodies[i];
-            if under_load != 0 {
-                body.freeze_under_load()
-            } else {
-                body.freeze()
-            }
+            let how = FreezeOptions { under_load: under_load != 0, keep_tension: keep_tension != 0 };
+            let r = h.world.freeze(i, how).map_err(sim_fail)?;
+            set_result(serde_json::json!({ "residual": r.residual, "load": r.load, "iterations": r.iterations, "clamped": r.clamped }).to_string().into_bytes());
             Ok(())
         })
     })

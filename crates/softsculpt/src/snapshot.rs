@@ -368,7 +368,9 @@ fn settings_v1(w: &WorldSettings) -> SettingsV1 {
 
 fn event_v1(e: &Event) -> EventV1 {
     let action = match &e.action {
-        Action::Freeze { under_load } => ActionV1::Freeze { under_load: *under_load },
+        // A pending freeze's `keep_tension` has no place in `ActionV1::Freeze`: version 3 keeps
+        // it beside (`ExtensionV3::keep_tension_events`).
+        Action::Freeze { under_load, keep_tension: _ } => ActionV1::Freeze { under_load: *under_load },
         Action::Reset => ActionV1::Reset,
         Action::SetGas { amount, temperature, nrt } => ActionV1::SetGas { amount: *amount, temperature: *temperature, nrt: *nrt },
         Action::SetWind(w) => ActionV1::SetWind(*w),
@@ -654,7 +656,7 @@ fn event_from_v1(e: EventV1, sizes: &[(usize, usize)]) -> Result<Event, String> 
     let body = e.body as usize;
     let &(nv, nf) = sizes.get(body).ok_or_else(|| format!("an event for body {body} of {}", sizes.len()))?;
     let action = match e.action {
-        ActionV1::Freeze { under_load } => Action::Freeze { under_load },
+        ActionV1::Freeze { under_load } => Action::Freeze { under_load, keep_tension: false },
         ActionV1::Reset => Action::Reset,
         ActionV1::SetGas { amount, temperature, nrt } => Action::SetGas { amount, temperature, nrt },
         ActionV1::SetWind(w) => Action::SetWind(w),

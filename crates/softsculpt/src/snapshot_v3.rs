@@ -1,12 +1,13 @@
 //! Snapshot format version 3 (`crate::snapshot` holds the header, versions 1 and 2 and the
 //! policy): the version-2 payload followed by [`ExtensionV3`], each body's plasticity (yield
 //! strain, flow rate, the plastic dissipation so far) and whether its gas uses the bounding
-//! ellipsoid (the version-1 part then says `Exact` in its place). Versions 1 and 2 read with
-//! the defaults: elastic, no dissipation, the volume mode the version-1 part names.
+//! ellipsoid (the version-1 part then says `Exact` in its place); and which pending scene freezes
+//! keep the tension. Versions 1 and 2 read with the defaults: elastic, no dissipation, the
+//! volume mode the version-1 part names, freezes without keeping the tension.
 
 use crate::body::VolumeMode;
 use crate::snapshot::{payload, extension, ExtensionV2, WorldV1};
-use crate::world::World;
+use crate::world::{Action, World};
 use serde::{Deserialize, Serialize};
 
 /// Version 3: the version-2 payload and what version 3 added.
@@ -17,10 +18,14 @@ pub struct WorldV3 {
     pub ext3: ExtensionV3,
 }
 
-/// What version 3 added: per body, in body order (an empty list: the defaults on every body).
+/// What version 3 added: per body, in body order (an empty list: the defaults on every body);
+/// and which pending scene events are freezes keeping the tension.
 #[derive(Clone, Default, Serialize, Deserialize)]
 pub struct ExtensionV3 {
     pub bodies: Vec<BodyV3>,
+    /// Indices, among the pending events as the version-1 part lists them, of the freezes that
+    /// keep the tension (`keep_tension = true`; the version-1 freeze action has no place for it).
+    pub keep_tension_events: Vec<u32>,
 }
 
 /// One body's version-3 additions.
@@ -48,11 +53,24 @@ pub(crate) fn extension3(w: &World) -> ExtensionV3 {
                 plastic_dissipation: b.plastic_dissipation(),
             })
             .collect(),
+        keep_tension_events: w.events.list[w.events.next..]
+            .iter()
+            .enumerate()
+            .filter(|(_, e)| matches!(e.action, Action::Freeze { keep_tension: true, .. }))
+            .map(|(k, _)| k as u32)
+            .collect(),
     }
 }
 
 /// Apply version-3 additions to a world read from the version-2 part.
 pub(crate) fn apply_extension3(w: &mut World, ext: &ExtensionV3) -> Result<(), String> {
+    let next = w.events.next;
+    for &k in &ext.keep_tension_events {
+        match w.events.list.get_mut(next + k as usize).map(|e| &mut e.action) {
+            Some(Action::Freeze { keep_tension, .. }) => *keep_tension = true,
+            _ => return Err(format!("pending event {k} keeps the tension but is not a freeze")),
+        }
+    }
     if ext.bodies.is_empty() {
         return Ok(());
     }

@@ -80,7 +80,9 @@ fn run(w: &mut World, op: &Op) {
         Op::Mass { vertex, mass } => b.set_vertex_mass(vertex % n, mass).unwrap(),
         Op::Pin(v) => b.set_pinned(v % n, true).unwrap(),
         Op::Freeze => b.freeze(),
-        Op::FreezeUnderLoad => b.freeze_under_load(),
+        Op::FreezeUnderLoad => {
+            w.freeze(0, softsculpt::body::FreezeOptions { under_load: true, keep_tension: false }).unwrap();
+        }
         Op::Reset => b.reset(),
         Op::Gas(nrt) => {
             let t = b.material.temperature;
@@ -307,7 +309,7 @@ fn a_version_1_project_opens_where_it_was_saved() {
     w.bodies[0].set_pinned(3, true).unwrap();
     let f = dab(&w.bodies[0], 5, 1.2);
     w.bodies[0].scale_rest_lengths_by_vertex(&f).unwrap();
-    w.bodies[0].freeze_under_load();
+    w.freeze(0, softsculpt::body::FreezeOptions { under_load: true, keep_tension: false }).unwrap();
     w.step_n(10).unwrap();
     let text = project_v1_text(&w);
     let (mut opened, meta) = project_v1(text.as_bytes()).unwrap();

@@ -234,7 +234,7 @@ fn freeze_under_load_keeps_a_resting_body_from_sagging() {
     let mut plain = settle();
     let mut loaded = plain.clone();
     plain.bodies[0].freeze();
-    loaded.bodies[0].freeze_under_load();
+    loaded.freeze(0, softsculpt::body::FreezeOptions { under_load: true, keep_tension: false }).unwrap();
     let x0 = loaded.bodies[0].positions().to_vec();
     run(&mut plain, 5e-4, 4000);
     run(&mut loaded, 5e-4, 4000);

@@ -163,7 +163,9 @@ fn apply(w: &mut World, op: &Op) -> String {
         }
         Op::SetMass { body, vertex, mass } => w.bodies[b(body)].set_vertex_mass(vertex, mass).unwrap(),
         Op::Freeze { body } => w.bodies[b(body)].freeze(),
-        Op::FreezeUnderLoad { body } => w.bodies[b(body)].freeze_under_load(),
+        Op::FreezeUnderLoad { body } => {
+            w.freeze(b(body), softsculpt::body::FreezeOptions { under_load: true, keep_tension: false }).unwrap();
+        }
         Op::Pin { body, vertex, on } => w.bodies[b(body)].set_pinned(vertex, on).unwrap(),
         Op::SetGas { body, nrt } => {
             let t = w.bodies[b(body)].material.temperature;

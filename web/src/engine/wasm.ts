@@ -33,7 +33,7 @@ export interface RawEngine {
   ss_params(w: number, b: number): number;
   ss_set_param(w: number, b: number, id: number, idLen: number, json: number, jsonLen: number): number;
   ss_apply_preset(w: number, b: number, name: number, len: number): number;
-  ss_freeze(w: number, b: number, underLoad: number): number;
+  ss_freeze(w: number, b: number, underLoad: number, keepTension: number): number;
   ss_reset(w: number, b: number): number;
   ss_subdivide(w: number, b: number): number;
   ss_scale_rest(w: number, b: number): number;

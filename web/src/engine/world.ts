@@ -107,6 +107,9 @@ export function animationGlb(times: Float64Array, tracks: { triangles: Uint32Arr
 }
 
 export type DeltaScope = 'none' | 'touched' | 'all';
+
+/** What a freeze leaves unbalanced (`softsculpt::body::FreezeReport`): forces in N. */
+export interface FreezeReport { residual: number; load: number; iterations: number; clamped: number }
 const SCOPES: Record<DeltaScope, number> = { none: 0, touched: 1, all: 2 };
 
 // Slots of the layout table (crates/softsculpt-wasm/src/views.rs).
@@ -288,7 +291,11 @@ export class World {
     this.call((w) => withBytes(encode(name), (p, n) => raw().ss_apply_preset(w, b, p, n)));
   }
 
-  freeze(b: number, underLoad = false): void { this.call((w) => raw().ss_freeze(w, b, underLoad ? 1 : 0)); }
+  /** Rest shape := current shape (`World::freeze`); the tension-keeping one reports its residual (N). */
+  freeze(b: number, underLoad = false, keepTension = false): FreezeReport {
+    this.call((w) => raw().ss_freeze(w, b, underLoad ? 1 : 0, keepTension ? 1 : 0));
+    return JSON.parse(resultText()) as FreezeReport;
+  }
   reset(b: number): void { this.call((w) => raw().ss_reset(w, b)); }
   /** Loop subdivision of body `b`; returns how many of its pending scene events were dropped. */
   subdivide(b: number): number {

@@ -10,7 +10,7 @@
 // are limited to HISTORY_STEPS and HISTORY_BYTES in all, the oldest dropped first.
 
 import { initEngine } from '../engine/wasm';
-import { World, type DeltaScope, type ParamInfo, type ParamValue } from '../engine/world';
+import { World, type DeltaScope, type FreezeReport, type ParamInfo, type ParamValue } from '../engine/world';
 import { addModel, dtFor, stableDt, useDefaults } from '../engine/models';
 import { stepSplitting } from './split';
 import { History, travel } from '../history';
@@ -62,7 +62,7 @@ export class Document {
   /** The open scene, if any (its first body is the active body). */
   private session: SceneSource | null = null;
   readonly history = new History<Entry>({ limit: HISTORY_STEPS, maxBytes: HISTORY_BYTES, size: (e) => e.delta.byteLength });
-  readonly settings: Settings = { dt: 1e-3, substeps: 16, realTime: true, playing: true, model: 'mushroom', frame: null };
+  readonly settings: Settings = { dt: 1e-3, substeps: 16, realTime: true, playing: true, keepTension: false, model: 'mushroom', frame: null };
   ui: UiState = { brush: { radius: 0.35 }, tool: 'grab', strengths: {} };
   private stroke: Stroke | null = null;
   private strokeScope: DeltaScope = 'all';
@@ -367,10 +367,18 @@ export class Document {
 
   // ----- modeling operations --------------------------------------------------------------------
 
-  /** Freeze: under gravity the body keeps carrying its weight (no sag), otherwise a plain freeze. */
+  /**
+   * Freeze: under gravity the body keeps carrying its weight (no sag); keeping the tension (an
+   * option, off by default: see docs/model.md, "Freeze") the gas keeps pressing and the rest
+   * lengths are corrected so this shape holds, taut as it is now; otherwise the skin goes slack
+   * (P_ref := P).
+   */
   freeze(): void {
-    if (this.edit('freeze', true, () => this.world.freeze(0, this.world.params(0).gravity !== 0))) {
-      this.hooks.message('frozen: this shape is the new rest shape');
+    let report: FreezeReport | null = null;
+    if (this.edit('freeze', true, () => { report = this.world.freeze(0, this.world.params(0).gravity !== 0, this.settings.keepTension); })) {
+      const r = report as FreezeReport | null;
+      const kept = this.settings.keepTension && r ? ` (skin taut; residual ${fmt(r.residual)} N of ${fmt(r.load)} N${r.clamped ? `, ${r.clamped} springs at their limit` : ''})` : ' (skin slack)';
+      this.hooks.message(`frozen: this shape is the new rest shape${kept}`);
     }
   }
   reset(): void { this.edit('reset', true, () => this.world.reset(0)); }
@@ -580,6 +588,7 @@ export class Document {
     if (typeof u.substeps === 'number' && u.substeps >= 1) this.settings.substeps = u.substeps;
     if (typeof u.playing === 'boolean') this.settings.playing = u.playing;
     if (typeof u.realTime === 'boolean') this.settings.realTime = u.realTime;
+    if (typeof u.keepTension === 'boolean') this.settings.keepTension = u.keepTension;
     this.settings.model = name;
     this.settings.frame = validFrame(u.frame);
     const page: Partial<UiState> = {};

@@ -129,6 +129,7 @@ export class Service {
     if (typeof patch.realTime === 'boolean') s.realTime = patch.realTime;
     if (typeof patch.playing === 'boolean') { s.playing = patch.playing; this.doc.pausedByError = false; }
     if (typeof patch.strain === 'boolean') s.strain = patch.strain;
+    if (typeof patch.keepTension === 'boolean') s.keepTension = patch.keepTension;
     this.autosave();
   }
 

@@ -21,6 +21,7 @@
 mod external;
 mod faces;
 mod forces;
+mod freeze;
 mod gas;
 pub mod implicit;
 mod integrate;
@@ -33,8 +34,10 @@ mod remesh;
 mod springs;
 mod stats;
 mod targets;
+mod tension;
 
 pub use faces::Faces;
+pub use freeze::{FreezeOptions, FreezeReport, Supports};
 pub use gas::GasReference;
 pub use plastic::PlasticState;
 pub use material::{Material, VolumeMode, DEFAULT_TEMPERATURE, GAS_CONSTANT};

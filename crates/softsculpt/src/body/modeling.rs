@@ -1,7 +1,7 @@
-//! Modeling operations: freeze, reset, inflate/deflate, masses, pins, user forces.
+//! Modeling operations: reset, inflate/deflate, masses, pins, user forces (freezing: `freeze.rs`).
 
 use super::material::{check_non_negative, check_positive};
-use super::{gas, Frozen, SoftBody};
+use super::SoftBody;
 use crate::error::SimError;
 
 fn length_check(what: &'static str, expected: usize, got: usize) -> Result<(), SimError> {
@@ -19,54 +19,6 @@ fn finite(name: &'static str, values: &[f64]) -> Result<(), SimError> {
 }
 
 impl SoftBody {
-    /// Freeze: the current shape becomes the rest shape.
-    ///
-    /// Every rest length becomes the current length (so the springs exert no force), velocities
-    /// become zero, and the gas is re-referenced: the surroundings' pressure P_ref becomes the
-    /// current gas pressure P = nRT / V, so the net gas force (P − P_ref) ∂V/∂x is zero. With
-    /// nothing else acting, the body then stays exactly where it is. The gas energy reference
-    /// V0 becomes the current volume. [`SoftBody::reset`] returns to this state.
-    pub fn freeze(&mut self) {
-        self.model.springs.rest_to_current(&self.state.x);
-        self.model.bending.rest_to_current(&self.state.x);
-        self.state.v.fill(0.0);
-        let volume = self.volume();
-        self.model.gas.ambient_pressure = gas::pressure(self.material.nrt(), volume);
-        self.model.gas.reference_volume = volume;
-        self.model.prestress.fill(0.0);
-        self.update_external();
-        self.frozen = Frozen { x: self.state.x.clone(), rest: self.model.springs.rest.clone(), bending_rest: self.model.bending.rest.clone(), gas: self.model.gas, prestress: self.model.prestress.clone() };
-    }
-
-    /// Freeze under load: like [`SoftBody::freeze`], but the body keeps carrying the loads it
-    /// carries now (its weight on the ground, say), so a body at rest under gravity stays exactly
-    /// where it is instead of sagging into its new, stress-free rest shape.
-    ///
-    /// How: before freezing, the internal force on every vertex — springs (Hooke part) plus gas
-    /// (P − P_ref) ∂V/∂x — is recorded as a constant "prestress" force f_p,i. After the freeze
-    /// springs and gas exert nothing, so every vertex feels f_p,i plus the same gravity and
-    /// contact as before: at rest, the same balance. The prestress sums to zero over the body
-    /// (internal forces do), so it never pushes the body as a whole. It is part of the frozen
-    /// state (reset restores it) and the next freeze replaces it.
-    pub fn freeze_under_load(&mut self) {
-        let n = self.state.x.len();
-        let mut f = vec![0.0; n];
-        self.model.springs.accumulate(self.material.stiffness, 0.0, &self.state.x, &self.state.v, &mut f);
-        self.model.bending.accumulate(self.material.bending_stiffness, 0.0, &self.state.x, &self.state.v, &mut f);
-        let mut g = vec![0.0; n];
-        let six_v = self.model.faces.volume6_and_normals(&self.state.x, &mut g);
-        let volume = gas::measure(self.model.faces.triangles(), self.material.volume_mode, six_v, &self.state.x);
-        let s = (gas::pressure(self.material.nrt(), volume) - self.model.gas.ambient_pressure) / 6.0;
-        let mut prestress: Vec<f64> = (0..n).map(|k| f[k] + s * g[k] + self.model.prestress[k]).collect();
-        if prestress.iter().any(|p| !p.is_finite()) {
-            prestress.fill(0.0);
-        }
-        self.freeze();
-        self.model.prestress = prestress;
-        self.update_external();
-        self.frozen.prestress = self.model.prestress.clone();
-    }
-
     /// The constant load kept by [`SoftBody::freeze_under_load`] (N, flat xyz).
     pub fn prestress(&self) -> &[f64] {
         &self.model.prestress
@@ -88,7 +40,7 @@ impl SoftBody {
         &self.frozen.prestress
     }
 
-    fn update_external(&mut self) {
+    pub(super) fn update_external(&mut self) {
         let m = &mut self.model;
         for k in 0..m.external.len() {
             m.external[k] = m.user_force[k] + m.prestress[k];

@@ -62,6 +62,46 @@ impl SoftBody {
     /// the total mass is unchanged), pins carry over (a new vertex is pinned if both ends are),
     /// parameters are the same.
     pub fn subdivided(&self) -> Result<SoftBody, SimError> {
+        Ok(self.subdivide_parts()?.0)
+    }
+
+    /// Loop subdivision carrying the skin's tension: as [`SoftBody::subdivided`], then every
+    /// spring's rest length is its length times the stretch ratio L/l carried from the input
+    /// (per input vertex the mean L/l of its springs, edge and bending apart; a new vertex takes
+    /// the mean of its parents', a spring the mean of its ends'), and the gas keeps the input's
+    /// reference. Not at rest: freeze it keeping the tension (`World::subdivide` does), which
+    /// corrects these rest lengths to an exact equilibrium close to them.
+    pub fn subdivided_keeping_tension(&self) -> Result<SoftBody, SimError> {
+        let (mut body, parents, old_to_new) = self.subdivide_parts()?;
+        let x = self.state.x.clone();
+        let nv = body.vertex_count();
+        for (old, new) in [(&self.model.springs, &mut body.model.springs), (&self.model.bending, &mut body.model.bending)] {
+            let mut sum = vec![0.0; self.vertex_count()];
+            let mut count = vec![0.0; self.vertex_count()];
+            old.lengths_into(&x, |e, l| {
+                let ratio = if l > 0.0 { old.rest[e] / l } else { 1.0 };
+                for v in [old.i[e] as usize, old.j[e] as usize] {
+                    sum[v] += ratio;
+                    count[v] += 1.0;
+                }
+            });
+            let at = |v: usize| if count[v] > 0.0 { sum[v] / count[v] } else { 1.0 };
+            let mut ratio = vec![1.0; nv];
+            for (k, pa) in parents.iter().enumerate() {
+                ratio[old_to_new[k] as usize] = 0.5 * (at(pa[0] as usize) + at(pa[1] as usize));
+            }
+            let bx = body.state.x.clone();
+            let mut rest = vec![0.0; new.len()];
+            new.lengths_into(&bx, |e, l| rest[e] = l * 0.5 * (ratio[new.i[e] as usize] + ratio[new.j[e] as usize]));
+            new.rest = rest;
+        }
+        body.model.gas = self.model.gas;
+        Ok(body)
+    }
+
+    /// The subdivided, plainly frozen body; each new vertex's one or two parents; and where
+    /// each vertex of the subdivision went in the body (its vertices are reordered by locality).
+    fn subdivide_parts(&self) -> Result<(SoftBody, Vec<[u32; 2]>, Vec<u32>), SimError> {
         let (mesh, parents) = subdivide::loop_subdivide(&self.to_mesh());
         let (mesh, old_to_new) = crate::mesh::reorder::by_locality(&mesh);
         let total: f64 = self.model.mass.iter().sum();
@@ -82,7 +122,7 @@ impl SoftBody {
             }
         }
         body.freeze();
-        Ok(body)
+        Ok((body, parents, old_to_new))
     }
 }
 

@@ -160,7 +160,7 @@ pub fn build(spec: &SceneSpec, text: &str, resolve: Resolver) -> Result<Built, S
                 }
             };
             let action = match e.action.as_str() {
-                "freeze" => Action::Freeze { under_load: e.under_load.unwrap_or(w.gravity != 0.0) },
+                "freeze" => Action::Freeze { under_load: e.under_load.unwrap_or(w.gravity != 0.0), keep_tension: e.keep_tension.unwrap_or(false) },
                 "reset" => Action::Reset,
                 "set_gas" => {
                     if let Some(a) = e.amount {

@@ -11,7 +11,7 @@ pub use crate::world::{Action, Event};
 /// Every action, with the keys it requires and the keys it may take (besides `time`, `action`
 /// and `body`, which every event may have).
 pub const ACTIONS: &[(&str, &[&str], &[&str])] = &[
-    ("freeze", &[], &["under_load"]),
+    ("freeze", &[], &["under_load", "keep_tension"]),
     ("reset", &[], &[]),
     ("set_gas", &[], &["amount", "temperature", "nrt"]),
     ("set_wind", &["wind"], &[]),
@@ -42,6 +42,7 @@ pub fn present_keys(e: &EventSpec) -> Vec<&'static str> {
     add(e.factor.is_some(), "factor");
     add(e.mass.is_some(), "mass");
     add(e.under_load.is_some(), "under_load");
+    add(e.keep_tension.is_some(), "keep_tension");
     keys
 }
 

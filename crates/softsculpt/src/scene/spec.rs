@@ -309,4 +309,8 @@ pub struct EventSpec {
     /// `freeze` only: keep the current loads balanced (default: when gravity is on).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub under_load: Option<bool>,
+    /// `freeze` only: keep the gas pressing and solve rest lengths so the shape is an
+    /// equilibrium (default: false, a plain or under-load freeze).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub keep_tension: Option<bool>,
 }

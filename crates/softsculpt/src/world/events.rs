@@ -11,9 +11,9 @@ use crate::error::SimError;
 /// A resolved action on one body (indices are the body's vertices and faces).
 #[derive(Debug, Clone, PartialEq)]
 pub enum Action {
-    /// Rest shape := current shape; `under_load` keeps the current loads balanced (see
-    /// `SoftBody::freeze_under_load`).
-    Freeze { under_load: bool },
+    /// Rest shape := current shape; `under_load` keeps carrying the weight, `keep_tension`
+    /// keeps the gas pressing (see `crate::body::FreezeOptions`).
+    Freeze { under_load: bool, keep_tension: bool },
     /// Back to the last frozen state.
     Reset,
     /// Gas amount n (mol) and temperature T (K); `None` keeps the current value.
@@ -143,17 +143,17 @@ impl World {
 
     /// Apply one event; true if it changed the loads.
     fn fire(&mut self, e: &Event) -> Result<bool, SimError> {
-        let Some(b) = self.bodies.get_mut(e.body) else {
+        if e.body >= self.bodies.len() {
             return Err(SimError::BadParameter { name: "event", message: format!("there is no body {}", e.body) });
-        };
+        }
+        if let Action::Freeze { under_load, keep_tension } = e.action {
+            // The world's freeze: it knows the gravity and the supports.
+            self.freeze(e.body, crate::body::FreezeOptions { under_load, keep_tension })?;
+            return Ok(false);
+        }
+        let b = &mut self.bodies[e.body];
         match &e.action {
-            Action::Freeze { under_load } => {
-                if *under_load {
-                    b.freeze_under_load()
-                } else {
-                    b.freeze()
-                }
-            }
+            Action::Freeze { .. } => {}
             Action::Reset => b.reset(),
             Action::SetGas { amount, temperature, nrt } => {
                 let t = temperature.unwrap_or(b.material.temperature);

@@ -29,6 +29,7 @@ mod clock;
 mod contacts;
 mod edges;
 mod events;
+mod freeze;
 pub mod ground;
 pub mod mesh_obstacle;
 pub mod obstacles;
@@ -37,6 +38,7 @@ pub(crate) mod settings;
 
 pub use clock::Clock;
 pub use events::{Action, Event, Events, Load};
+pub use freeze::SUPPORT_GAP;
 pub use obstacles::{Obstacle, Shape};
 pub use settings::{check_dt, ContactSettings, Ground, Integrator, WorldSettings};
 
