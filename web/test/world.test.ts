@@ -66,9 +66,9 @@ describe('world binding', () => {
     expect(p.ground).toBe(true);
     // n = nRT / (R T) and back: a few roundings of relative size EPS.
     expect(Math.abs((p['gas.amount'] as number) * R * (p['gas.temperature'] as number) - 30)).toBeLessThan(30 * 8 * EPS);
-    const e = thrown(() => w.applyPreset(b, 'jelly'));
+    const e = thrown(() => w.applyPreset(b, 'marshmallow'));
     expect(e.kind).toBe('parameter');
-    expect(e.message).toContain("unknown preset 'jelly'");
+    expect(e.message).toContain("unknown preset 'marshmallow'");
     w.free();
   });
 
