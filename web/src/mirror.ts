@@ -34,6 +34,8 @@ export class Mirror implements BodyView {
   readonly params: Params = {};
   /** The engine's parameter table: ids, units, ranges, help (empty until the first frame). */
   table: ParamInfo[] = [];
+  /** The core's material presets (name, help). */
+  presets: { name: string; help: string }[] = [];
   /** The simulation's settings (updated in place; the panel binds to it). */
   readonly settings: Settings = { dt: 1e-3, substeps: 16, realTime: true, playing: true, keepTension: false, model: 'mushroom' };
   history: [number, number] = [0, 0];
@@ -66,6 +68,7 @@ export class Mirror implements BodyView {
     if (f.body) { this.masses = f.body.masses; this.pinned = f.body.pinned; }
     if (f.params) Object.assign(this.params, f.params);
     if (f.table) this.table = f.table;
+    if (f.presets) this.presets = f.presets;
     if (f.settings) Object.assign(this.settings, f.settings);
     if (f.history) this.history = f.history;
     this.strain = f.strain ?? new Float32Array(0);

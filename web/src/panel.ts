@@ -57,6 +57,17 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
 
   const model = gui.addFolder('Model');
   tip(model.add(view, 'model', [...MODELS]).name('built-in').onChange((v: ModelName) => app.loadBuiltin(v)), 'Load a built-in model (undoable)');
+  // Material presets, from the core (balloon, jelly, clay, cloth, stiff rubber): when they arrive.
+  const material = { name: '' };
+  let materialList: Controller | null = null;
+  const showMaterials = () => {
+    if (materialList || app.mirror.presets.length === 0) return;
+    const names = Object.fromEntries(app.mirror.presets.map((p) => [p.name.replace('_', ' '), p.name]));
+    materialList = tip(model.add(material, 'name', names).name('material').onChange((v: string) => { if (v) app.send({ type: 'preset', name: v }); }),
+      `A material preset (undoable), the same at any mesh resolution:\n${app.mirror.presets.map((p) => `${p.name.replace('_', ' ')}: ${p.help.replace(/^material: /, '')}`).join('\n')}`);
+    // Just below the model list.
+    model.$children.insertBefore(materialList.domElement, model.$children.children[1] ?? null);
+  };
   tip(model.add({ f: () => app.freeze() }, 'f').name('Freeze (F)'), 'The current shape becomes the rest shape (F)');
   tip(model.add(app.mirror.settings, 'keepTension').name('freeze keeps tension').onChange((v: boolean) => app.setSettings({ keepTension: v })), 'Freeze keeps the skin taut: the gas keeps pressing and the rest lengths are corrected so the shape holds, so a press dents as before the freeze (on coarse meshes; see docs/model.md); off: the skin goes slack');
   tip(model.add({ f: () => app.reset() }, 'f').name('Reset (R)'), 'Back to the last frozen shape (R)');
@@ -125,6 +136,7 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   function refresh(): void {
     if (!paramsBuilt && app.mirror.table.length > 0) {
       takeParams(p, app.mirror.params);
+    showMaterials();
       addParams(app.mirror.table, { sim, world, gas, wind }, p, (id, v) => app.setParam(id, v), tip);
       paramsBuilt = true;
     }

@@ -90,6 +90,8 @@ export type Command =
   | { type: 'setParam'; name: string; value: ParamValue }
   /** Total mass (kg) split equally over the vertices (undoable). */
   | { type: 'setMass'; total: number }
+  /** A material preset of the core (balloon, jelly, clay…) on the active body, at its size (undoable). */
+  | { type: 'preset'; name: string }
   /** Wind along `direction` (unit, the view direction) at `strength` m/s (undoable). */
   | { type: 'wind'; direction: Vec3; strength: number }
   | { type: 'settings'; patch: Partial<Settings> }
@@ -156,6 +158,8 @@ export interface Frame {
   params?: Params;
   /** The engine's parameter table (ids, units, ranges, help), with the first frame. */
   table?: ParamInfo[];
+  /** The core's material presets (name, help), with the table. */
+  presets?: { name: string; help: string }[];
   settings?: Settings;
   /** Undo and redo stack sizes, when they changed. */
   history?: [number, number];

@@ -205,6 +205,22 @@ describe('worker service', () => {
     expect(g.service.doc.params().stiffness).toBe(250);
   });
 
+  it('a material preset from the core\'s list applies its values in one undo step', async () => {
+    const h = await started();
+    const f = h.tick()!;
+    expect(f.presets!.map((p) => p.name)).toEqual(['balloon', 'jelly', 'clay', 'cloth', 'stiff_rubber']);
+    const before = h.service.doc.params();
+    await h.send({ type: 'preset', name: 'clay' });
+    const clay = h.service.doc.params();
+    expect(clay.yield as number).toBeGreaterThan(0);
+    expect(clay.flow as number).toBeGreaterThan(0);
+    await h.send({ type: 'undo' });
+    expect(h.service.doc.params()).toEqual(before);
+    await h.send({ type: 'preset', name: 'marshmallow' });
+    expect(h.messages().at(-1)).toMatch(/material marshmallow: .*unknown preset 'marshmallow'/);
+    expect(h.service.doc.params()).toEqual(before);
+  });
+
   it('a scene: the other bodies follow the active one in the frame buffer, with obstacles', async () => {
     const h = await started();
     const text = readFileSync(new URL('../../scenes/fig4a_mushroom_press_wind.toml', import.meta.url), 'utf8');

@@ -45,6 +45,7 @@
 //! | `ss_sync(w)` | refresh every body's f32 render positions, pins and stats |
 //! | `ss_body_count(w)`, `ss_body_views(w, b) -> ptr` | bodies; body b's layout table (`views.rs`) |
 //! | `ss_param_table()` | result: the parameter table JSON (`softsculpt::params::table_json`) |
+//! | `ss_material_presets()` | result: the material presets' names and help (`softsculpt::params::material_presets_json`) |
 //! | `ss_params(w, b)` | result: `{id: value}` of every body and world parameter (null: no ground) |
 //! | `ss_set_param(w, b, id, id_len, json, json_len)` | `World::set_param` with a JSON value (number, [x,y,z], "name", true/false) |
 //! | `ss_apply_preset(w, b, name, len)` | `World::apply_preset`: a named set of values from `softsculpt::params::presets` (`modeler`) |
@@ -198,6 +199,16 @@ pub extern "C" fn ss_result_ptr() -> *const u8 {
 #[no_mangle]
 pub extern "C" fn ss_result_len() -> usize {
     RESULT.with(|r| r.borrow().len())
+}
+
+/// The material presets as JSON (`softsculpt::params::material_presets_json`: name, help) in the
+/// result slot.
+#[no_mangle]
+pub extern "C" fn ss_material_presets() -> i32 {
+    status(|| {
+        set_result(softsculpt::params::material_presets_json().into_bytes());
+        Ok(())
+    })
 }
 
 /// The parameter table as JSON (`softsculpt::params::table_json`) in the result slot.

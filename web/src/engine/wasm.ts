@@ -30,6 +30,7 @@ export interface RawEngine {
   ss_body_count(w: number): number;
   ss_body_views(w: number, b: number): number;
   ss_param_table(): number;
+  ss_material_presets(): number;
   ss_params(w: number, b: number): number;
   ss_set_param(w: number, b: number, id: number, idLen: number, json: number, jsonLen: number): number;
   ss_apply_preset(w: number, b: number, name: number, len: number): number;

@@ -271,6 +271,11 @@ export class World {
   /** Refresh every body's render positions, pins and stats. */
   sync(): void { this.call((w) => raw().ss_sync(w)); }
 
+  /** The material presets the core defines (name, help): the modeler's Material list. */
+  materialPresets(): { name: string; help: string }[] {
+    check(raw().ss_material_presets());
+    return JSON.parse(resultText()) as { name: string; help: string }[];
+  }
   paramTable(): ParamInfo[] {
     check(raw().ss_param_table());
     return JSON.parse(resultText()) as ParamInfo[];

@@ -17,7 +17,7 @@ import { History, travel } from '../history';
 import { parse, ProjectError, serialize } from '../project';
 import type { Autosave, AutosaveRecord } from '../storage';
 import { MODELS, type ModelName } from '../models';
-import { isClosed, type ImportAnswer, type ImportFrame, type ImportQuestion } from '../io/import';
+import { isClosed, sizeFactor, type ImportAnswer, type ImportFrame, type ImportQuestion } from '../io/import';
 import { Importer } from './importer';
 import type { MessageKind, SceneInfo, Settings, Stats, Topology, UiState, Vec3 } from '../protocol';
 import { makeStroke, type Stroke, type StrokeBody, type StrokeStart } from './strokes';
@@ -303,6 +303,18 @@ export class Document {
   }
 
   setMass(total: number): void { this.setParam('mass', total); }
+
+  /**
+   * A material preset of the core on the active body (undoable), at the model's size: an
+   * imported model keeps its units, so the preset is scaled by the core's similarity rules
+   * (params/similarity.rs) as the modeler preset was on import.
+   */
+  materialPreset(name: string): void {
+    const size = this.settings.frame ? sizeFactor(Array.from({ length: this.world.bodyCount }, (_, i) => this.world.body(i).positions)) : 1;
+    if (this.edit(`material ${name}`, true, () => this.world.applyPresetScaled(0, name, size), 'none')) {
+      this.hooks.message(`material: ${name.replace('_', ' ')}`);
+    }
+  }
 
   /** Whether some vertex of the active body is below the ground's height. */
   private belowGround(): boolean {

@@ -95,6 +95,7 @@ export class Service {
       case 'step': this.stepper.run(doc, doc.settings.dt, doc.settings.substeps); this.recorder.sample(doc); return;
       case 'setParam': if (!doc.setParam(cmd.name, cmd.value)) this.frames.resendParams(); return;
       case 'setMass': return doc.setMass(cmd.total);
+      case 'preset': return doc.materialPreset(cmd.name);
       case 'wind': return doc.wind(cmd.direction, cmd.strength);
       case 'settings': return this.settings(cmd.patch);
       case 'strokeStart': return doc.strokeStart(cmd);

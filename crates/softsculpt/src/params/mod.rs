@@ -182,6 +182,17 @@ pub fn find(id: &str) -> Result<&'static Param, ParamError> {
 
 /// The whole table as JSON: an array of `{id, scope, unit, default, min, max, min_open,
 /// choices, help}` (min/max null when unbounded).
+/// The material presets (`presets::PRESETS` that set only body parameters) as JSON: `[{"name",
+/// "help"}]`, in table order: what the modeler's Material list offers.
+pub fn material_presets_json() -> String {
+    let rows: Vec<serde_json::Value> = presets::PRESETS
+        .iter()
+        .filter(|p| p.is_material())
+        .map(|p| serde_json::json!({ "name": p.name, "help": p.help }))
+        .collect();
+    serde_json::Value::Array(rows).to_string()
+}
+
 pub fn table_json() -> String {
     let rows: Vec<serde_json::Value> = TABLE
         .iter()
