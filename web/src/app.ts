@@ -151,6 +151,7 @@ export class App implements ToolContext {
   freeze(): void { this.operate({ type: 'freeze' }); }
   reset(): void { this.operate({ type: 'reset' }); }
   subdivide(): void { this.operate({ type: 'subdivide' }); }
+  remesh(): void { this.operate({ type: 'remesh' }); }
   undo(): void { if (!this.tools.isDragging) this.operate({ type: 'undo' }); }
   redo(): void { if (!this.tools.isDragging) this.operate({ type: 'redo' }); }
   step(): void { this.send({ type: 'step' }); }

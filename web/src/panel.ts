@@ -72,6 +72,7 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   tip(model.add(app.mirror.settings, 'keepTension').name('freeze keeps tension').onChange((v: boolean) => app.setSettings({ keepTension: v })), 'Freeze keeps the skin taut: the gas keeps pressing and the rest lengths are corrected so the shape holds, so a press dents as before the freeze (on coarse meshes; see docs/model.md); off: the skin goes slack');
   tip(model.add({ f: () => app.reset() }, 'f').name('Reset (R)'), 'Back to the last frozen shape (R)');
   tip(model.add({ f: () => app.subdivide() }, 'f').name('Subdivide (U)'), 'Loop subdivision of the current shape; masses and pins carried over; the result is frozen (U)');
+  tip(model.add({ f: () => app.remesh() }, 'f').name('Remesh (even triangles)'), 'Isotropic remeshing at the mean edge length: long thin triangles make poor springs (an import says when); masses and pins carried over; undoable');
   tip(model.add({ f: () => app.undo() }, 'f').name('Undo (Ctrl+Z)'), 'Undo the last modeling operation (Ctrl+Z)');
   tip(model.add({ f: () => app.redo() }, 'f').name('Redo (Ctrl+Shift+Z)'), 'Redo (Ctrl+Shift+Z)');
 

@@ -82,6 +82,8 @@ export type Command =
   | { type: 'freeze' }
   | { type: 'reset' }
   | { type: 'subdivide' }
+  /** Even triangles at the mean edge length (isotropic remeshing; undoable). */
+  | { type: 'remesh' }
   | { type: 'undo' }
   | { type: 'redo' }
   /** One frame of steps (settings.substeps) while paused. */

@@ -205,6 +205,29 @@ describe('worker service', () => {
     expect(g.service.doc.params().stiffness).toBe(250);
   });
 
+  it('remesh evens the mushroom\'s triangles, keeps its volume and shape under gravity, and undoes', async () => {
+    const h = await started();
+    const w = h.service.doc.world;
+    const before = w.quality(0), volume = h.service.doc.stats().volume;
+    expect(before.small_angle_share).toBeGreaterThan(0.1); // the mushroom's long thin triangles (14 %)
+    await h.send({ type: 'remesh' });
+    const after = w.quality(0);
+    expect(h.messages().at(-1)).toMatch(/^remeshed: \d+ vertices; angles below 25°/);
+    // Isotropic remeshing (docs/meshing.md): almost no small angles, volume kept (remesh keeps
+    // it to 0.5 %; the frozen body then starts at rest).
+    expect(after.small_angle_share).toBeLessThan(0.05);
+    expect(Math.abs(h.service.doc.stats().volume / volume - 1)).toBeLessThan(0.005);
+    // Frozen under load: a second of steps leaves it where it was (it does not sag).
+    const y0 = w.body(0).positions.slice();
+    for (let k = 0; k < 60; k++) h.tick();
+    let moved = 0;
+    const y1 = w.body(0).positions;
+    for (let i = 0; i < y0.length; i++) moved = Math.max(moved, Math.abs(y1[i] - y0[i]));
+    expect(moved).toBeLessThan(0.01);
+    await h.send({ type: 'undo' });
+    expect(h.service.doc.vertexCount).toBe(362);
+  });
+
   it('a material preset from the core\'s list applies its values in one undo step', async () => {
     const h = await started();
     const f = h.tick()!;

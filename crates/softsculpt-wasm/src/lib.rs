@@ -45,6 +45,8 @@
 //! | `ss_sync(w)` | refresh every body's f32 render positions, pins and stats |
 //! | `ss_body_count(w)`, `ss_body_views(w, b) -> ptr` | bodies; body b's layout table (`views.rs`) |
 //! | `ss_param_table()` | result: the parameter table JSON (`softsculpt::params::table_json`) |
+//! | `ss_remesh(w, b, edge, under_load)` | `World::remesh`: isotropic remeshing to `edge` m, masses and pins carried; result `{"dropped_events"}` |
+//! | `ss_quality(w, b)` | `World::quality`: result JSON (smallest angle, share below 25°, mean edge, spread, poor) |
 //! | `ss_material_presets()` | result: the material presets' names and help (`softsculpt::params::material_presets_json`) |
 //! | `ss_params(w, b)` | result: `{id: value}` of every body and world parameter (null: no ground) |
 //! | `ss_set_param(w, b, id, id_len, json, json_len)` | `World::set_param` with a JSON value (number, [x,y,z], "name", true/false) |

@@ -440,6 +440,38 @@ pub extern "C" fn ss_reset(w: u32, b: u32) -> i32 {
     })
 }
 
+/// Replace body `b` by its isotropic remeshing to edge length `edge` (m) (`World::remesh`;
+/// `under_load` ≠ 0: frozen under load); result `{"dropped_events": n}`. Its views change.
+#[no_mangle]
+pub extern "C" fn ss_remesh(w: u32, b: u32, edge: f64, under_load: u32) -> i32 {
+    status(|| {
+        with_body(w, b, |h, i| {
+            let (dropped, _) = h.world.remesh(i, edge, under_load != 0).map_err(sim_fail)?;
+            h.views[i] = BodyViews::new(&h.world, i);
+            set_result(serde_json::json!({ "dropped_events": dropped }).to_string().into_bytes());
+            Ok(())
+        })
+    })
+}
+
+/// Body `b`'s triangle quality (`World::quality`); result: JSON with the smallest angle and the
+/// share of angles below 25° (degrees, fraction), the mean edge (m), the edges' spread (σ/mean)
+/// and `poor` (`Quality::is_poor`).
+#[no_mangle]
+pub extern "C" fn ss_quality(w: u32, b: u32) -> i32 {
+    status(|| {
+        with_body(w, b, |h, i| {
+            let q = h.world.quality(i).map_err(sim_fail)?;
+            let json = serde_json::json!({
+                "min_angle_deg": q.min_angle_deg, "small_angle_share": q.small_angle_share,
+                "edge_mean": q.edge_mean, "edge_spread": q.edge_spread, "poor": q.is_poor(),
+            });
+            set_result(json.to_string().into_bytes());
+            Ok(())
+        })
+    })
+}
+
 /// Replace body `b` by its Loop subdivision (frozen); result `{"dropped_events": n}` (its
 /// pending scene events no longer fit). Its views change.
 #[no_mangle]

@@ -303,6 +303,16 @@ export class World {
   }
   reset(b: number): void { this.call((w) => raw().ss_reset(w, b)); }
   /** Loop subdivision of body `b`; returns how many of its pending scene events were dropped. */
+  /** Replace body `b` by its isotropic remeshing to `edge` m (frozen, under load if asked); returns the dropped pending events. */
+  remesh(b: number, edge: number, underLoad: boolean): number {
+    this.call((w) => raw().ss_remesh(w, b, edge, underLoad ? 1 : 0));
+    return (JSON.parse(resultText()) as { dropped_events: number }).dropped_events;
+  }
+  /** Body `b`'s triangle quality: smallest angle (°), share of angles below 25°, mean edge (m), spread (σ/mean), poor. */
+  quality(b: number): { min_angle_deg: number; small_angle_share: number; edge_mean: number; edge_spread: number; poor: boolean } {
+    this.call((w) => raw().ss_quality(w, b));
+    return JSON.parse(resultText());
+  }
   subdivide(b: number): number {
     this.call((w) => raw().ss_subdivide(w, b));
     return (JSON.parse(resultText()) as { dropped_events: number }).dropped_events;

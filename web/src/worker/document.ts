@@ -394,6 +394,24 @@ export class Document {
     }
   }
   reset(): void { this.edit('reset', true, () => this.world.reset(0)); }
+  /**
+   * Remesh: even triangles at the body's mean edge length (isotropic remeshing in the core;
+   * masses and pins carried to the nearest new vertices), frozen under load under gravity as
+   * Subdivide is, so the shape holds; undoable.
+   */
+  remesh(): void {
+    const before = this.world.quality(0);
+    this.edit('remesh', true, () => {
+      this.hooks.progress('remeshing');
+      const underLoad = this.world.params(0).gravity !== 0;
+      const gas = this.world.params(0)['gas.ambient'];
+      this.world.remesh(0, before.edge_mean, underLoad);
+      if (!underLoad && typeof gas === 'number') this.world.setParam(0, 'gas.ambient', gas);
+    });
+    const after = this.world.quality(0);
+    this.hooks.message(`remeshed: ${this.vertexCount} vertices; angles below 25°: ${pct(before.small_angle_share)} → ${pct(after.small_angle_share)}, smallest ${before.min_angle_deg.toFixed(0)}° → ${after.min_angle_deg.toFixed(0)}°`);
+  }
+
   subdivide(): void {
     if (this.vertexCount > 200_000) { this.hooks.message('the mesh is already very fine; not subdividing', 'warn'); return; }
     this.edit('subdivide', true, () => {
@@ -631,6 +649,8 @@ function validFrame(f: unknown): ImportFrame | null {
 function fmt(t: number | undefined): string {
   return t === undefined ? '?' : t.toPrecision(3);
 }
+
+const pct = (x: number) => `${(100 * x).toFixed(x < 0.01 ? 1 : 0)} %`;
 
 export function errorText(e: unknown): string {
   return e instanceof Error ? e.message : String(e);

@@ -89,6 +89,9 @@ export class Importer {
       gasless ? `${gasless === n ? '' : `${gasless} of ${n} bodies `}cloth-like (an open surface): no gas` : '',
       (w.params(0).dt as number) < FRAME_DT / 1.5 ? `steps of ${(w.params(0).dt as number).toPrecision(2)} s (finer for its small size)` : '',
     ];
+    // Long thin triangles make poor springs: say so, and what evens them.
+    const quality = w.quality(0);
+    if (quality.poor) parts.push(`uneven triangles (${Math.round(100 * quality.small_angle_share)} % of angles below 25°): Model › Remesh evens them`);
     this.hooks.message(parts.filter(Boolean).join('; '));
     if (p.warnings.length) this.hooks.message(p.warnings.join('\n'), 'warn');
   }

@@ -90,6 +90,7 @@ export class Service {
       case 'freeze': return doc.freeze();
       case 'reset': return doc.reset();
       case 'subdivide': return doc.subdivide();
+      case 'remesh': return doc.remesh();
       case 'undo': return doc.undo();
       case 'redo': return doc.redo();
       case 'step': this.stepper.run(doc, doc.settings.dt, doc.settings.substeps); this.recorder.sample(doc); return;

@@ -37,6 +37,30 @@ impl World {
         Ok((dropped, report))
     }
 
+    /// Replace body `body` by its isotropic remeshing to edge length `edge` (m)
+    /// (`SoftBody::remeshed`: masses and pins carried to the nearest new vertices), frozen
+    /// plainly, or, `under_load`, with the gas reference it had and under load (as Subdivide
+    /// does under gravity, so the shape holds). Returns the dropped pending events and the
+    /// freeze's report.
+    pub fn remesh(&mut self, body: usize, edge: f64, under_load: bool) -> Result<(usize, FreezeReport), SimError> {
+        let b = self.bodies.get(body).ok_or_else(|| no_body(body, self.bodies.len()))?;
+        let even = b.remeshed(edge)?;
+        let gas = b.gas_reference();
+        let (_, dropped) = self.replace_body(body, even);
+        let mut report = FreezeReport::default();
+        if under_load {
+            self.bodies[body].set_gas_reference(gas)?;
+            report = self.freeze(body, FreezeOptions { under_load: true, keep_tension: false })?;
+        }
+        Ok((dropped, report))
+    }
+
+    /// The triangle quality of body `body`'s current shape (`mesh::quality`).
+    pub fn quality(&self, body: usize) -> Result<crate::mesh::quality::Quality, SimError> {
+        let b = self.bodies.get(body).ok_or_else(|| no_body(body, self.bodies.len()))?;
+        Ok(crate::mesh::quality::quality(&b.to_mesh(), None))
+    }
+
     /// Per vertex of body `body`: whether it rests on the ground or on an obstacle (within
     /// [`SUPPORT_GAP`]).
     pub fn resting_vertices(&self, body: usize) -> Result<Vec<bool>, SimError> {
