@@ -65,6 +65,15 @@ test('the camera turns as a turntable, stops with the mouse, keeps the horizon l
   await page.waitForTimeout(1500);
   const v2 = await view(page);
   assert.ok(dist(v1.position, v2.position) < 1e-9, 'no drift after the mouse stops');
+  // Dragged far up and down: never under the floor (the ground would hide the model).
+  for (const dy of [500, -500]) {
+    await page.mouse.move(150, dy > 0 ? 150 : 700);
+    await page.mouse.down();
+    await page.mouse.move(150, dy > 0 ? 650 : 200, { steps: 10 });
+    await page.mouse.up();
+    const v = await view(page);
+    assert.ok(v.position[1] > v.target[1], `camera at y ${v.position[1]}, target ${v.target[1]}`);
+  }
   // A level horizon: the camera's right axis stays horizontal.
   assert.ok(Math.abs(v1.right[1]) < 1e-9, `horizon tilt ${v1.right[1]}`);
   // Twenty wheel clicks inward: the camera stops outside the model's bounding sphere.
@@ -186,7 +195,9 @@ test('the brush ring shows the radius and strength under the cursor; keys and B 
   await page.mouse.move(top.screen.x, top.screen.y + 30, { steps: 5 });
   const history = await inspect(page, () => window.softsculpt.history());
   await page.mouse.click(top.screen.x, top.screen.y + 30);
+  await page.waitForTimeout(400);
   assert.deepEqual(await inspect(page, () => window.softsculpt.history()), history, 'the setting click is not a stroke');
+  assert.equal(await inspect(page, () => window.softsculpt.banner()), null, 'the click set it: the banner is gone');
   await page.keyboard.press('?');
   assert.equal(await inspect(page, () => window.softsculpt.hintVisible()), false);
   // The panel fits the window.
@@ -295,6 +306,33 @@ test('a pen\'s pressure scales the press: a light touch dents less than a firm o
   // springs add (the dent is held by target springs of finite stiffness): between 0.1 and 0.45.
   assert.ok(firm > 0.05, `a firm press dents ${firm} m`);
   assert.ok(light / firm > 0.1 && light / firm < 0.45, `light ${light} m vs firm ${firm} m`);
+  assert.deepEqual(errors, []);
+  await page.context().close();
+});
+
+test('the kangaroo stands on its pinned feet, and a material preset keeps a frozen body\'s shape', async () => {
+  const { page, errors } = await openModeler(suite.browser, suite.server.url);
+  await load(page, 'kangaroo');
+  await page.waitForTimeout(2000);
+  const extent = await inspect(page, () => {
+    const x = window.softsculpt.positions(), lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+    for (let i = 0; i < x.length; i++) { lo[i % 3] = Math.min(lo[i % 3], x[i]); hi[i % 3] = Math.max(hi[i % 3], x[i]); }
+    return hi.map((h, d) => h - lo[d]);
+  });
+  // Sketched from a side view (2.5 m long, 1.2 m tall, 0.55 m thick): standing, its height is
+  // its outline's; lying on its side (before) it was 0.55 m.
+  assert.ok(extent[1] > 1.0, `the kangaroo is ${extent.map((e) => e.toFixed(2)).join(' × ')} m (x × y × z)`);
+  await shot(page, '45-kangaroo-standing');
+  // Jelly has less gas than the modeler's mushroom: on a frozen body the pressure difference the
+  // springs carry is kept, so it does not shrink (before: 2.51 → 1.71 m³).
+  await load(page, 'mushroom');
+  await page.keyboard.press('f');
+  await page.waitForTimeout(500);
+  const v0 = (await inspect(page, () => window.softsculpt.stats())).volume;
+  await page.locator('.lil-controller', { hasText: 'material' }).locator('select').selectOption('jelly');
+  await page.waitForTimeout(3000);
+  const v1 = (await inspect(page, () => window.softsculpt.stats())).volume;
+  assert.ok(Math.abs(v1 / v0 - 1) < 0.1, `volume ${v0} → ${v1} m³ with jelly`);
   assert.deepEqual(errors, []);
   await page.context().close();
 });

@@ -170,7 +170,7 @@ describe('worker service', () => {
     const h = await started();
     await h.send({ type: 'import', name: 'cube.obj', data: bytes(CUBE) });
     await h.send({ type: 'importAnswer', answer: { up: 'y', pieces: 'each' } });
-    expect(h.messages().at(-1)).toBe('imported cube.obj: 8 vertices, 12 faces, 1.00 × 1.00 × 1.00 m as in the file');
+    expect(h.messages().at(-1)).toBe('imported cube.obj: 8 vertices, 12 faces, 1.00 × 1.00 × 1.00 m as in the file; only 8 vertices: Subdivide (U) or Model › Remesh gives the tools more to shape');
     expect(h.tick()!.topology!.vertexCount).toBe(8);
     h.flushTimers();
     expect(h.saved.length).toBe(1);

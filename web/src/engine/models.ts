@@ -23,11 +23,16 @@ export function addModel(world: World, name: ModelName): number {
     }
   }
   const b = world.addMesh(positions, indices, 1, prepare);
-  if (name === 'mushroom') {
+  if (name === 'mushroom' || name === 'kangaroo') {
     // Rooted: the foot of the stem is pinned to the ground, as a mushroom grows (otherwise the
-    // heavy cap on a soft stem tips over at the first touch).
+    // heavy cap on a soft stem tips over at the first touch); the kangaroo, a sketched pillow
+    // thin across, stands on its pinned feet instead of falling on its side.
     const x = world.body(b).positions;
-    const pins = Uint8Array.from({ length: x.length / 3 }, (_, i) => (x[3 * i + 1] < 0.01 ? 1 : 0));
+    let lo = Infinity;
+    for (let i = 1; i < x.length; i += 3) lo = Math.min(lo, x[i]);
+    // The pillow's sole is its seam: a band 8 cm high pins both faces of the feet, not a hinge.
+    const band = name === 'kangaroo' ? 0.08 : 0.01;
+    const pins = Uint8Array.from({ length: x.length / 3 }, (_, i) => (x[3 * i + 1] < lo + band ? 1 : 0));
     world.setPins(b, pins);
   }
   return b;

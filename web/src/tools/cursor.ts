@@ -41,9 +41,10 @@ export class BrushCursor {
     const canvas = ctx.viewport.canvas;
     canvas.addEventListener('pointermove', (ev) => { this.last = ev; this.moved = true; this.adjustTo(ev.clientX); });
     canvas.addEventListener('pointerleave', () => { this.last = null; this.moved = true; });
-    // Capture phase: a click while adjusting sets the value and is nobody else's.
-    canvas.addEventListener('pointerdown', (ev) => {
-      if (!this.adjusting) return;
+    // Capture phase on the window (before the tools' and the camera's listeners on the canvas):
+    // a click while adjusting sets the value and is nobody else's.
+    window.addEventListener('pointerdown', (ev) => {
+      if (!this.adjusting || ev.target !== canvas) return;
       ev.stopImmediatePropagation();
       ev.preventDefault();
       this.finishAdjust(ev.button !== 2);

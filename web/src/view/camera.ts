@@ -21,6 +21,9 @@ export const MIN_DISTANCE_RADII = 1.3;
 /** …and at most this many (the model stays more than a few pixels wide). */
 export const MAX_DISTANCE_RADII = 25;
 
+/** The turntable's lowest view: just above horizontal (rad from straight down… from the zenith). */
+export const MAX_POLAR = 0.49 * Math.PI;
+
 export interface CameraState { position: number[]; target: number[]; mode: CameraMode }
 
 export class CameraRig {
@@ -49,6 +52,9 @@ export class CameraRig {
     c.zoomSpeed = 1;
     c.panSpeed = 0.8;
     c.screenSpacePanning = true;
+    // Never below the horizon: the model stands on the ground, which would hide it (and the
+    // grid would cut through it) seen from under the floor.
+    c.maxPolarAngle = MAX_POLAR;
     // Touch: one finger on empty space turns the view; two fingers turn and pinch-zoom.
     c.touches = { ONE: THREE.TOUCH.ROTATE, TWO: THREE.TOUCH.DOLLY_ROTATE };
     c.addEventListener('change', this.changed);
@@ -124,7 +130,7 @@ export class CameraRig {
     if (dir.lengthSq() < 1e-12) dir.copy(HOME_DIRECTION);
     // Level: no roll, and not straight down or up (a turntable cannot turn from there).
     dir.normalize();
-    dir.y = Math.max(-0.85, Math.min(0.85, dir.y));
+    dir.y = Math.max(0.15, Math.min(0.85, dir.y)); // from above, as the turntable allows
     dir.normalize();
     this.camera.up.set(0, 1, 0);
     this.controls.target.copy(this.centre);

@@ -89,6 +89,8 @@ export class Importer {
       gasless ? `${gasless === n ? '' : `${gasless} of ${n} bodies `}cloth-like (an open surface): no gas` : '',
       (w.params(0).dt as number) < FRAME_DT / 1.5 ? `steps of ${(w.params(0).dt as number).toPrecision(2)} s (finer for its small size)` : '',
     ];
+    // Too few vertices for the brushes to shape: say what gives them more.
+    if (v < 100) parts.push(`only ${v} vertices: Subdivide (U) or Model › Remesh gives the tools more to shape`);
     // Long thin triangles make poor springs: say so, and what evens them.
     const quality = w.quality(0);
     if (quality.poor) parts.push(`uneven triangles (${Math.round(100 * quality.small_angle_share)} % of angles below 25°): Model › Remesh evens them`);
