@@ -333,6 +333,15 @@ test('the kangaroo stands on its pinned feet, and a material preset keeps a froz
   await page.waitForTimeout(3000);
   const v1 = (await inspect(page, () => window.softsculpt.stats())).volume;
   assert.ok(Math.abs(v1 / v0 - 1) < 0.1, `volume ${v0} → ${v1} m³ with jelly`);
+  // Clay on the mushroom as it stands: it keeps its height (before: it slumped into an egg,
+  // 1.83 → 1.2 m, its stem yielding under the cap's weight), and a press leaves a dent.
+  await load(page, 'mushroom');
+  const height = () => inspect(page, () => Math.max(...window.softsculpt.positions().filter((_, k) => k % 3 === 1)));
+  const h0 = await height();
+  await page.locator('.lil-controller', { hasText: 'material' }).locator('select').selectOption('clay');
+  await page.waitForTimeout(3000);
+  const h1 = await height();
+  assert.ok(h1 > 0.97 * h0, `clay: height ${h0} → ${h1} m`);
   assert.deepEqual(errors, []);
   await page.context().close();
 });

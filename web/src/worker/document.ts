@@ -311,14 +311,17 @@ export class Document {
    */
   materialPreset(name: string): void {
     const size = this.settings.frame ? sizeFactor(Array.from({ length: this.world.bodyCount }, (_, i) => this.world.body(i).positions)) : 1;
-    // A new material changes how the body responds, not its shape at once: the gas keeps the
+    // A new material changes how the body responds, not its shape at once. Under gravity the
+    // shape as it is becomes the rest shape first, carrying its weight (freeze under load), so a
+    // softer or plastic material (clay) does not slump from where it stands; the gas keeps the
     // pressure difference P − P_ref it had (a frozen body's springs balance that), so a preset
     // with less gas does not crush a frozen body. P_ref ≥ 0: with no gas (cloth) it is 0.
-    const before = this.stats().pressure - (this.world.params(0)['gas.ambient'] as number);
     if (this.edit(`material ${name}`, true, () => {
+      if (this.world.params(0).gravity !== 0) this.world.freeze(0, true, false);
+      const before = this.stats().pressure - (this.world.params(0)['gas.ambient'] as number);
       this.world.applyPresetScaled(0, name, size);
       this.world.setParam(0, 'gas.ambient', Math.max(0, this.stats().pressure - before));
-    }, 'none')) {
+    })) {
       const gasless = this.world.params(0)['gas.amount'] === 0;
       this.hooks.message(`material: ${name.replace('_', ' ')}${gasless ? ' — no gas: a closed body sags under its weight (it suits open surfaces)' : ''}`);
     }
