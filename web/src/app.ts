@@ -24,6 +24,7 @@ import { askImport } from './io/dialog';
 import { baseName } from './project';
 import { sig3 } from './format';
 import { boxCentre, isSymmetric, meanEdge, type Axes, type Symmetry } from './tools/symmetry';
+import { divergingColor } from './tools/brush';
 import { BrushCursor, clampStrength, RADIUS_MAX, RADIUS_MIN } from './tools/cursor';
 
 const CAMERA_KEY = 'softsculpt.camera';
@@ -363,10 +364,7 @@ export function windLine(w: [number, number, number], camera: Camera): string {
 /** Strain → colour: 0 white, ±STRAIN_FULL and beyond full red (stretched) or blue (compressed). */
 export const STRAIN_FULL = 0.1;
 export function strainColors(colors: Float32Array, strain: Float32Array): void {
-  for (let i = 0; i < strain.length; i++) {
-    const t = Math.max(-1, Math.min(1, strain[i] / STRAIN_FULL));
-    colors.set(t >= 0 ? [1, 1 - t, 1 - t] : [1 + t, 1 + t, 1], 3 * i);
-  }
+  for (let i = 0; i < strain.length; i++) divergingColor(colors, i, strain[i] / STRAIN_FULL);
 }
 
 function stripUndefined<T extends object>(o: T): T {

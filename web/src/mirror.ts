@@ -12,6 +12,8 @@ const NO_STATS: Stats = {
   momentum: [0, 0, 0], centerOfMass: [0, 0, 0], maxSpeed: 0,
 };
 
+const NO_STRAIN = new Float32Array(0);
+
 export class Mirror implements BodyView {
   /** The first frame of a model has been drawn. */
   ready = false;
@@ -44,7 +46,7 @@ export class Mirror implements BodyView {
   /** A recording under way, or null. */
   recording: Recording | null = null;
   /** Each vertex's strain l / L − 1 (when the strain view is on), else empty. */
-  strain: Float32Array = new Float32Array(0);
+  strain: Float32Array = NO_STRAIN;
 
   get vertexCount(): number { return this.positions.length / 3; }
   get faceCount(): number { return this.triangles.length / 3; }
@@ -71,7 +73,7 @@ export class Mirror implements BodyView {
     if (f.presets) this.presets = f.presets;
     if (f.settings) Object.assign(this.settings, f.settings);
     if (f.history) this.history = f.history;
-    this.strain = f.strain ?? new Float32Array(0);
+    this.strain = f.strain ?? NO_STRAIN;
     this.stats = f.stats;
     this.simMs = f.simMs;
     this.slowMotion = f.slowMotion;

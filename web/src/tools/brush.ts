@@ -50,6 +50,12 @@ export function vertexNormals(positions: ArrayLike<number>, triangles: ArrayLike
   return n;
 }
 
+/** A diverging colour for t in [−1, 1] (clamped) into `colors` at vertex i: blue (−1), white (0), red (+1). */
+export function divergingColor(colors: Float32Array, i: number, t: number): void {
+  const c = Math.max(-1, Math.min(1, t));
+  colors.set(c >= 0 ? [1, 1 - c, 1 - c] : [1 + c, 1 + c, 1], 3 * i);
+}
+
 /** Per-vertex rest-length factor for one frame of the inflate brush (rate in 1/s, dt in s). */
 export function inflateFactor(weight: number, rate: number, dt: number, deflate: boolean): number {
   const f = 1 + rate * weight * dt;

@@ -5,6 +5,7 @@
 // - Pin (N): pin vertices so they never move (Shift: unpin).
 
 import { BaseTool, type BodyView } from './tool';
+import { divergingColor } from './brush';
 
 export class InflateTool extends BaseTool {
   readonly name = 'inflate';
@@ -27,8 +28,7 @@ export class MassTool extends BaseTool {
     const mean = m.reduce((a, b) => a + b, 0) / m.length;
     for (let i = 0; i < m.length; i++) {
       // log2(m / mean) in [−3, 3] → blue (light) .. white .. red (heavy).
-      const t = Math.max(-1, Math.min(1, Math.log2(m[i] / mean) / 3));
-      colors.set(t >= 0 ? [1, 1 - t, 1 - t] : [1 + t, 1 + t, 1], 3 * i);
+      divergingColor(colors, i, Math.log2(m[i] / mean) / 3);
     }
   }
 }

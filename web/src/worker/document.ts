@@ -72,6 +72,9 @@ export class Document {
   topologyVersion = 0;
   /** Bumped when masses or pins may have changed. */
   bodyVersion = 0;
+  /** Scratch of `strain()`, kept across frames (one per mesh size). */
+  private strainSum = new Float64Array(0);
+  private strainCount = new Uint32Array(0);
   /** The simulation paused itself on a failure (a new model plays again). */
   pausedByError = false;
   /** Parameters the user changed on this model, with the simulated time (to name a failure's likely cause). */
@@ -148,7 +151,9 @@ export class Document {
    */
   strain(): Float32Array {
     const b = this.world.body(0), x = b.positions, e = b.springs, rest = b.rest;
-    const n = b.vertexCount, sum = new Float64Array(n), count = new Uint32Array(n);
+    const n = b.vertexCount;
+    if (this.strainSum.length !== n) { this.strainSum = new Float64Array(n); this.strainCount = new Uint32Array(n); }
+    const sum = this.strainSum.fill(0), count = this.strainCount.fill(0);
     for (let k = 0; k < rest.length; k++) {
       const i = 3 * e[2 * k], j = 3 * e[2 * k + 1];
       const l = Math.hypot(x[i] - x[j], x[i + 1] - x[j + 1], x[i + 2] - x[j + 2]);
