@@ -6,7 +6,7 @@
 // A frame: the worker's latest positions (a transferred buffer) replace the drawn ones, the view
 // renders them, and the buffer drawn before goes back to the worker.
 
-import { Vector3, type Camera } from 'three';
+import { Box3, Sphere, Vector3, type Camera } from 'three';
 import type { Command, Frame, MessageKind, ParamValue, Reply, Settings, UiState } from './protocol';
 import { SimulationClient } from './client';
 import { Mirror } from './mirror';
@@ -267,6 +267,11 @@ export class App implements ToolContext {
     if (f.topology) {
       this.viewport.attach(m.triangles, m.springs, m.positions);
       this.viewport.measureModel();
+      // (pieces) Every body is the model: the view frames an import's pieces (a scene's bodies) together.
+      if (m.others.length > 0) {
+        const sphere = new Box3().setFromArray(m.all).getBoundingSphere(new Sphere());
+        if (Number.isFinite(sphere.radius) && sphere.radius > 0) this.viewport.rig.setModel(sphere.center, sphere.radius);
+      }
       // Another model (loaded, imported, opened): framed in the view. The same model changed
       // (subdivided, undone) keeps the user's view.
       // A load (even of a file of the old one's name) has its own serial (settings.opened).
