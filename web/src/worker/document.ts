@@ -23,7 +23,7 @@ import type { MessageKind, SceneInfo, Settings, Stats, Topology, UiState, Vec3 }
 import { makeStroke, type Stroke, type StrokeBody, type StrokeStart } from './strokes';
 import { explainStop, type Change } from './explain';
 import { sketchBalloon, type SketchCommand } from './sketch';
-import { Rewind, REWIND_EVERY } from './rewind';
+import { Rewind } from './rewind';
 
 export const HISTORY_STEPS = 200;
 export const HISTORY_BYTES = 512 * 1024 * 1024;
@@ -557,7 +557,7 @@ export class Document {
       const splits = stepSplitting((h, k) => this.stepAt(h, k), dt, n);
       if (splits > 0) this.splitFrame(splits);
       this.sinceRewind += dt * n;
-      if (this.sinceRewind >= REWIND_EVERY - 1e-9) this.offerRewind();
+      if (this.sinceRewind >= this.rewind.every - 1e-9) this.offerRewind();
       return true;
     } catch (e) {
       this.settings.playing = false;
