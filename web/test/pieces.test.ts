@@ -80,6 +80,19 @@ describe('a model of several pieces', () => {
     doc.undo();
     expect(doc.settings.opened).toBe(first);
   });
+
+  it('a reload keeps the load serial, so undoing into the kept history is the same model', async () => {
+    const { doc } = opened();
+    doc.importFile('cube.obj', bytes(boxObj([-0.5, 0, -0.5], [0.5, 1, 0.5])));
+    await flush();
+    doc.freeze();
+    const record = doc.autosaveRecord(Date.now());
+    const again = new Document({ message: () => {}, progress: () => {}, changed: () => {}, ui: () => {} });
+    again.open({ record });
+    expect(again.settings.opened).toBe(doc.settings.opened);
+    again.undo(); // the freeze, kept with the autosave
+    expect(again.settings.opened).toBe(doc.settings.opened);
+  });
 });
 
 describe('a collapse', () => {

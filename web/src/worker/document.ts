@@ -185,6 +185,10 @@ export class Document {
         if ('record' in autosave) this.openRecordOrThrow(autosave.record, false);
         else this.openProjectText(autosave.legacyText, false);
         const kept = 'record' in autosave ? this.takeHistory(autosave.record.history) : 0;
+        // The same model as before the reload: its load serial too, so undoing into the kept
+        // history does not look like another model to the page (which would frame it anew).
+        const opened = 'record' in autosave ? (autosave.record.ui as { opened?: unknown }).opened : undefined;
+        if (typeof opened === 'number' && Number.isFinite(opened)) this.settings.opened = opened;
         this.hooks.message(`restored your last session (autosaved)${kept > 0 ? `, with ${kept} undo ${kept === 1 ? 'step' : 'steps'}` : ''}`);
         return;
       } catch (e) {
