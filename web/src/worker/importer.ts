@@ -127,6 +127,7 @@ export class Importer {
     const quality = w.quality(0);
     if (quality.poor) parts.push(`uneven triangles (${Math.round(100 * quality.small_angle_share)} % of angles below 25°): Model › Remesh evens them`);
     this.hooks.message(parts.filter(Boolean).join('; '));
-    if (p.warnings.length) this.hooks.message(p.warnings.join('\n'), 'warn');
+    // The file's warnings were said when it was imported, not again when it is turned.
+    if (p.warnings.length && !why) this.hooks.message(p.warnings.join('\n'), 'warn');
   }
 }
