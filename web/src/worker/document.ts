@@ -1,6 +1,7 @@
-// The document, in the worker: one engine world (engine/world.ts) — the body the tools shape is
-// body 0, an open scene's other bodies follow — the settings it runs with, undo/redo, and every
-// modeling operation. This is the only module of the page that calls the engine: the rest of
+// The document, in the worker: one engine world (engine/world.ts) — body 0 first (its parameters
+// and statistics are the panel's), an import's other pieces and an open scene's other bodies
+// follow; a stroke acts on the body it started on, Freeze, Reset, Subdivide and Remesh on every
+// body — the settings it runs with, undo/redo, and every modeling operation. This is the only module of the page that calls the engine: the rest of
 // the worker and the whole main thread see the world through the methods below (and strokes
 // through `StrokeBody`).
 //
@@ -501,7 +502,7 @@ export class Document {
 
   // ----- strokes (the tools' drags) ---------------------------------------------------------------
 
-  strokeStart(s: StrokeStart & { body?: number }): void {
+  strokeStart(s: StrokeStart): void {
     if (this.stroke) this.strokeEnd();
     const b = s.body ?? 0;
     if (!Number.isInteger(b) || b < 0 || b >= this.world.bodyCount) { this.hooks.message(`there is no body ${b} to shape`, 'warn'); return; }
