@@ -101,8 +101,9 @@ function flatBase(lists: ArrayLike<number>[], triangles: ArrayLike<number>[], d:
  * 2. the shape: a model is made standing on its ground plane — resting on z = 0 and not on
  *    y = 0 says Z-up (and the other way round); else a flat base (faces lying at the lowest
  *    level covering ≥ 10 % of the box's cross-section) at min z and not at min y says Z-up
- *    (and the other way round); else a slab whose thinnest extent is along z or y, under half
- *    the next one, lies flat on that axis;
+ *    (and the other way round). Not the flattest extent: a flat figure stands as often as it
+ *    lies (the kangaroo balloon, 2.1 × 1.9 × 0.59 m, stands in Y and is thinnest along z; a
+ *    sheet of cloth lies flat in Y and is thinnest along y);
  * 3. otherwise unsure: the format's usual convention, STL (CAD and 3D printing) → Z, OBJ and
  *    PLY (Blender's OBJ export, scanners) → Y, and the page asks (or uses the user's last answer).
  */
@@ -119,9 +120,6 @@ export function guessUp(format: string, lists: ArrayLike<number>[], triangles: A
   const [by, bz] = [base(1), base(2)];
   if (bz && !by) return { up: 'z', reason: 'its flat base is at its lowest z', sure: true };
   if (by && !bz) return { up: 'y', reason: 'its flat base is at its lowest y', sure: true };
-  const thin = (d: number) => [0, 1, 2].every((e) => e === d || ext[d] < 0.5 * ext[e]);
-  if (thin(2)) return { up: 'z', reason: 'it is a flat slab, thinnest along z', sure: true };
-  if (thin(1)) return { up: 'y', reason: 'it is a flat slab, thinnest along y', sure: true };
   if (format === 'STL') return { up: 'z', reason: 'STL files mostly come from CAD and 3D printing, which are Z-up', sure: false };
   return { up: 'y', reason: `${format} files mostly come Y-up (Blender's OBJ export and scanners)`, sure: false };
 }
