@@ -160,6 +160,10 @@ test('a file of the same name imported again is framed anew', async () => {
   await loaded(page, before);
   await page.waitForTimeout(500);
   const r1 = range(await inspect(page, () => window.softsculpt.view()));
+  // A material chosen for the first ball (Model › material).
+  const material = page.locator('.lil-controller', { hasText: 'material' }).locator('select');
+  await material.selectOption({ label: 'clay' });
+  await page.waitForFunction(() => /material: clay/.test(window.softsculpt.lastMessage()), null, { timeout: 15000 });
   before = await openedNow(page);
   await page.locator('input[data-picker=import]').setInputFiles(named(large));
   await loaded(page, before);
@@ -173,6 +177,8 @@ test('a file of the same name imported again is framed anew', async () => {
   for (let i = 0; i < x.length / 3; i++) { if (x[3 * i + 1] > x[3 * top + 1]) top = i; if (x[3 * i + 1] < x[3 * bottom + 1]) bottom = i; }
   const [st, sb] = await Promise.all([top, bottom].map((i) => inspect(page, (j) => window.softsculpt.screenOf(j), i)));
   assert.ok(st.y > 0 && sb.y < 800 && sb.y - st.y > 150, `the ball spans ${st.y}–${sb.y} px`);
+  // Nothing of the old import is left on show: the material list forgets the old ball's clay.
+  assert.equal(await page.locator('.lil-controller', { hasText: 'material' }).locator('.lil-display').innerText(), '');
   await shot(page, 'pieces-05-reimport-framed');
   assert.deepEqual(errors, []);
   await page.context().close();

@@ -59,7 +59,7 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   tip(model.add(view, 'model', [...MODELS]).name('built-in').onChange((v: ModelName) => app.loadBuiltin(v)), 'Load a built-in model (undoable)');
   // Material presets, from the core (balloon, jelly, clay, cloth, stiff rubber): when they arrive.
   const material = { name: '' };
-  let shownModel = app.mirror.settings.model;
+  let shownModel = '';
   let materialList: Controller | null = null;
   const showMaterials = () => {
     if (materialList || app.mirror.presets.length === 0) return;
@@ -158,7 +158,9 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
     if (view.tool !== app.tools.tool.name) showStrength();
     view.tool = app.tools.tool.name;
     // A new model starts with the modeler's material: the material list forgets the last choice.
-    if (shownModel !== app.mirror.settings.model) { material.name = ''; shownModel = app.mirror.settings.model; }
+    // (pieces) A load of its own, even of a file of the old one's name (settings.opened).
+    const loadKey = `${app.mirror.settings.model}#${app.mirror.settings.opened ?? ''}`;
+    if (shownModel !== loadKey) { material.name = ''; shownModel = loadKey; }
     // The list shows built-in models only: an import or a scene leaves it blank.
     view.model = (MODELS as readonly string[]).includes(app.mirror.settings.model) ? app.mirror.settings.model : '';
     view.windStrength = app.windStrength;
