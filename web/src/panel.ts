@@ -59,7 +59,7 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   tip(model.add(view, 'model', [...MODELS]).name('built-in').onChange((v: ModelName) => app.loadBuiltin(v)), 'Load a built-in model (undoable)');
   // Material presets, from the core (balloon, jelly, clay, cloth, stiff rubber): when they arrive.
   const material = { name: '' };
-  let shownModel = app.mirror.settings.model;
+  let shownModel = '';
   let materialList: Controller | null = null;
   const showMaterials = () => {
     if (materialList || app.mirror.presets.length === 0) return;
@@ -74,6 +74,11 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   tip(model.add({ f: () => app.reset() }, 'f').name('Reset (R)'), 'Back to the last frozen shape (R)');
   tip(model.add({ f: () => app.subdivide() }, 'f').name('Subdivide (U)'), 'Loop subdivision of the current shape; masses and pins carried over; the result is frozen (U)');
   tip(model.add({ f: () => app.remesh() }, 'f').name('Remesh (even triangles)'), 'Isotropic remeshing at the mean edge length: long thin triangles make poor springs (an import says when); masses and pins carried over; undoable');
+  // (pieces) An imported model's up axis, to fix a wrong guess: re-built from the file, undoable.
+  const upAxis = { up: 'y' };
+  const upControl = tip(model.add(upAxis, 'up', { 'Y up': 'y', 'Z up (turned upright)': 'z' }).name('up axis')
+    .onChange((v: 'y' | 'z') => { if (v !== (app.mirror.settings.frame?.up ?? 'y')) app.setUpAxis(v); }),
+  'Which way is up in the imported file (OBJ, PLY, STL guess it from the file; this fixes a wrong guess and is remembered for the format). Built again from the file; undoable');
   tip(model.add({ f: () => app.undo() }, 'f').name('Undo (Ctrl+Z)'), 'Undo the last modeling operation (Ctrl+Z)');
   tip(model.add({ f: () => app.redo() }, 'f').name('Redo (Ctrl+Shift+Z)'), 'Redo (Ctrl+Shift+Z)');
 
@@ -153,10 +158,15 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
     if (view.tool !== app.tools.tool.name) showStrength();
     view.tool = app.tools.tool.name;
     // A new model starts with the modeler's material: the material list forgets the last choice.
-    if (shownModel !== app.mirror.settings.model) { material.name = ''; shownModel = app.mirror.settings.model; }
+    // (pieces) A load of its own, even of a file of the old one's name (settings.opened).
+    const loadKey = `${app.mirror.settings.model}#${app.mirror.settings.opened ?? ''}`;
+    if (shownModel !== loadKey) { material.name = ''; shownModel = loadKey; }
     // The list shows built-in models only: an import or a scene leaves it blank.
     view.model = (MODELS as readonly string[]).includes(app.mirror.settings.model) ? app.mirror.settings.model : '';
     view.windStrength = app.windStrength;
+    // (pieces) The up axis: an import's, shown and changeable; off for built-in models and scenes.
+    upAxis.up = app.mirror.settings.frame?.up ?? 'y';
+    upControl.enable(!!app.mirror.settings.frame);
     [sym.x, sym.y, sym.z] = app.symmetryAxes;
     cam.mode = app.viewport.rig.mode;
     strain.on = app.strainView;

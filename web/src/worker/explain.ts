@@ -19,6 +19,8 @@ export interface StopContext {
   changes: Change[];
   /** Whether part of the body was below the ground when the ground was last switched on. */
   groundUnderBody?: boolean;
+  /** The simulated time (s) the document went back to, the last state known good (worker/rewind.ts), if it did. */
+  rewoundTo?: number;
 }
 
 /** A change within this much simulated time before the failure is named as its likely cause (s). */
@@ -47,7 +49,8 @@ export function explainStop(e: unknown, ctx: StopContext): string {
   if (!(e instanceof EngineError) || e.kind !== 'step') return `The simulation stopped: ${e instanceof Error ? e.message : String(e)}. Paused.`;
   const cause = String(e.fields.cause ?? '');
   const t = e.time !== undefined ? ` at t = ${sig3(e.time)} s` : '';
-  const back = e.rolledBackTo !== undefined ? ` It was put back to t = ${sig3(e.rolledBackTo)} s and paused.` : ' Paused.';
+  const back = ctx.rewoundTo !== undefined ? ` It was put back to t = ${sig3(ctx.rewoundTo)} s, the last moment it was sound, and paused.`
+    : e.rolledBackTo !== undefined ? ` It was put back to t = ${sig3(e.rolledBackTo)} s and paused.` : ' Paused.';
   const what = cause === 'collapsed' ? `The body turned inside out${t} (its volume fell to zero).`
     : cause === 'not_converged' ? `The implicit solver could not finish a step${t}, even split into 8.`
     : `The simulation blew up${t}.`;
