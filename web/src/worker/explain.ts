@@ -63,7 +63,7 @@ export function explainStop(e: unknown, ctx: StopContext): string {
   } else if (ctx.integrator !== 'implicit' && ctx.stableDt !== undefined && ctx.dt > ctx.stableDt) {
     why = `Likely cause: the time step ${sig3(ctx.dt)} s is larger than the ${ctx.integrator} integrator's stable step (${sig3(ctx.stableDt)} s) here. Choose the implicit integrator, or a smaller dt.`;
   } else if (last) {
-    why = `Likely cause: ${describeChange(last)} ${sig3(Math.max(0, (e.time ?? last.time) - last.time))} s before. Undo it with Ctrl+Z, then Space to play.`;
+    why = `Likely cause: ${describeChange(last)}, ${sig3(Math.max(0, (e.time ?? last.time) - last.time))} s before. Undo it with Ctrl+Z, then Space to play.`;
   } else if (ctx.integrator !== 'implicit') {
     why = 'Likely cause: a force too strong for the explicit integrator at this step. The implicit integrator (the default) is stable at any step.';
   } else if (cause === 'collapsed') {
