@@ -76,13 +76,10 @@ test('a file of two shells: the dialog counts them; largest only, or one body pe
 
 test('a Z-up STL stands upright at its own size, fills the view, and its export comes back the same', async () => {
   const { page, ctx } = await openModeler(suite.browser, suite.server.url);
-  await pick(page, join(FIXTURES, 'zup-tower.stl'));
-  const dialog = await page.locator('.import-dialog').innerText();
-  assert.match(dialog, /Which way is up/);
-  assert.equal(await page.locator('.import-dialog input[value=z]').isChecked(), true, 'Z-up offered first');
-  await shot(page, 'import-05-up-dialog');
-  await page.keyboard.press('Enter');
+  // It rests on z = 0: Z-up for sure, turned upright without a question (pieces.test.mjs).
+  await page.locator('input[data-picker=import]').setInputFiles(join(FIXTURES, 'zup-tower.stl'));
   await drawn(page, 'zup-tower.stl');
+  assert.equal(await page.locator('.import-dialog').count(), 0);
   assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /turned from Z-up to Y-up/);
   await page.waitForTimeout(1500);
   // Upright, 0.1 m tall as in the file (the file's z), not rescaled to 2.5 m.
@@ -101,8 +98,7 @@ test('a Z-up STL stands upright at its own size, fills the view, and its export 
   const [zlo, zhi] = extent(zs, 2);
   assert.ok(Math.abs(zlo) < 0.005 && Math.abs(zhi - 0.1) < 0.01, `exported z from ${zlo} to ${zhi}`);
   // Re-imported: the same size (×1.00, not ×0.71).
-  await pick(page, path);
-  await page.keyboard.press('Enter');
+  await page.locator('input[data-picker=import]').setInputFiles(path);
   await drawn(page, 'tower-export.stl');
   const y = await inspect(page, () => window.softsculpt.positions());
   const [ylo, yhi] = extent(y, 1);

@@ -6,7 +6,7 @@
 // A frame: the worker's latest positions (a transferred buffer) replace the drawn ones, the view
 // renders them, and the buffer drawn before goes back to the worker.
 
-import { Vector3, type Camera } from 'three';
+import { Box3, Sphere, Vector3, type Camera } from 'three';
 import type { Command, Frame, MessageKind, ParamValue, Reply, Settings, UiState } from './protocol';
 import { SimulationClient } from './client';
 import { Mirror } from './mirror';
@@ -21,6 +21,7 @@ import { InflateTool, MassTool, PinTool } from './tools/paint';
 import { SketchTool } from './tools/sketch';
 import { download, exportShape, type ExportFormat } from './io/export';
 import { askImport } from './io/dialog';
+import { rememberedUp, rememberUp } from './io/upaxis';
 import { baseName } from './project';
 import { sig3 } from './format';
 import { boxCentre, isSymmetric, meanEdge, type Axes, type Symmetry } from './tools/symmetry';
@@ -58,7 +59,7 @@ export class App implements ToolContext {
   private listeners: (() => void)[] = [];
   private lastMessage = '';
   private onReady: (() => void) | null = null;
-  /** The model the view was last framed on (null: none yet). */
+  /** The model the view was last framed on, with its load's serial (null: none yet). */
   private framedModel: string | null = null;
   /** Where the symmetry axes came from: a restored session's page state, or the model. */
   private symmetryFrom: 'ui' | 'model' = 'model';
@@ -85,10 +86,12 @@ export class App implements ToolContext {
   }
 
   body(): Mirror { return this.mirror; }
-  /** Symmetry for a stroke starting now: the chosen axes through the body's box centre. */
-  symmetry(): Symmetry | undefined {
+  /** Body `k`'s positions as drawn (0: the first; an import's pieces, a scene's bodies follow). */
+  positionsOf(k: number): ArrayLike<number> { return k === 0 ? this.mirror.positions : this.mirror.shapes()[k]?.positions ?? this.mirror.positions; }
+  /** Symmetry for a stroke starting now on body `k`: the chosen axes through that body's box centre (each piece mirrors about itself, as Blender's objects about their own origin). */
+  symmetry(k = 0): Symmetry | undefined {
     if (!this.symmetryAxes.some(Boolean)) return undefined;
-    return { axes: [...this.symmetryAxes] as Axes, centre: boxCentre(this.mirror.positions) };
+    return { axes: [...this.symmetryAxes] as Axes, centre: boxCentre(this.positionsOf(k)) };
   }
   setSymmetry(axis: 0 | 1 | 2, on: boolean): void {
     this.symmetryAxes[axis] = on;
@@ -144,7 +147,12 @@ export class App implements ToolContext {
   // ----- operations (each is a command to the worker) -------------------------------------------
 
   loadBuiltin(name: string): void { this.operate({ type: 'loadBuiltin', name }); }
-  importFile(name: string, data: ArrayBuffer): void { this.operate({ type: 'import', name, data }, [data]); }
+  importFile(name: string, data: ArrayBuffer): void { this.operate({ type: 'import', name, data, upAnswers: rememberedUp() }, [data]); }
+  /** Turn the imported model to another up axis (a wrong guess fixed), remembered for its format. */
+  setUpAxis(up: 'y' | 'z'): void {
+    rememberUp(this.mirror.settings.frame?.format, up);
+    this.operate({ type: 'setUp', up });
+  }
   openProjectFile(name: string, text: string): void { this.operate({ type: 'openProject', name, text }); }
   openScene(name: string, text: string, files: Map<string, Uint8Array>): void { this.operate({ type: 'openScene', name, text, files }); }
   restartScene(): void { this.operate({ type: 'restartScene' }); }
@@ -236,7 +244,11 @@ export class App implements ToolContext {
       case 'message': return this.message(r.text, r.kind);
       case 'progress': return this.setBusy(r.label, r.fraction);
       case 'download': return download(new Blob([r.bytes ? (r.bytes as Uint8Array<ArrayBuffer>) : r.text], { type: r.mime }), r.filename);
-      case 'importQuestion': void askImport(r.question).then((answer) => this.send({ type: 'importAnswer', answer })); return;
+      case 'importQuestion': void askImport(r.question).then((answer) => {
+        // The user's up axis for this format settles its next unsure guesses (io/upaxis.ts).
+        if (answer && r.question.declaredUp === null) rememberUp(r.question.format, answer.up);
+        this.send({ type: 'importAnswer', answer });
+      }); return;
       case 'ui': return this.applyUi(r.ui);
       case 'fatal': this.message(r.text, 'error'); return;
     }
@@ -258,17 +270,24 @@ export class App implements ToolContext {
     if (f.topology) {
       this.viewport.attach(m.triangles, m.springs, m.positions);
       this.viewport.measureModel();
+      // (pieces) Every body is the model: the view frames an import's pieces (a scene's bodies) together.
+      if (m.others.length > 0) {
+        const sphere = new Box3().setFromArray(m.all).getBoundingSphere(new Sphere());
+        if (Number.isFinite(sphere.radius) && sphere.radius > 0) this.viewport.rig.setModel(sphere.center, sphere.radius);
+      }
       // page leftovers (#10): the brush's lengths follow the model's size (tools/scale.ts).
       rescaleBrush(this.brush, this.tools.tools, brushUnit.model(this.viewport.modelRadius));
       // Another model (loaded, imported, opened): framed in the view. The same model changed
       // (subdivided, undone) keeps the user's view.
-      if (m.settings.model !== this.framedModel) {
+      // A load (even of a file of the old one's name) has its own serial (settings.opened).
+      const model = `${m.settings.model}#${m.settings.opened ?? ''}`;
+      if (model !== this.framedModel) {
         if (this.framedModel !== null) this.hud.clearMessages();
         // A new model: X symmetry on if it is symmetric across x (the first model keeps a
         // restored session's choice).
         if (this.framedModel !== null || this.symmetryFrom !== 'ui') this.symmetryAxes.splice(0, 3, isSymmetric(m.positions, 0, SYMMETRY_TOLERANCE * meanEdge(m.positions, m.springs)), false, false);
         if (this.framedModel !== null || !this.restoreCamera()) this.viewport.resetView();
-        this.framedModel = m.settings.model;
+        this.framedModel = model;
       }
       this.viewport.extras.setBodies(m.others);
       this.viewport.extras.setObstacles(m.obstacles);

@@ -81,6 +81,15 @@ export function inspector(app: App) {
       for (let i = 0; i < d.length; i += 4) seen.add((d[i] << 16) | (d[i + 1] << 8) | d[i + 2]);
       return seen.size;
     },
+    /** Body k's positions as drawn (0: the first; an import's pieces, a scene's bodies follow). */
+    bodyPositions: (k: number) => Array.from(m.shapes()[k]?.positions ?? []),
+    /** Project a point (m) to page pixels. */
+    screenOfPoint: (q: [number, number, number]) => {
+      const v = app.viewport;
+      const p = new Vector3(q[0], q[1], q[2]).project(v.camera);
+      const r = v.canvas.getBoundingClientRect();
+      return { x: r.left + ((p.x + 1) / 2) * r.width, y: r.top + ((1 - p.y) / 2) * r.height };
+    },
     /** Project coordinates of vertex i to page pixels (for driving the mouse in tests). */
     screenOf: (i: number) => {
       const x = m.positions;

@@ -99,6 +99,11 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   tip(model.add({ f: () => app.reset() }, 'f').name('Reset (R)'), 'Back to the last frozen shape (R)');
   tip(model.add({ f: () => app.subdivide() }, 'f').name('Subdivide (U)'), 'Loop subdivision of the current shape; masses and pins carried over; the result is frozen (U)');
   tip(model.add({ f: () => app.remesh() }, 'f').name('Remesh (even triangles)'), 'Isotropic remeshing at the mean edge length: long thin triangles make poor springs (an import says when); masses and pins carried over; undoable');
+  // (pieces) An imported model's up axis, to fix a wrong guess: re-built from the file, undoable.
+  const upAxis = { up: 'y' };
+  const upControl = tip(model.add(upAxis, 'up', { 'Y up': 'y', 'Z up (turned upright)': 'z' }).name('up axis')
+    .onChange((v: 'y' | 'z') => { if (v !== (app.mirror.settings.frame?.up ?? 'y')) app.setUpAxis(v); }),
+  'Which way is up in the imported file (OBJ, PLY, STL guess it from the file; this fixes a wrong guess and is remembered for the format). Built again from the file; undoable');
   tip(model.add({ f: () => app.undo() }, 'f').name('Undo (Ctrl+Z)'), 'Undo the last modeling operation (Ctrl+Z)');
   tip(model.add({ f: () => app.redo() }, 'f').name('Redo (Ctrl+Shift+Z)'), 'Redo (Ctrl+Shift+Z)');
 
@@ -180,14 +185,19 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
     showUnit();
     view.tool = app.tools.tool.name;
     // The material the body has now; a new model (not a scene) starts with the modeler's.
+    // (pieces) A load of its own, even of a file of the old one's name (settings.opened).
     if (app.mirror.vertexCount > 0) {
-      const fresh = shownModel !== app.mirror.settings.model && app.mirror.scene === null;
-      shownModel = app.mirror.settings.model;
+      const loadKey = `${app.mirror.settings.model}#${app.mirror.settings.opened ?? ''}`;
+      const fresh = shownModel !== loadKey && app.mirror.scene === null;
+      shownModel = loadKey;
       material.name = materials.name(app.mirror.params, app.mirror.history, fresh);
     }
     // The list shows built-in models only: an import or a scene leaves it blank.
     view.model = (MODELS as readonly string[]).includes(app.mirror.settings.model) ? app.mirror.settings.model : '';
     view.windStrength = app.windStrength;
+    // (pieces) The up axis: an import's, shown and changeable; off for built-in models and scenes.
+    upAxis.up = app.mirror.settings.frame?.up ?? 'y';
+    upControl.enable(!!app.mirror.settings.frame);
     [sym.x, sym.y, sym.z] = app.symmetryAxes;
     cam.mode = app.viewport.rig.mode;
     strain.on = app.strainView;

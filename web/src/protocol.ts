@@ -41,6 +41,9 @@ export interface Settings {
   frame?: ImportFrame | null;
   /** Send each vertex's strain with the frames (the strain view). */
   strain?: boolean;
+  /** Which load of a model this is (unique per load, import or open; undo brings the earlier one
+   *  back): the page frames the view anew when it changes, even for a file of the same name. */
+  opened?: number;
 }
 
 /** What the page keeps in a project file besides the body: brush, tool, tool strengths. */
@@ -64,7 +67,10 @@ export type Command =
   | { type: 'init'; wasmUrl: string; restore: boolean }
   | { type: 'loadBuiltin'; name: string }
   /** A model file (OBJ, PLY, STL, glTF/GLB); `data` is transferred. */
-  | { type: 'import'; name: string; data: ArrayBuffer }
+  /** `upAnswers`: the user's last up axis per format (io/upaxis.ts), used when the file's own guess is unsure. */
+  | { type: 'import'; name: string; data: ArrayBuffer; upAnswers?: Record<string, 'y' | 'z'> }
+  /** The imported model turned to another up axis (re-built from the file; undoable). */
+  | { type: 'setUp'; up: 'y' | 'z' }
   /** The user's answers for the file waiting (`importQuestion`); null cancels. */
   | { type: 'importAnswer'; answer: ImportAnswer | null }
   /** Start (true) or stop recording the bodies' shapes while the simulation plays. */
@@ -110,6 +116,8 @@ export type Command =
     mirror?: { axes: [boolean, boolean, boolean]; centre: Vec3 };
     /** Pen pressure in (0, 1] scaling the strength (absent: 1, a mouse). */
     pressure?: number;
+    /** The body under the cursor (0: the first; an import's pieces and a scene's bodies follow). */
+    body?: number;
   }
   /** Grab: the cursor's point on the grab plane; press and brushes: the brush centre (null: off the body). */
   | { type: 'strokeMove'; point: Vec3 | null; inverted: boolean; pressure?: number }

@@ -35,7 +35,7 @@ describe('a stop, said once in the user\'s terms', () => {
 
   it('names a change made shortly before, and none made long before', () => {
     const ctx = (time: number) => ({ integrator: 'implicit', dt: 1 / 60, changes: [{ id: 'gas.amount', value: 0.0001, time }] });
-    expect(explainStop(blowUp({ cause: 'non_finite', time: 10 }), ctx(9))).toMatch(/setting the gas amount to 0\.0001 1 s before/);
+    expect(explainStop(blowUp({ cause: 'non_finite', time: 10 }), ctx(9))).toMatch(/setting the gas amount to 0\.0001, 1 s before/);
     expect(explainStop(blowUp({ cause: 'non_finite', time: 10 }), ctx(1))).not.toMatch(/gas amount/);
   });
 

@@ -160,7 +160,7 @@ describe('worker service', () => {
     await h.send({ type: 'settings', patch: { dt: 0.005 } });
     for (let i = 0; i < 50 && h.service.doc.settings.playing; i++) { const f = h.tick(100); if (f) h.giveBack(f); }
     expect(h.service.doc.settings.playing).toBe(false);
-    expect(h.messages().at(-1)).toMatch(/at t = [0-9.]+ s.*It was put back to t = [0-9.]+ s and paused/);
+    expect(h.messages().at(-1)).toMatch(/at t = [0-9.]+ s.*It was put back to t = [0-9.]+ s(, the last moment it was sound,)? and paused/);
     const f = h.frames().at(-1)!;
     expect(f.settings!.playing).toBe(false);
     expect(f.positions.every(Number.isFinite)).toBe(true);
@@ -168,9 +168,10 @@ describe('worker service', () => {
 
   it('imports a mesh, saves and reopens the project, and autosaves after operations', async () => {
     const h = await started();
+    // Resting on y = 0: Y-up for sure, imported without a question.
     await h.send({ type: 'import', name: 'cube.obj', data: bytes(CUBE) });
-    await h.send({ type: 'importAnswer', answer: { up: 'y', pieces: 'each' } });
-    expect(h.messages().at(-1)).toBe('imported cube.obj: 8 vertices, 12 faces, 1.00 × 1.00 × 1.00 m as in the file; only 8 vertices: Subdivide (U) or Model › Remesh gives the tools more to shape');
+    expect(h.replies.some((r) => r.type === 'importQuestion')).toBe(false);
+    expect(h.messages().at(-1)).toBe('imported cube.obj: 8 vertices, 12 faces, 1.00 × 1.00 × 1.00 m as in the file; Y-up (it rests on the plane y = 0; Model › up axis changes it); only 8 vertices: Subdivide (U) or Model › Remesh gives the tools more to shape');
     expect(h.tick()!.topology!.vertexCount).toBe(8);
     h.flushTimers();
     expect(h.saved.length).toBe(1);
@@ -282,10 +283,9 @@ function cubeObj(s: number, dx: number, base: number): string {
 describe('importing', () => {
   it('an open sheet loads cloth-like: no gas, the rest of the defaults, and it drapes on the ground', async () => {
     const h = await started();
+    // A flat sheet (thinnest along y): Y-up for sure, imported without a question.
     await h.send({ type: 'import', name: 'cloth.obj', data: bytes(sheetObj(8, 2)) });
-    const q = h.replies.find((r) => r.type === 'importQuestion') as Reply & { type: 'importQuestion' };
-    expect(q.question.pieces).toEqual([{ vertices: 81, faces: 128, closed: false }]);
-    await h.send({ type: 'importAnswer', answer: { up: 'y', pieces: 'each' } });
+    expect(h.replies.some((r) => r.type === 'importQuestion')).toBe(false);
     expect(h.messages().filter((m) => /error|could not/.test(m))).toEqual([]);
     expect(h.messages().at(-1)).toMatch(/imported cloth\.obj: 81 vertices.*cloth-like \(an open surface\): no gas/);
     const f = h.tick()!;
@@ -300,9 +300,10 @@ describe('importing', () => {
 
   it('a cancelled import leaves the model as it was; an answer with nothing waiting says so', async () => {
     const h = await started();
-    await h.send({ type: 'import', name: 'cloth.obj', data: bytes(sheetObj(4, 1)) });
+    // Two pieces: the page is asked.
+    await h.send({ type: 'import', name: 'two.obj', data: bytes(cubeObj(1, -2, 0) + '\n' + cubeObj(0.5, 2, 8)) });
     await h.send({ type: 'importAnswer', answer: null });
-    expect(h.messages().at(-1)).toBe('import of cloth.obj cancelled — the current model is unchanged');
+    expect(h.messages().at(-1)).toBe('import of two.obj cancelled — the current model is unchanged');
     expect(h.service.doc.vertexCount).toBe(362);
     expect(h.service.doc.history.sizes).toEqual([0, 0]);
     await h.send({ type: 'importAnswer', answer: { up: 'y', pieces: 'each' } });
@@ -328,7 +329,7 @@ describe('importing', () => {
     // A project keeps both bodies (and the file's frame).
     h.service.doc.openProjectText(h.service.doc.projectText());
     expect(w.bodyCount).toBe(2);
-    expect(h.service.doc.settings.frame).toEqual({ up: 'y', offset: [-0.125, 0, 0] });
+    expect(h.service.doc.settings.frame).toEqual({ up: 'y', offset: [-0.125, 0, 0], format: 'OBJ' });
     await h.send({ type: 'import', name: 'two.obj', data: bytes(file) });
     await h.send({ type: 'importAnswer', answer: { up: 'y', pieces: 'largest' } });
     expect(w.bodyCount).toBe(1);
@@ -340,10 +341,10 @@ describe('importing', () => {
     // A 10 cm tall box standing on z = 0 (Z-up): after import it stands 0.1 m tall in y.
     const box = 'v 0 0.01 0\nv 0.02 0.01 0\nv 0.02 0.04 0\nv 0 0.04 0\nv 0 0.01 0.1\nv 0.02 0.01 0.1\nv 0.02 0.04 0.1\nv 0 0.04 0.1\n' +
       'f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n';
+    // It rests on z = 0 and not on y = 0: Z-up for sure, turned upright without a question.
     await h.send({ type: 'import', name: 'box.obj', data: bytes(box) });
-    const q = (h.replies.find((r) => r.type === 'importQuestion') as Reply & { type: 'importQuestion' }).question;
-    expect(q.guessedUp).toBe('z');
-    await h.send({ type: 'importAnswer', answer: { up: 'z', pieces: 'each' } });
+    expect(h.replies.some((r) => r.type === 'importQuestion')).toBe(false);
+    expect(h.messages().at(-1)).toMatch(/turned from Z-up to Y-up \(it rests on the plane z = 0; Model › up axis changes it\)/);
     const x = h.service.doc.world.body(0).positions;
     const ys = Array.from({ length: 8 }, (_, i) => x[3 * i + 1]);
     expect(Math.min(...ys)).toBe(0);
@@ -353,7 +354,7 @@ describe('importing', () => {
     const p = h.service.doc.world.params(0);
     expect(p.stiffness as number).toBeCloseTo(100 * s * s, 9);
     expect(p.dt as number).toBeCloseTo(Math.sqrt(s) / 60, 12);
-    expect(h.service.doc.settings.frame).toEqual({ up: 'z', offset: [0.01, 0, -0.025] });
+    expect(h.service.doc.settings.frame).toEqual({ up: 'z', offset: [0.01, 0, -0.025], format: 'OBJ' });
   });
 
   it('a 40 m cube keeps its size and stands on the ground like the 1 m one', async () => {
@@ -363,7 +364,6 @@ describe('importing', () => {
     for (const s of [1, 40]) {
       const h = await started();
       await h.send({ type: 'import', name: 'cube.obj', data: bytes(cubeObj(s, 0, 0)) });
-      await h.send({ type: 'importAnswer', answer: { up: 'y', pieces: 'each' } });
       for (let i = 0; i < 600; i++) { const f = h.tick(); if (f) h.giveBack(f); }
       const x = h.service.doc.world.body(0).positions;
       expect(x.every(Number.isFinite)).toBe(true);

@@ -19,7 +19,7 @@ export type Vec3 = [number, number, number];
  * How a file's coordinates became the engine's: turned from Z-up to Y-up (if `up` is 'z'), then
  * moved by −`offset` (centred in x and z, lowest point at y = 0). Lengths are unchanged.
  */
-export interface ImportFrame { up: Up; offset: Vec3 }
+export interface ImportFrame { up: Up; offset: Vec3; /** The file's format (OBJ, PLY, STL, glTF), to remember an up axis chosen later. */ format?: string }
 export const IDENTITY_FRAME: ImportFrame = { up: 'y', offset: [0, 0, 0] };
 
 /** What the page asks about a file before it is imported. */
@@ -31,6 +31,8 @@ export interface ImportQuestion {
   /** The axis offered first, and why. */
   guessedUp: Up;
   guessReason: string;
+  /** The guess is sure enough not to ask (declared by the format, the exporter, the shape, or the user's last answer for this format). */
+  upSure?: boolean;
   /** Largest first. */
   pieces: { vertices: number; faces: number; closed: boolean }[];
   /** Bounding box size (file units, taken as metres). */
@@ -39,9 +41,9 @@ export interface ImportQuestion {
 
 export interface ImportAnswer { up: Up; pieces: 'each' | 'largest' }
 
-/** Whether anything is left to ask: the up axis is not declared, or there are several pieces. */
+/** Whether anything is left to ask: the up axis is unsure, or there are several pieces. */
 export function needsAnswer(q: ImportQuestion): boolean {
-  return q.declaredUp === null || q.pieces.length > 1;
+  return !(q.declaredUp !== null || q.upSure === true) || q.pieces.length > 1;
 }
 
 /** (x, y, z) → (x, z, −y): a Z-up file turned Y-up (−90° about x; windings and lengths kept). */
@@ -62,30 +64,87 @@ export function bounds(lists: ArrayLike<number>[]): { lo: Vec3; hi: Vec3 } {
   return { lo, hi };
 }
 
+/** A guess of the up axis: the axis, why, and whether it is sure enough to import without asking. */
+export interface UpGuess { up: Up; reason: string; sure: boolean }
+
 /**
- * The up axis to offer for a file that does not declare one. A model is usually made standing
- * on its ground plane: if it rests on z = 0 and not on y = 0 it is Z-up, and the other way
- * round; otherwise STL (CAD and 3D printing, Z-up) → Z, OBJ and PLY (Blender's and the scanners'
- * default exports) → Y.
+ * Exporters named in a file's header or comments, with the up axis they write by default:
+ * Blender writes OBJ Y-up (its OBJ exporter's default: −Z forward, Y up) but STL and PLY in its
+ * own Z-up frame (Y forward, Z up); CAD programs and slicers are Z-up.
  */
-export function guessUp(format: string, lists: ArrayLike<number>[]): { up: Up; reason: string } {
-  const { lo, hi } = bounds(lists);
-  const diag = Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
-  const onPlane = (d: number) => Math.abs(lo[d]) <= 1e-6 * diag;
-  if (onPlane(2) && !onPlane(1)) return { up: 'z', reason: 'it rests on the plane z = 0' };
-  if (onPlane(1) && !onPlane(2)) return { up: 'y', reason: 'it rests on the plane y = 0' };
-  if (format === 'STL') return { up: 'z', reason: 'STL files mostly come from CAD and 3D printing, which are Z-up' };
-  return { up: 'y', reason: `${format} files mostly come Y-up (Blender's and scanners' default)` };
+const EXPORTERS: { re: RegExp; formats: string[]; up: Up; name: string }[] = [
+  { re: /blender/i, formats: ['OBJ'], up: 'y', name: "Blender's OBJ export (Y-up by default)" },
+  { re: /blender/i, formats: ['STL', 'PLY'], up: 'z', name: "Blender's STL and PLY export (Z-up by default)" },
+  { re: /solidworks|autodesk|fusion ?360|inventor|onshape|freecad|openscad|catia|creo|rhino|sketchup|prusaslicer|cura|tinkercad|meshmixer|3ds ?max|zbrush/i,
+    formats: ['STL', 'OBJ', 'PLY'], up: 'z', name: 'a Z-up CAD or 3D-printing program' },
+];
+
+/** Whether the faces at the bottom along axis `d` make a flat base (share of the box's cross-section). */
+function flatBase(lists: ArrayLike<number>[], triangles: ArrayLike<number>[], d: number, lo: number, tol: number): number {
+  let area = 0;
+  lists.forEach((x, k) => {
+    const t = triangles[k];
+    if (!t) return;
+    for (let f = 0; f < t.length; f += 3) {
+      const a = 3 * t[f], b = 3 * t[f + 1], c = 3 * t[f + 2];
+      if (x[a + d] - lo > tol || x[b + d] - lo > tol || x[c + d] - lo > tol) continue;
+      const u = [x[b] - x[a], x[b + 1] - x[a + 1], x[b + 2] - x[a + 2]], v = [x[c] - x[a], x[c + 1] - x[a + 1], x[c + 2] - x[a + 2]];
+      area += 0.5 * Math.hypot(u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]);
+    }
+  });
+  return area;
 }
 
-/** The question for a file the engine has read (`lists`: each piece's positions, as in the file). */
-export function question(name: string, report: FileReport, lists: ArrayLike<number>[]): ImportQuestion {
+/**
+ * The up axis to offer for a file that does not declare one, and whether the guess is sure:
+ * 1. the exporter its header or comments name (`EXPORTERS`);
+ * 2. the shape: a model is made standing on its ground plane — resting on z = 0 and not on
+ *    y = 0 says Z-up (and the other way round); else a flat base (faces lying at the lowest
+ *    level covering ≥ 10 % of the box's cross-section) at min z and not at min y says Z-up
+ *    (and the other way round). Not the flattest extent: a flat figure stands as often as it
+ *    lies (the kangaroo balloon, 2.1 × 1.9 × 0.59 m, stands in Y and is thinnest along z; a
+ *    sheet of cloth lies flat in Y and is thinnest along y);
+ * 3. otherwise unsure: the format's usual convention, STL (CAD and 3D printing) → Z, OBJ and
+ *    PLY (Blender's OBJ export, scanners) → Y, and the page asks (or uses the user's last answer).
+ */
+export function guessUp(format: string, lists: ArrayLike<number>[], triangles: ArrayLike<number>[] = [], header = ''): UpGuess {
+  for (const e of EXPORTERS) if (e.formats.includes(format) && e.re.test(header)) return { up: e.up, reason: `written by ${e.name}`, sure: true };
+  const { lo, hi } = bounds(lists);
+  const ext = [0, 1, 2].map((d) => hi[d] - lo[d]);
+  const diag = Math.hypot(ext[0], ext[1], ext[2]);
+  const onPlane = (d: number) => Math.abs(lo[d]) <= 1e-6 * diag;
+  if (onPlane(2) && !onPlane(1)) return { up: 'z', reason: 'it rests on the plane z = 0', sure: true };
+  if (onPlane(1) && !onPlane(2)) return { up: 'y', reason: 'it rests on the plane y = 0', sure: true };
+  const tol = 1e-4 * diag;
+  const base = (d: number) => flatBase(lists, triangles, d, lo[d], tol) >= 0.1 * ext[(d + 1) % 3] * ext[(d + 2) % 3];
+  const [by, bz] = [base(1), base(2)];
+  if (bz && !by) return { up: 'z', reason: 'its flat base is at its lowest z', sure: true };
+  if (by && !bz) return { up: 'y', reason: 'its flat base is at its lowest y', sure: true };
+  if (format === 'STL') return { up: 'z', reason: 'STL files mostly come from CAD and 3D printing, which are Z-up', sure: false };
+  return { up: 'y', reason: `${format} files mostly come Y-up (Blender's OBJ export and scanners)`, sure: false };
+}
+
+/** A file's first bytes as text (headers and comments name their exporter): at most `n` bytes, printable ASCII only. */
+export function headerText(data: Uint8Array, n = 4096): string {
+  let s = '';
+  for (let i = 0; i < Math.min(n, data.length); i++) { const c = data[i]; s += c >= 32 && c < 127 ? String.fromCharCode(c) : ' '; }
+  return s;
+}
+
+/**
+ * The question for a file the engine has read (`lists`: each piece's positions, as in the file;
+ * `triangles` its faces; `header` its first bytes as text). `remembered`: the user's last up
+ * axis per format, which settles an unsure guess without asking.
+ */
+export function question(name: string, report: FileReport, lists: ArrayLike<number>[], triangles: ArrayLike<number>[] = [], header = '', remembered: Record<string, Up> = {}): ImportQuestion {
   const format = report.format ?? '?';
   const declaredUp = report.up_axis === 'unknown' ? null : report.up_axis;
-  const guess = declaredUp ? { up: declaredUp, reason: `${format} files are Y-up by specification` } : guessUp(format, lists);
+  let guess: UpGuess = declaredUp ? { up: declaredUp, reason: `${format} files are Y-up by specification`, sure: true } : guessUp(format, lists, triangles, header);
+  const last = remembered[format];
+  if (!guess.sure && (last === 'y' || last === 'z')) guess = { up: last, reason: `as you chose for your last ${format} file`, sure: true };
   const { lo, hi } = bounds(lists);
   return {
-    name, format, declaredUp, guessedUp: guess.up, guessReason: guess.reason,
+    name, format, declaredUp, guessedUp: guess.up, guessReason: guess.reason, upSure: guess.sure,
     pieces: report.pieces.map((p) => ({ vertices: p.vertices, faces: p.faces, closed: p.closed })),
     size: [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]],
   };

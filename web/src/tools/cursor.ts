@@ -11,6 +11,7 @@ import type { Tool, ToolContext } from './tool';
 import { reflect, reflectVector, reflections, type Symmetry } from './symmetry';
 import { BrushRing } from '../view/ring';
 import { brushUnit } from './scale';
+import { bodyOf, pickBody } from './pick';
 
 /** The brush radius's limits on keys and B (m) for a model of unit 1 m (tools/scale.ts). */
 export const RADIUS_MIN = 0.02;
@@ -102,12 +103,12 @@ export class BrushCursor {
     if (!this.moved && !bodyMoved) return;
     this.moved = false;
     const v = this.ctx.viewport;
-    const hit = this.last && !this.ctx.tools.isDragging ? v.pick(this.last) : null;
+    const hit = this.last && !this.ctx.tools.isDragging ? pickBody(v, this.last) : null;
     if (!hit || !hit.face) {
       if (this.ring.shown) { this.ring.hide(); v.invalidate(); }
       return;
     }
-    const sym: Symmetry | undefined = this.ctx.symmetry();
+    const sym: Symmetry | undefined = this.ctx.symmetry(bodyOf(hit));
     const signs = sym ? reflections(sym.axes) : [[1, 1, 1] as [number, number, number]];
     const centre = sym?.centre ?? [0, 0, 0];
     const p = hit.point, n = hit.face.normal;

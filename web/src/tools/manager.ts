@@ -3,6 +3,7 @@
 // controls have the pointer; a second finger is the camera's too (turn and pinch-zoom).
 
 import type { Tool, ToolContext } from './tool';
+import { pickBody } from './pick';
 
 export class ToolManager {
   private active: Tool;
@@ -44,7 +45,7 @@ export class ToolManager {
     // A second finger: the camera's gesture (turn, pinch-zoom), not a stroke; one under way ends.
     if (!ev.isPrimary) { this.onUp(); return; }
     if (ev.button !== 0 || !this.enabled()) return;
-    const hit = this.ctx.viewport.pick(ev);
+    const hit = pickBody(this.ctx.viewport, ev); // any body: the stroke acts on the one under the pointer
     if (!hit && !this.active.anywhere) return;
     // A tool that can do nothing now (a drag while paused) says so and takes nothing.
     if (!this.allowed(this.active)) { ev.stopImmediatePropagation(); ev.preventDefault(); return; }

@@ -10,6 +10,7 @@ import type { Command, StrokeTool, Vec3 } from '../protocol';
 import type { Viewport } from '../view/viewport';
 import type { Symmetry } from './symmetry';
 import { sig3 } from '../format';
+import { bodyOf, pickBody } from './pick';
 
 export interface Brush {
   /** Radius of the brush (m), shared by the tools. */
@@ -37,8 +38,10 @@ export interface ToolContext {
   body(): BodyView;
   /** Send a stroke command to the simulation. */
   send(cmd: Command): void;
-  /** Mirror symmetry for a stroke starting now (undefined: off). */
-  symmetry(): Symmetry | undefined;
+  /** Mirror symmetry for a stroke starting now on body `k` (undefined: off). */
+  symmetry(k?: number): Symmetry | undefined;
+  /** Body `k`'s positions as drawn (the pieces of an import, a scene's bodies). */
+  positionsOf?(k: number): ArrayLike<number>;
   /** Tell the user something (why a tool did nothing). */
   message(text: string, kind?: 'info' | 'warn' | 'error'): void;
 }
@@ -91,6 +94,8 @@ export abstract class BaseTool implements Tool {
   protected dragging = false;
   /** Modifier (Shift) inverts the brush: deflate, lighter, unpin. */
   protected inverted = false;
+  /** The body the stroke acts on: the one picked when it began (tools/pick.ts). */
+  protected body = 0;
 
   connect(ctx: ToolContext): void { this.ctx = ctx; }
   disconnect(): void { if (this.dragging) this.end(); this.ctx = null; }
@@ -102,7 +107,7 @@ export abstract class BaseTool implements Tool {
    */
   refusal(hit: THREE.Intersection): string | null {
     const ctx = this.ctx!;
-    const x = ctx.body().positions, p = hit.point, r = ctx.brush.radius;
+    const x = ctx.positionsOf?.(bodyOf(hit)) ?? ctx.body().positions, p = hit.point, r = ctx.brush.radius;
     let nearest = Infinity;
     for (let i = 0; i < x.length; i += 3) nearest = Math.min(nearest, Math.hypot(x[i] - p.x, x[i + 1] - p.y, x[i + 2] - p.z));
     if (nearest < r) return null;
@@ -114,15 +119,16 @@ export abstract class BaseTool implements Tool {
     if (!hit) return false;
     this.inverted = ev.shiftKey;
     this.dragging = true;
+    this.body = bodyOf(hit);
     ctx.send({ type: 'strokeStart', tool: this.name, point: point(hit.point), radius: ctx.brush.radius, strength: this.strength, inverted: this.inverted,
-      mirror: ctx.symmetry(), pressure: penPressure(ev) });
+      mirror: ctx.symmetry(this.body), pressure: penPressure(ev), body: this.body });
     return true;
   }
 
   move(ev: PointerEvent): void {
     if (!this.dragging || !this.ctx) return;
     this.inverted = ev.shiftKey;
-    const hit = this.ctx.viewport.pick(ev);
+    const hit = pickBody(this.ctx.viewport, ev, this.body);
     this.ctx.send({ type: 'strokeMove', point: hit ? point(hit.point) : null, inverted: this.inverted, pressure: penPressure(ev) });
   }
 

@@ -75,7 +75,7 @@ export class CameraRig {
     // What the user moved the target by (a pan) is kept; a turn or a zoom keeps the target, and
     // the model's own motion meanwhile is not the user's.
     if (this.moving) this.offset.add(this.target).sub(this.startTarget);
-    else this.offset.copy(this.target).sub(this.seen);
+    else this.reanchor = true;
     this.moving = false;
     for (const f of this.settled) f();
   };
@@ -85,10 +85,10 @@ export class CameraRig {
   // ----- following the model (a body the wind blows away, one that falls, stays in view) -----
   /** The user is moving the camera. */
   private moving = false;
-  /** The model's centre as last seen (m). */
-  private seen = new THREE.Vector3(0, 0.8, 0);
   /** Where the user put the target relative to the model's centre (a pan): kept while it moves. */
   private offset = new THREE.Vector3();
+  /** The view was just set (framed, restored, a new model): the next centre seen is where it keeps the model. */
+  private reanchor = true;
   private followedAt = performance.now();
 
   /**
@@ -99,9 +99,9 @@ export class CameraRig {
    * a grab. The zone keeps a press or a grab's wobble from moving the view.
    */
   follow(centre: THREE.Vector3, now = performance.now()): void {
-    this.seen.copy(centre);
     const dt = Math.min(0.25, Math.max(0, (now - this.followedAt) / 1000));
     this.followedAt = now;
+    if (this.reanchor) { this.offset.copy(this.target).sub(centre); this.reanchor = false; return; }
     if (this.moving || !this.controls.enabled) return;
     const away = centre.clone().add(this.offset).sub(this.target);
     const len = away.length(), zone = FOLLOW_ZONE * this.radius;
@@ -149,8 +149,7 @@ export class CameraRig {
   /** The model's bounding sphere changed (a new model): the zoom limits follow it. */
   setModel(centre: THREE.Vector3, radius: number): void {
     this.centre.copy(centre);
-    this.seen.copy(centre);
-    this.offset.copy(this.target).sub(centre);
+    this.reanchor = true;
     this.radius = Math.max(radius, 1e-6);
     this.limit();
   }
@@ -198,7 +197,7 @@ export class CameraRig {
     this.controls.target.fromArray(s.target);
     this.camera.lookAt(this.controls.target);
     this.controls.update();
-    this.offset.copy(this.target).sub(this.seen);
+    this.reanchor = true;
     this.changed();
   }
 

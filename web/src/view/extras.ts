@@ -21,6 +21,7 @@ export class SceneExtras {
       g.setAttribute('position', new THREE.BufferAttribute(new Float32Array(3 * body.vertexCount), 3));
       const mesh = new THREE.Mesh(g, new THREE.MeshStandardMaterial({ color: BODY_COLORS[k % BODY_COLORS.length], roughness: 0.55, side: THREE.DoubleSide }));
       mesh.frustumCulled = false;
+      mesh.userData.body = k + 1; // picked by the tools (tools/pick.ts)
       this.group.add(mesh);
       return { count: body.vertexCount, mesh };
     });

@@ -1,6 +1,7 @@
-// The document, in the worker: one engine world (engine/world.ts) — the body the tools shape is
-// body 0, an open scene's other bodies follow — the settings it runs with, undo/redo, and every
-// modeling operation. This is the only module of the page that calls the engine: the rest of
+// The document, in the worker: one engine world (engine/world.ts) — body 0 first (its parameters
+// and statistics are the panel's), an import's other pieces and an open scene's other bodies
+// follow; a stroke acts on the body it started on, Freeze, Reset, Subdivide and Remesh on every
+// body — the settings it runs with, undo/redo, and every modeling operation. This is the only module of the page that calls the engine: the rest of
 // the worker and the whole main thread see the world through the methods below (and strokes
 // through `StrokeBody`).
 //
@@ -23,6 +24,7 @@ import type { MessageKind, SceneInfo, Settings, Stats, Topology, UiState, Vec3 }
 import { makeStroke, type Stroke, type StrokeBody, type StrokeStart } from './strokes';
 import { explainStop, type Change } from './explain';
 import { sketchBalloon, type SketchCommand } from './sketch';
+import { Rewind } from './rewind';
 
 export const HISTORY_STEPS = 200;
 export const HISTORY_BYTES = 512 * 1024 * 1024;
@@ -65,6 +67,8 @@ export class Document {
   readonly settings: Settings = { dt: 1e-3, substeps: 16, realTime: true, playing: true, keepTension: false, model: 'mushroom', frame: null };
   ui: UiState = { brush: { radius: 0.35 }, tool: 'grab', strengths: {} };
   private stroke: Stroke | null = null;
+  /** The body the stroke acts on (the one under the cursor when it began). */
+  private strokeOn = 0;
   private strokeScope: DeltaScope = 'all';
   /** The world's call count when it was last synced. */
   private syncedAt = -1;
@@ -81,6 +85,8 @@ export class Document {
   private changes: Change[] = [];
   /** Part of the body was below the ground when it was last switched on. */
   private groundUnderBody = false;
+  /** Rewind points since the user's last change: where a failed step goes back to (worker/rewind.ts). */
+  readonly rewind = new Rewind();
 
   readonly importer: Importer;
 
@@ -180,6 +186,10 @@ export class Document {
         if ('record' in autosave) this.openRecordOrThrow(autosave.record, false);
         else this.openProjectText(autosave.legacyText, false);
         const kept = 'record' in autosave ? this.takeHistory(autosave.record.history) : 0;
+        // The same model as before the reload: its load serial too, so undoing into the kept
+        // history does not look like another model to the page (which would frame it anew).
+        const opened = 'record' in autosave ? (autosave.record.ui as { opened?: unknown }).opened : undefined;
+        if (typeof opened === 'number' && Number.isFinite(opened)) this.settings.opened = opened;
         this.hooks.message(`restored your last session (autosaved)${kept > 0 ? `, with ${kept} undo ${kept === 1 ? 'step' : 'steps'}` : ''}`);
         return;
       } catch (e) {
@@ -195,6 +205,19 @@ export class Document {
     this.world.restore(this.empty!);
     this.session = null;
     this.settings.frame = null;
+    this.newModel();
+  }
+
+  /**
+   * Another model (loaded, imported, sketched, opened): a new `opened` serial (the page frames
+   * the view on it even when the file has the old one's name), and nothing of the old model's
+   * run carries over: no paused-by-error state, no remembered changes, no rewind points.
+   */
+  private newModel(): void {
+    this.settings.opened = Math.max((this.settings.opened ?? 0) + 1, Date.now());
+    this.changes = [];
+    this.groundUnderBody = false;
+    if (this.pausedByError) { this.pausedByError = false; this.settings.playing = true; }
   }
 
   /** A model built in the world (an import): its name, the settings from the world's dt, its file's frame. */
@@ -238,7 +261,9 @@ export class Document {
   }
 
   /** Read a model file; the page is asked what the file does not say (`importAnswer`). */
-  importFile(name: string, data: ArrayBuffer): void { this.importer.read(name, data); }
+  importFile(name: string, data: ArrayBuffer, remembered?: Record<string, 'y' | 'z'>): void { this.importer.read(name, data, remembered); }
+  /** The imported model turned to another up axis (Model › up axis; undoable). */
+  setUp(up: 'y' | 'z'): void { this.importer.reorient(up); }
   /** The page's answers for the file waiting (null: cancelled). */
   importAnswer(a: ImportAnswer | null): void { this.importer.answer(a); }
 
@@ -290,6 +315,7 @@ export class Document {
   private touched(): void {
     this.topologyVersion++;
     this.bodyVersion++;
+    this.rewind.clear();
   }
 
   /** Change a parameter by its table id (undoable); a refused value is reported and leaves the old one. */
@@ -350,6 +376,7 @@ export class Document {
   setDt(dt: number): void {
     try {
       this.world.setParam(0, 'dt', dt);
+      if (dt !== this.settings.dt) this.rewind.clear();
       this.settings.dt = dt;
     } catch (e) {
       this.hooks.message(errorText(e), 'error');
@@ -395,57 +422,80 @@ export class Document {
 
   // ----- modeling operations --------------------------------------------------------------------
 
+  /** Every body's index: Freeze, Reset, Subdivide and Remesh act on all of them (see `freeze`). */
+  private get everyBody(): number[] { return Array.from({ length: this.world.bodyCount }, (_, i) => i); }
+
   /**
    * Freeze: under gravity the body keeps carrying its weight (no sag); keeping the tension (an
    * option, off by default: see docs/model.md, "Freeze") the gas keeps pressing and the rest
    * lengths are corrected so this shape holds, taut as it is now; otherwise the skin goes slack
    * (P_ref := P).
+   *
+   * Freeze, Reset, Subdivide and Remesh act on every body (an import's pieces, a scene's
+   * bodies), not the one under the cursor: they are panel buttons and keys with no point on the
+   * model, and a multi-piece import is, as Blender selects every object a file brings in, one
+   * model whose pieces the user shapes together (Blender's Apply, Subdivide and Remesh act on
+   * every selected object). The tools act on the piece under the cursor (`strokeStart`).
    */
   freeze(): void {
-    let report: FreezeReport | null = null;
-    if (this.edit('freeze', true, () => { report = this.world.freeze(0, this.world.params(0).gravity !== 0, this.settings.keepTension); })) {
-      const r = report as FreezeReport | null;
-      const kept = this.settings.keepTension && r ? ` (skin taut; residual ${fmt(r.residual)} N of ${fmt(r.load)} N${r.clamped ? `, ${r.clamped} springs at their limit` : ''})` : ' (skin slack)';
-      this.hooks.message(`frozen: this shape is the new rest shape${kept}`);
+    const reports: FreezeReport[] = [];
+    if (this.edit('freeze', true, () => {
+      const underLoad = this.world.params(0).gravity !== 0;
+      for (const b of this.everyBody) reports.push(this.world.freeze(b, underLoad, this.settings.keepTension));
+    })) {
+      const sum = (k: 'residual' | 'load' | 'clamped') => reports.reduce((s, r) => s + (r?.[k] ?? 0), 0);
+      const clamped = sum('clamped');
+      const kept = this.settings.keepTension && reports.length ? ` (skin taut; residual ${fmt(sum('residual'))} N of ${fmt(sum('load'))} N${clamped ? `, ${clamped} springs at their limit` : ''})` : ' (skin slack)';
+      this.hooks.message(`frozen: this shape is the new rest shape${reports.length > 1 ? ` of all ${reports.length} bodies` : ''}${kept}`);
     }
   }
-  reset(): void { this.edit('reset', true, () => this.world.reset(0)); }
+  reset(): void { this.edit('reset', true, () => { for (const b of this.everyBody) this.world.reset(b); }); }
   /**
    * Remesh: even triangles at the body's mean edge length (isotropic remeshing in the core;
    * masses and pins carried to the nearest new vertices), frozen under load under gravity as
-   * Subdivide is, so the shape holds; undoable.
+   * Subdivide is, so the shape holds; undoable. Every body, each at its own mean edge length.
    */
   remesh(): void {
-    const before = this.world.quality(0);
+    const before = this.everyBody.map((b) => this.world.quality(b));
     this.edit('remesh', true, () => {
       this.hooks.progress('remeshing');
       const underLoad = this.world.params(0).gravity !== 0;
-      const gas = this.world.params(0)['gas.ambient'];
-      this.world.remesh(0, before.edge_mean, underLoad);
-      if (!underLoad && typeof gas === 'number') this.world.setParam(0, 'gas.ambient', gas);
+      for (const b of this.everyBody) {
+        const gas = this.world.params(b)['gas.ambient'];
+        this.world.remesh(b, before[b].edge_mean, underLoad);
+        if (!underLoad && typeof gas === 'number') this.world.setParam(b, 'gas.ambient', gas);
+      }
     });
-    const after = this.world.quality(0);
-    this.hooks.message(`remeshed: ${this.vertexCount} vertices; angles below 25°: ${pct(before.small_angle_share)} → ${pct(after.small_angle_share)}, smallest ${before.min_angle_deg.toFixed(0)}° → ${after.min_angle_deg.toFixed(0)}°`);
+    const after = this.everyBody.map((b) => this.world.quality(b));
+    const share = (q: typeof before) => Math.max(...q.map((x) => x.small_angle_share));
+    const least = (q: typeof before) => Math.min(...q.map((x) => x.min_angle_deg));
+    this.hooks.message(`remeshed: ${this.totalVertices} vertices${after.length > 1 ? ` in ${after.length} bodies` : ''}; angles below 25°: ${pct(share(before))} → ${pct(share(after))}, smallest ${least(before).toFixed(0)}° → ${least(after).toFixed(0)}°`);
   }
 
+  /** Vertices of every body. */
+  get totalVertices(): number { return this.everyBody.reduce((n, b) => n + this.world.body(b).vertexCount, 0); }
+
   subdivide(): void {
-    if (this.vertexCount > 200_000) { this.hooks.message('the mesh is already very fine; not subdividing', 'warn'); return; }
+    if (this.totalVertices > 200_000) { this.hooks.message('the mesh is already very fine; not subdividing', 'warn'); return; }
     this.edit('subdivide', true, () => {
       this.hooks.progress('subdividing');
-      const before = this.world.params(0);
-      const dropped = this.world.subdivide(0);
-      // The subdivided body comes plainly frozen at its current shape: springs at rest, the
-      // ambient pressure raised to the gas pressure. Under gravity nothing would then carry the
-      // weight and it would sag (the mushroom to half its height). As Freeze does under gravity:
-      // the gas as it was, and the rest shape frozen under load, so the shape holds.
-      if (before.gravity !== 0) {
-        this.world.setParam(0, 'gas.ambient', before['gas.ambient'] as number);
-        this.world.freeze(0, true);
+      let dropped = 0;
+      for (const b of this.everyBody) {
+        const before = this.world.params(b);
+        dropped += this.world.subdivide(b);
+        // The subdivided body comes plainly frozen at its current shape: springs at rest, the
+        // ambient pressure raised to the gas pressure. Under gravity nothing would then carry the
+        // weight and it would sag (the mushroom to half its height). As Freeze does under gravity:
+        // the gas as it was, and the rest shape frozen under load, so the shape holds.
+        if (before.gravity !== 0) {
+          this.world.setParam(b, 'gas.ambient', before['gas.ambient'] as number);
+          this.world.freeze(b, true);
+        }
       }
-      if (dropped > 0) this.hooks.message(`${dropped} pending scene events of the body no longer fit its mesh and were dropped`, 'warn');
+      if (dropped > 0) this.hooks.message(`${dropped} pending scene events of the bodies no longer fit their meshes and were dropped`, 'warn');
       // Implicit steps keep dt (the parameters do not depend on the resolution); an explicit
       // integrator needs the finer mesh's stable step.
-      if (this.world.params(0).integrator !== 'implicit') this.setDt(Math.min(this.settings.dt, stableDt(this.world, 0)));
+      if (this.world.params(0).integrator !== 'implicit') this.setDt(Math.min(this.settings.dt, ...this.everyBody.map((b) => stableDt(this.world, b))));
       this.settings.substeps = Math.max(1, Math.round(1 / 60 / this.settings.dt));
     });
   }
@@ -454,6 +504,10 @@ export class Document {
 
   strokeStart(s: StrokeStart): void {
     if (this.stroke) this.strokeEnd();
+    const b = s.body ?? 0;
+    if (!Number.isInteger(b) || b < 0 || b >= this.world.bodyCount) { this.hooks.message(`there is no body ${b} to shape`, 'warn'); return; }
+    this.strokeOn = b;
+    this.rewind.clear();
     this.world.mark();
     this.stroke = makeStroke(s);
     // A brush keeps what it painted and the state of those vertices; a drag moves everything.
@@ -475,16 +529,16 @@ export class Document {
   }
   get stroking(): boolean { return this.stroke !== null; }
 
-  /** Body 0 as the strokes see it. */
+  /** The stroke's body as the strokes see it. */
   private strokeBody(): StrokeBody {
-    const w = this.world;
+    const w = this.world, b = this.strokeOn;
     return {
-      get view() { return w.body(0); },
-      applyLoads: () => w.applyLoads(0),
-      scaleRest: (f) => w.scaleRest(0, f),
-      setMasses: (m) => w.setMasses(0, m),
-      setPins: () => w.setPins(0),
-      setTargets: (r) => w.setTargets(0, r),
+      get view() { return w.body(b); },
+      applyLoads: () => w.applyLoads(b),
+      scaleRest: (f) => w.scaleRest(b, f),
+      setMasses: (m) => w.setMasses(b, m),
+      setPins: () => w.setPins(b),
+      setTargets: (r) => w.setTargets(b, r),
     };
   }
 
@@ -504,19 +558,52 @@ export class Document {
   advance(dt: number, n: number): boolean {
     try {
       if (dt !== this.settings.dt) this.setDt(dt);
+      if (this.rewind.size === 0) this.offerRewind();
       const splits = stepSplitting((h, k) => this.stepAt(h, k), dt, n);
       if (splits > 0) this.splitFrame(splits);
+      this.sinceRewind += dt * n;
+      if (this.sinceRewind >= this.rewind.every - 1e-9) this.offerRewind();
       return true;
     } catch (e) {
       this.settings.playing = false;
       this.pausedByError = true;
+      // The engine put the world back to the start of the failing call, which may be collapsing
+      // already: back further, to the last state known good (worker/rewind.ts).
+      const rewoundTo = this.rewindToGood();
       const integrator = String(this.world.params(0).integrator);
       this.hooks.message(explainStop(e, {
         integrator, dt: this.settings.dt, changes: this.changes, groundUnderBody: this.groundUnderBody,
-        stableDt: integrator === 'implicit' ? undefined : stableDt(this.world, 0),
+        stableDt: integrator === 'implicit' ? undefined : stableDt(this.world, 0), rewoundTo,
       }), 'error');
       return false;
     }
+  }
+
+  /** Simulated seconds since the last rewind point was offered. */
+  private sinceRewind = 0;
+  /** A rewind point of the world as it is now, if one is due. */
+  private offerRewind(): void {
+    const w = this.world;
+    this.sinceRewind = 0;
+    this.synced();
+    this.rewind.offer(w.body(0).stats.time,
+      () => this.everyBody.map((b) => w.body(b).stats.volume),
+      () => this.everyBody.map((b) => (w.params(b)['gas.amount'] as number) > 0),
+      () => w.snapshot());
+  }
+
+  /** Restore the last rewind point known good; its simulated time, or undefined if there is none (the engine's rollback stands). */
+  private rewindToGood(): number | undefined {
+    const p = this.rewind.takeGood();
+    if (!p) return undefined;
+    try {
+      this.world.restore(p.snapshot);
+    } catch {
+      this.rewind.clear();
+      return undefined;
+    }
+    this.bodyVersion++;
+    return p.time;
   }
 
   /** `n` steps of `h` (s), the world's dt back to the settings' after a split step. */
@@ -549,9 +636,9 @@ export class Document {
       this.settings.substeps = Math.max(1, Math.round(1 / 60 / opened.dt));
       this.settings.model = name;
       // A scene opens paused at t = 0, so its first events are seen when the user plays it.
+      this.newModel();
       this.settings.playing = false;
       this.pausedByError = false;
-      this.changes = [];
     }, 'all', (why) => `could not open ${name}: ${why} — the current model is unchanged`);
     if (!ok) return false;
     const n = opened.names.length;
@@ -614,6 +701,7 @@ export class Document {
     // Opened: record it as one undo step like any other.
     const settings = { ...this.settings }, scene = this.session;
     this.session = null;
+    this.newModel();
     this.takeUi(meta.name, meta.ui);
     if (undoable) this.history.push(`open ${label ?? meta.name}`, { delta: w.delta('all'), settings, scene });
     this.touched();
@@ -659,7 +747,7 @@ export class Document {
 function validFrame(f: unknown): ImportFrame | null {
   const x = f as ImportFrame | null | undefined;
   if (!x || (x.up !== 'y' && x.up !== 'z') || !Array.isArray(x.offset) || x.offset.length !== 3 || !x.offset.every(Number.isFinite)) return null;
-  return { up: x.up, offset: [x.offset[0], x.offset[1], x.offset[2]] };
+  return { up: x.up, offset: [x.offset[0], x.offset[1], x.offset[2]], ...(typeof x.format === 'string' ? { format: x.format } : {}) };
 }
 
 function fmt(t: number | undefined): string {

@@ -19,6 +19,8 @@ export interface StopContext {
   changes: Change[];
   /** Whether part of the body was below the ground when the ground was last switched on. */
   groundUnderBody?: boolean;
+  /** The simulated time (s) the document went back to, the last state known good (worker/rewind.ts), if it did. */
+  rewoundTo?: number;
 }
 
 /** A change within this much simulated time before the failure is named as its likely cause (s). */
@@ -47,7 +49,8 @@ export function explainStop(e: unknown, ctx: StopContext): string {
   if (!(e instanceof EngineError) || e.kind !== 'step') return `The simulation stopped: ${e instanceof Error ? e.message : String(e)}. Paused.`;
   const cause = String(e.fields.cause ?? '');
   const t = e.time !== undefined ? ` at t = ${sig3(e.time)} s` : '';
-  const back = e.rolledBackTo !== undefined ? ` It was put back to t = ${sig3(e.rolledBackTo)} s and paused.` : ' Paused.';
+  const back = ctx.rewoundTo !== undefined ? ` It was put back to t = ${sig3(ctx.rewoundTo)} s, the last moment it was sound, and paused.`
+    : e.rolledBackTo !== undefined ? ` It was put back to t = ${sig3(e.rolledBackTo)} s and paused.` : ' Paused.';
   const what = cause === 'collapsed' ? `The body turned inside out${t} (its volume fell to zero).`
     : cause === 'not_converged' ? `The implicit solver could not finish a step${t}, even split into 8.`
     : `The simulation blew up${t}.`;
@@ -60,7 +63,7 @@ export function explainStop(e: unknown, ctx: StopContext): string {
   } else if (ctx.integrator !== 'implicit' && ctx.stableDt !== undefined && ctx.dt > ctx.stableDt) {
     why = `Likely cause: the time step ${sig3(ctx.dt)} s is larger than the ${ctx.integrator} integrator's stable step (${sig3(ctx.stableDt)} s) here. Choose the implicit integrator, or a smaller dt.`;
   } else if (last) {
-    why = `Likely cause: ${describeChange(last)} ${sig3(Math.max(0, (e.time ?? last.time) - last.time))} s before. Undo it with Ctrl+Z, then Space to play.`;
+    why = `Likely cause: ${describeChange(last)}, ${sig3(Math.max(0, (e.time ?? last.time) - last.time))} s before. Undo it with Ctrl+Z, then Space to play.`;
   } else if (ctx.integrator !== 'implicit') {
     why = 'Likely cause: a force too strong for the explicit integrator at this step. The implicit integrator (the default) is stable at any step.';
   } else if (cause === 'collapsed') {

@@ -5,7 +5,7 @@
 
 import { World } from '../engine/world';
 import { FRAME_DT } from '../engine/models';
-import { needsAnswer, place, question, sizeFactor, type ImportAnswer, type ImportQuestion } from '../io/import';
+import { headerText, needsAnswer, place, question, sizeFactor, type ImportAnswer, type ImportQuestion, type Up } from '../io/import';
 import type { MessageKind } from '../protocol';
 import type { Document } from './document';
 
@@ -23,14 +23,19 @@ interface Pending { name: string; lists: Float64Array[]; triangles: Uint32Array[
 
 export class Importer {
   private pending: Pending | null = null;
+  /** The files imported lately, with their answers, by the load they made (`settings.opened`; undo may bring an earlier one back): to turn one to another up axis. */
+  private made = new Map<number, { p: Pending; a: ImportAnswer }>();
 
   constructor(private readonly doc: Document, private readonly hooks: ImporterHooks) {}
 
   /** The file waiting for the page's answer, if any. */
   get waiting(): ImportQuestion | null { return this.pending?.question ?? null; }
 
-  /** Read `data`; ask what the file does not say, or import it at once. */
-  read(name: string, data: ArrayBuffer): void {
+  /**
+   * Read `data`; ask what the file does not say, or import it at once. `remembered`: the user's
+   * last up axis per format (io/upaxis.ts on the page), used when the guess from the file is unsure.
+   */
+  read(name: string, data: ArrayBuffer, remembered: Record<string, Up> = {}): void {
     this.pending = null;
     this.hooks.progress(`importing ${name}`);
     const scratch = World.create();
@@ -40,7 +45,9 @@ export class Importer {
       const lists = bodies.map((b) => b.positions.slice());
       // What the import's own message says anyway (pieces, an open surface) is not repeated.
       const warnings = report.warnings.filter((t) => !/separate pieces|surface is open/.test(t));
-      const p: Pending = { name, lists, triangles: bodies.map((b) => b.triangles.slice()), areas: report.pieces.map((x) => x.area), warnings, question: question(name, report, lists) };
+      const triangles = bodies.map((b) => b.triangles.slice());
+      const q = question(name, report, lists, triangles, headerText(new Uint8Array(data)), remembered);
+      const p: Pending = { name, lists, triangles, areas: report.pieces.map((x) => x.area), warnings, question: q };
       this.pending = p;
       if (needsAnswer(p.question)) this.hooks.ask(p.question);
       else this.answer({ up: p.question.guessedUp, pieces: 'each' });
@@ -58,14 +65,34 @@ export class Importer {
     this.pending = null;
     if (!p) { this.hooks.message('no import is waiting for an answer', 'warn'); return; }
     if (!a) { this.hooks.message(`import of ${p.name} cancelled — the current model is unchanged`); return; }
+    this.build(p, a);
+  }
+
+  /**
+   * The imported model turned to the other up axis (Model › up axis, to fix a wrong guess): built
+   * again from the file as read, with the same pieces, as one undo step (what was done to it since
+   * the import is replaced; Undo brings it back).
+   */
+  reorient(up: Up): void {
+    const l = this.made.get(this.doc.settings.opened ?? -1);
+    if (!l || !this.doc.settings.frame) {
+      this.hooks.message('the up axis applies to an imported model (OBJ, PLY, STL, glTF): import one first', 'warn');
+      return;
+    }
+    if (l.a.up === up) return;
+    this.build(l.p, { ...l.a, up }, `turned ${up === 'z' ? 'from Z-up' : 'back to Y-up as in the file'}`);
+  }
+
+  private build(p: Pending, a: ImportAnswer, why?: string): void {
     const chosen = a.pieces === 'largest' ? [0] : p.lists.map((_, k) => k);
     const { positions, frame } = place(chosen.map((k) => p.lists[k]), a.up);
+    frame.format = p.question.format;
     const size = sizeFactor(positions);
     const area = chosen.reduce((s, k) => s + p.areas[k], 0);
     let gasless = 0;
     const w = this.doc.world;
     this.hooks.progress(`importing ${p.name}`);
-    const ok = this.doc.edit(`import ${p.name}`, true, () => {
+    const ok = this.doc.edit(why ? `up axis ${a.up.toUpperCase()}` : `import ${p.name}`, true, () => {
       this.doc.fresh();
       chosen.forEach((k, i) => {
         const b = w.addMesh(positions[i], p.triangles[k], 1, false);
@@ -77,14 +104,19 @@ export class Importer {
       this.doc.adopt(p.name, frame);
     }, 'all', (why) => `could not import ${p.name}: ${why} — the current model is unchanged`);
     if (!ok) return;
+    this.made.set(this.doc.settings.opened ?? -1, { p, a });
+    // The newest few (each holds its file's pieces).
+    for (const k of this.made.keys()) if (this.made.size > 4) this.made.delete(k);
     this.doc.ui = { ...this.doc.ui, brush: { radius: BRUSH_RADIUS * size } };
     this.doc.hooksUi({ brush: { radius: BRUSH_RADIUS * size } });
     const q = p.question, n = chosen.length;
     const v = chosen.reduce((s, k) => s + q.pieces[k].vertices, 0), f = chosen.reduce((s, k) => s + q.pieces[k].faces, 0);
     const dims = q.size.map((x) => x.toPrecision(3)).join(' × ');
+    // The up axis, and why, when the page did not ask (a wrong guess is fixed in Model › up axis).
+    const upWhy = !needsAnswer(q) && !q.declaredUp && a.up === q.guessedUp ? ` (${q.guessReason}; Model › up axis changes it)` : '';
     const parts = [
-      `imported ${p.name}: ${v} vertices, ${f} faces, ${dims} m as in the file`,
-      a.up === 'z' ? 'turned from Z-up to Y-up' : '',
+      why ? `${p.name} ${why}: re-built from the file (Undo brings the model back as it was)` : `imported ${p.name}: ${v} vertices, ${f} faces, ${dims} m as in the file`,
+      a.up === 'z' ? `turned from Z-up to Y-up${upWhy}` : upWhy ? `Y-up${upWhy}` : '',
       q.pieces.length > 1 ? (n > 1 ? `${n} pieces as ${n} bodies` : `the largest of ${q.pieces.length} pieces`) : '',
       gasless ? `${gasless === n ? '' : `${gasless} of ${n} bodies `}cloth-like (an open surface): no gas` : '',
       (w.params(0).dt as number) < FRAME_DT / 1.5 ? `steps of ${(w.params(0).dt as number).toPrecision(2)} s (finer for its small size)` : '',
@@ -95,6 +127,7 @@ export class Importer {
     const quality = w.quality(0);
     if (quality.poor) parts.push(`uneven triangles (${Math.round(100 * quality.small_angle_share)} % of angles below 25°): Model › Remesh evens them`);
     this.hooks.message(parts.filter(Boolean).join('; '));
-    if (p.warnings.length) this.hooks.message(p.warnings.join('\n'), 'warn');
+    // The file's warnings were said when it was imported, not again when it is turned.
+    if (p.warnings.length && !why) this.hooks.message(p.warnings.join('\n'), 'warn');
   }
 }

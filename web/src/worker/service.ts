@@ -78,7 +78,8 @@ export class Service {
     if (!doc.loaded) { this.message('the engine is still starting; try again in a moment', 'warn'); return; }
     switch (cmd.type) {
       case 'loadBuiltin': return doc.loadBuiltin(cmd.name);
-      case 'import': return doc.importFile(cmd.name, cmd.data);
+      case 'import': return doc.importFile(cmd.name, cmd.data, cmd.upAnswers);
+      case 'setUp': return doc.setUp(cmd.up);
       case 'importAnswer': return doc.importAnswer(cmd.answer);
       case 'record': if (cmd.on) this.recorder.start(doc); else this.recorder.stop(); return;
       case 'exportRecording': return this.exportRecording();

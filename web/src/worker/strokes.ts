@@ -40,6 +40,8 @@ export interface StrokeStart {
   mirror?: Symmetry;
   /** Pen pressure in (0, 1] scaling the strength (1: a mouse). */
   pressure?: number;
+  /** The body it acts on (the one under the cursor; 0 if not given). */
+  body?: number;
 }
 
 export abstract class Stroke {
