@@ -342,10 +342,10 @@ test('the kangaroo stands on its pinned feet, and a material preset keeps a froz
   await page.waitForTimeout(3000);
   const h1 = await height();
   assert.ok(h1 > 0.97 * h0, `clay: height ${h0} → ${h1} m`);
-  // Another model starts with the modeler's own material: the list forgets "clay".
+  // Another model starts with the modeler's own material: the list forgets "clay" and names it.
   await load(page, 'sphere');
-  const shown = await page.locator('.lil-controller', { hasText: 'material' }).locator('select').evaluate((s) => s.selectedIndex);
-  assert.equal(shown, -1, 'no material shown for a fresh model');
+  const shown = await page.locator('.lil-controller', { hasText: 'material' }).locator('select').evaluate((s) => s.options[s.selectedIndex]?.text);
+  assert.equal(shown, 'modeler\'s own', 'a fresh model shows the modeler\'s material');
   assert.deepEqual(errors, []);
   await page.context().close();
 });

@@ -146,7 +146,9 @@ test('press pushes the cap in, the mass brush paints heavier, W blows wind from 
   // The simulation (in its worker) takes the wind; the page shows it with the next frame.
   await page.waitForFunction(() => window.softsculpt.param('windX') !== 0 || window.softsculpt.param('windZ') !== 0);
   const w = await inspect(page, () => [0, 1, 2].map((k) => window.softsculpt.param(['windX', 'windY', 'windZ'][k])));
-  assert.ok(Math.abs(Math.hypot(...w) - 5) < 1e-9, `wind ${w}`);
+  // From calm, W blows at the speed whose drag is a fifth of the body's weight (tools/wind.ts;
+  // the fixed 5 m/s before bent the 1 kg mushroom over): about 1.4 m/s here.
+  assert.ok(Math.hypot(...w) > 0.3 && Math.hypot(...w) < 5, `wind ${w}`);
   await page.waitForTimeout(1500);
   const c1 = (await inspect(page, () => window.softsculpt.stats())).centerOfMass;
   const along = (c1[0] - c0[0]) * w[0] + (c1[2] - c0[2]) * w[2];

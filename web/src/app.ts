@@ -26,7 +26,8 @@ import { baseName } from './project';
 import { sig3 } from './format';
 import { boxCentre, isSymmetric, meanEdge, type Axes, type Symmetry } from './tools/symmetry';
 import { divergingColor } from './tools/brush';
-import { BrushCursor, clampStrength, RADIUS_MAX, RADIUS_MIN } from './tools/cursor';
+import { BrushCursor, clampRadius, clampStrength } from './tools/cursor';
+import { brushUnit, rescaleBrush } from './tools/scale';
 
 const CAMERA_KEY = 'softsculpt.camera';
 /** A model is symmetric if its mirror image matches it to this fraction of its mean edge length. */
@@ -100,7 +101,7 @@ export class App implements ToolContext {
   }
   /** Brush radius × `f` (keys [ and ]), within its range. */
   scaleRadius(f: number): void {
-    this.brush.radius = Math.min(RADIUS_MAX, Math.max(RADIUS_MIN, this.brush.radius * f));
+    this.brush.radius = clampRadius(this.brush.radius * f);
     this.cursor.poke();
     this.sendUi();
   }
@@ -209,12 +210,14 @@ export class App implements ToolContext {
   sendUi(): void { this.send({ type: 'ui', ui: this.ui() }); }
 
   private applyUi(ui: Partial<UiState>): void {
+    brushUnit.tookUi({ radius: !!ui.brush, strengths: !!ui.strengths }); // page leftovers (#10): saved lengths are in the next model's units
     if (ui.brush) this.brush.radius = ui.brush.radius;
     // Clamped to the slider's range: an older project's strength may be in another unit (the
     // press was a pressure in Pa before it was a depth in m).
     for (const t of this.tools.tools) {
       const v = ui.strengths?.[t.name];
-      if (typeof v === 'number' && t.strengthInfo) t.strength = Math.min(Math.max(v, t.strengthInfo.min), t.strengthInfo.max);
+      // (A length is in the units of the model that follows, whose range is not known yet.)
+      if (typeof v === 'number' && t.strengthInfo) t.strength = t.isLength ? v : Math.min(Math.max(v, t.strengthInfo.min), t.strengthInfo.max);
     }
     if (ui.tool) this.tools.select(ui.tool);
     if (Array.isArray(ui.symmetry) && ui.symmetry.length === 3) {
@@ -272,6 +275,8 @@ export class App implements ToolContext {
         const sphere = new Box3().setFromArray(m.all).getBoundingSphere(new Sphere());
         if (Number.isFinite(sphere.radius) && sphere.radius > 0) this.viewport.rig.setModel(sphere.center, sphere.radius);
       }
+      // page leftovers (#10): the brush's lengths follow the model's size (tools/scale.ts).
+      rescaleBrush(this.brush, this.tools.tools, brushUnit.model(this.viewport.modelRadius));
       // Another model (loaded, imported, opened): framed in the view. The same model changed
       // (subdivided, undone) keeps the user's view.
       // A load (even of a file of the old one's name) has its own serial (settings.opened).

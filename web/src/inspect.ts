@@ -59,6 +59,12 @@ export function inspector(app: App) {
     symmetry: () => [...app.symmetryAxes],
     /** Each vertex's strain l/L − 1 while the strain view is on, else []. */
     strain: () => Array.from(m.strain),
+    // --- page leftovers (#10): the overlay and the plots, for e2e/leftovers.test.mjs ---
+    /** Whether the body is drawn with a colour overlay (mass, pins, strain) rather than its plain colour. */
+    overlay: () => app.viewport.surface.material.vertexColors,
+    /** The plots' series as drawn: label and values (oldest first). */
+    plots: () => app.plots.series.map((s) => ({ label: s.label, values: [...app.plots.shown(s)] })),
+    // --- end page leftovers ---
     /** The banner at the top ("Paused — Space to play", an adjusting value) or null. */
     banner: () => app.hud.stateText,
     hintVisible: () => app.hud.hintVisible,

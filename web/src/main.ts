@@ -6,6 +6,7 @@ import { App } from './app';
 import { buildPanel } from './panel';
 import { IMPORT_EXTENSIONS } from './io/import';
 import { inspector } from './inspect';
+import { viewWindSpeed } from './tools/wind';
 
 const HELP = `<h2>SoftSculpt</h2>
 <p>Shape a soft body with the mouse, a pen (pressure sets the strength) or a finger. Drag on empty space to turn the view (right button: pan, wheel: zoom; two fingers: turn and pinch-zoom).</p>
@@ -119,7 +120,8 @@ function main(): void {
       case 'x': case 'X': app.wireframe = !app.wireframe; app.syncScene(); break;
       case 'v': case 'V': app.viewport.resetView(); break;
       case 'e': case 'E': void app.export('obj'); break;
-      case 'w': case 'W': app.windFromView(Math.max(5, app.windStrength)); break;
+      // page leftovers (#10): from calm, W blows at a speed made for the body (tools/wind.ts).
+      case 'w': case 'W': app.windFromView(app.windStrength > 0 ? app.windStrength : viewWindSpeed(app)); break;
       case '[': app.scaleRadius(1 / 1.2); break;
       case ']': app.scaleRadius(1.2); break;
       case '{': app.scaleStrength(1 / 1.2); break;

@@ -6,10 +6,13 @@
 
 import GUI, { type Controller } from 'lil-gui';
 import type { App } from './app';
-import { addParams, takeParams } from './panel-params';
+import { addParams, decimalsFor, takeParams } from './panel-params';
+import { CUSTOM, MaterialTracker, MODELER } from './panel-material';
+import { brushUnit, nice } from './tools/scale';
 import type { ParamValue } from './protocol';
 import { MODELS, type ModelName } from './models';
-import { fmt } from './view/plots';
+import { sig3 } from './format';
+import { viewWindSpeed } from './tools/wind';
 
 export interface PanelActions {
   importFile(): void;
@@ -35,15 +38,27 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   const toolNames = Object.fromEntries(app.tools.tools.map((t) => [`${t.label} (${t.key.toUpperCase()})`, t.name]));
   tip(tools.add(view, 'tool', toolNames).name('tool').onChange((v: string) => app.tools.select(v)),
     app.tools.tools.map((t) => t.tooltip).join('\n'));
-  tip(tools.add(app.brush, 'radius', 0.02, 2, 0.01).name('brush radius (m)').onFinishChange(() => app.sendUi()), 'Brush radius in metres ([ and ] keys)');
-  // The strength slider belongs to the active tool: rebuilt when the tool changes.
+  const radius = tip(tools.add(app.brush, 'radius', 0.02, 2, 0.01).name('brush radius (m)').onFinishChange(() => app.sendUi()),
+    'Brush radius in metres ([ and ] keys); its range follows the model\'s size (0.02–2 m on the built-in models)');
+  /** The brush's length unit the sliders were made for (tools/scale.ts). */
+  let shownUnit = 1;
+  const showUnit = () => {
+    const u = brushUnit.unit;
+    if (u === shownUnit) return;
+    shownUnit = u;
+    radius.min(nice(0.02 * u)).max(nice(2 * u)).step(nice(0.01 * u)).decimals(decimalsFor(2 * u, nice(0.01 * u)));
+    showStrength();
+  };
+  // The strength slider belongs to the active tool: rebuilt when the tool changes, in the same
+  // place (right below the radius: the rows do not move under the mouse).
   let strength: Controller | null = null;
   const showStrength = () => {
     strength?.destroy();
     strength = null;
     const t = app.tools.tool;
     if (!t.strengthInfo) return;
-    strength = tip(tools.add(t, 'strength', t.strengthInfo.min, t.strengthInfo.max).name(t.strengthInfo.label).onFinishChange(() => app.sendUi()), `${t.label} strength: ${t.strengthInfo.label}`);
+    strength = tip(tools.add(t, 'strength', t.strengthInfo.min, t.strengthInfo.max).decimals(decimalsFor(t.strengthInfo.max)).name(t.strengthInfo.label).onFinishChange(() => app.sendUi()), `${t.label} strength: ${t.strengthInfo.label}`);
+    radius.domElement.after(strength.domElement);
   };
   showStrength();
   // Mirror symmetry: strokes also act at the mirror images (X on for a symmetric model).
@@ -58,14 +73,24 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   const model = gui.addFolder('Model');
   tip(model.add(view, 'model', [...MODELS]).name('built-in').onChange((v: ModelName) => app.loadBuiltin(v)), 'Load a built-in model (undoable)');
   // Material presets, from the core (balloon, jelly, clay, cloth, stiff rubber): when they arrive.
+  // The list shows the body's material: the modeler's own, a preset, or custom (panel-material.ts).
   const material = { name: '' };
-  let shownModel = '';
+  const materials = new MaterialTracker();
+  let shownModel: string | null = null;
   let materialList: Controller | null = null;
   const showMaterials = () => {
     if (materialList || app.mirror.presets.length === 0) return;
-    const names = Object.fromEntries(app.mirror.presets.map((p) => [p.name.replace('_', ' '), p.name]));
-    materialList = tip(model.add(material, 'name', names).name('material').onChange((v: string) => { if (v) app.send({ type: 'preset', name: v }); }),
-      `A material preset (undoable), the same at any mesh resolution:\n${app.mirror.presets.map((p) => `${p.name.replace('_', ' ')}: ${p.help.replace(/^material: /, '')}`).join('\n')}`);
+    const names = { 'modeler\'s own': MODELER, ...Object.fromEntries(app.mirror.presets.map((p) => [p.name.replace('_', ' '), p.name])), 'custom (edited)': CUSTOM };
+    materialList = tip(model.add(material, 'name', names).name('material').onChange((v: string) => {
+      if (v === MODELER || v === CUSTOM) {
+        app.message(v === MODELER ? 'the modeler\'s material comes with a newly loaded model; Undo (Ctrl+Z) goes back to it' : 'custom: edit the material in Simulation and Gas');
+        refresh();
+        return;
+      }
+      materials.expect(v, app.mirror.history);
+      app.send({ type: 'preset', name: v });
+    }),
+    `The body's material: the modeler's own (what a model is loaded with), a preset, or custom (a parameter edited). A preset (undoable) is the same at any mesh resolution:\n${app.mirror.presets.map((p) => `${p.name.replace('_', ' ')}: ${p.help.replace(/^material: /, '')}`).join('\n')}`);
     // Just below the model list.
     model.$children.insertBefore(materialList.domElement, model.$children.children[1] ?? null);
   };
@@ -120,9 +145,10 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   tip(gas.add(view, 'volume').name('V (m³)').disable(), 'Live volume used by the gas law');
 
   const wind = gui.addFolder('Wind');
-  tip(wind.add(view, 'windStrength', 0, 30, 0.1).name('strength (m/s)').onFinishChange((s: number) => app.windFromView(s)),
+  tip(wind.add(view, 'windStrength', 0, 30, 0.1).decimals(2).name('strength (m/s)').onFinishChange((s: number) => app.windFromView(s)),
     'Wind speed; the wind blows along the current view direction (the arrow shows it)');
-  tip(wind.add({ f: () => app.windFromView(view.windStrength || 5) }, 'f').name('blow from view (W)'), 'Set the wind direction to the view direction (W)');
+  tip(wind.add({ f: () => app.windFromView(view.windStrength || viewWindSpeed(app)) }, 'f').name('blow from view (W)'),
+    'Set the wind direction to the view direction (W); from calm, at a speed whose drag is a fifth of the body\'s weight');
   tip(wind.add({ f: () => { view.windStrength = 0; app.windFromView(0); } }, 'f').name('calm'), 'No wind');
 
   const display = gui.addFolder('View');
@@ -156,11 +182,16 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
     gravity.on = g() !== 0;
     if (g() !== 0) gravity.last = g();
     if (view.tool !== app.tools.tool.name) showStrength();
+    showUnit();
     view.tool = app.tools.tool.name;
-    // A new model starts with the modeler's material: the material list forgets the last choice.
+    // The material the body has now; a new model (not a scene) starts with the modeler's.
     // (pieces) A load of its own, even of a file of the old one's name (settings.opened).
-    const loadKey = `${app.mirror.settings.model}#${app.mirror.settings.opened ?? ''}`;
-    if (shownModel !== loadKey) { material.name = ''; shownModel = loadKey; }
+    if (app.mirror.vertexCount > 0) {
+      const loadKey = `${app.mirror.settings.model}#${app.mirror.settings.opened ?? ''}`;
+      const fresh = shownModel !== loadKey && app.mirror.scene === null;
+      shownModel = loadKey;
+      material.name = materials.name(app.mirror.params, app.mirror.history, fresh);
+    }
     // The list shows built-in models only: an import or a scene leaves it blank.
     view.model = (MODELS as readonly string[]).includes(app.mirror.settings.model) ? app.mirror.settings.model : '';
     view.windStrength = app.windStrength;
@@ -173,12 +204,15 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
     gui.controllersRecursive().forEach((c) => c.updateDisplay());
   }
   app.onChange(refresh);
-  // Live readouts, a few times a second.
-  setInterval(() => {
+  // Live readouts of the frame the HUD shows, with the same digits (updated with the readout).
+  const live = gas.controllers.filter((c) => c.property === 'pressure' || c.property === 'volume');
+  app.hud.onShow(() => {
     const s = app.mirror.stats;
-    view.pressure = fmt(s.pressure);
-    view.volume = fmt(s.volume);
-    gui.controllersRecursive().forEach((c) => { if (c.property === 'pressure' || c.property === 'volume') c.updateDisplay(); });
-  }, 250);
+    const [pressure, volume] = [sig3(s.pressure), sig3(s.volume)];
+    if (pressure === view.pressure && volume === view.volume) return;
+    view.pressure = pressure;
+    view.volume = volume;
+    for (const c of live) c.updateDisplay();
+  });
   return gui;
 }

@@ -10,11 +10,19 @@ import * as THREE from 'three';
 import type { Tool, ToolContext } from './tool';
 import { reflect, reflectVector, reflections, type Symmetry } from './symmetry';
 import { BrushRing } from '../view/ring';
+import { brushUnit } from './scale';
 import { bodyOf, pickBody } from './pick';
 
+/** The brush radius's limits on keys and B (m) for a model of unit 1 m (tools/scale.ts). */
 export const RADIUS_MIN = 0.02;
 export const RADIUS_MAX = 3;
 const ADJUST_PX = 150;
+
+/** A brush radius within its limits at the current model's unit. */
+export function clampRadius(r: number): number {
+  const u = brushUnit.unit;
+  return Math.min(RADIUS_MAX * u, Math.max(RADIUS_MIN * u, r));
+}
 
 /** Where a strength lies in its range, in [0, 1]: log scale for ranges over a decade (the grab's 1–3000 1/s). */
 export function strengthFraction(t: Tool): number | null {
@@ -65,7 +73,7 @@ export class BrushCursor {
     const a = this.adjusting;
     if (!a) return;
     const v = a.start * Math.exp((x - a.x0) / ADJUST_PX);
-    if (a.what === 'radius') this.ctx.brush.radius = Math.min(RADIUS_MAX, Math.max(RADIUS_MIN, v));
+    if (a.what === 'radius') this.ctx.brush.radius = clampRadius(v);
     else a.tool.strength = clampStrength(a.tool, v);
     this.describe();
   }

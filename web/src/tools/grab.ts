@@ -5,8 +5,6 @@
 
 import * as THREE from 'three';
 import { BaseTool, penPressure, point } from './tool';
-import { verticesAround } from './brush';
-import { bodyOf } from './pick';
 
 /** Default pull: stiff enough that the grabbed point stays within a few pixels of the cursor. */
 export const GRAB_OMEGA = 600;
@@ -25,9 +23,6 @@ export class GrabTool extends BaseTool {
 
   start(hit: THREE.Intersection, ev: PointerEvent): boolean {
     const ctx = this.ctx!;
-    // Nothing under the brush (a tiny brush on a coarse mesh): the trackball takes the drag.
-    const b = bodyOf(hit);
-    if (verticesAround(ctx.positionsOf?.(b) ?? ctx.body().positions, point(hit.point), ctx.brush.radius).indices.length === 0) return false;
     const normal = ctx.viewport.camera.getWorldDirection(new THREE.Vector3());
     this.plane.setFromNormalAndCoplanarPoint(normal, hit.point);
     return super.start(hit, ev);

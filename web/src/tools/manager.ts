@@ -49,6 +49,9 @@ export class ToolManager {
     if (!hit && !this.active.anywhere) return;
     // A tool that can do nothing now (a drag while paused) says so and takes nothing.
     if (!this.allowed(this.active)) { ev.stopImmediatePropagation(); ev.preventDefault(); return; }
+    // Nothing under the brush: said, and the press is nobody's (no stroke, no undo step, no turn).
+    const why = hit ? this.active.refusal?.(hit) : null;
+    if (why) { this.ctx.message(why, 'warn'); ev.stopImmediatePropagation(); ev.preventDefault(); return; }
     if (!this.active.start(hit ?? null, ev)) return;
     this.dragging = this.active;
     this.ctx.viewport.controls.enabled = false;

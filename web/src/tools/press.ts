@@ -4,6 +4,7 @@
 // Released, the dent springs back. Strength: the depth (m) at the brush centre.
 
 import { BaseTool } from './tool';
+import { brushUnit, nice } from './scale';
 
 export class PressTool extends BaseTool {
   readonly name = 'press';
@@ -11,5 +12,7 @@ export class PressTool extends BaseTool {
   readonly key = 'p';
   readonly tooltip = 'Press (P): dent the surface under the brush while held (strength = depth at the centre, m; Shift: outward)';
   strength = 0.15;
-  readonly strengthInfo = { label: 'depth (m)', min: 0.01, max: 0.5 };
+  /** A length: 0.01–0.5 brush units (metres on the built-in models; tools/scale.ts). */
+  readonly isLength = true;
+  get strengthInfo() { return { label: 'depth (m)', min: nice(0.01 * brushUnit.unit), max: nice(0.5 * brushUnit.unit) }; }
 }

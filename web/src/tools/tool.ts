@@ -9,6 +9,7 @@ import type * as THREE from 'three';
 import type { Command, StrokeTool, Vec3 } from '../protocol';
 import type { Viewport } from '../view/viewport';
 import type { Symmetry } from './symmetry';
+import { sig3 } from '../format';
 import { bodyOf, pickBody } from './pick';
 
 export interface Brush {
@@ -41,6 +42,8 @@ export interface ToolContext {
   symmetry(k?: number): Symmetry | undefined;
   /** Body `k`'s positions as drawn (the pieces of an import, a scene's bodies). */
   positionsOf?(k: number): ArrayLike<number>;
+  /** Tell the user something (why a tool did nothing). */
+  message(text: string, kind?: 'info' | 'warn' | 'error'): void;
 }
 
 /** A pen's pressure in (0, 1] (it scales the tool's strength); a mouse or a finger: undefined (full). */
@@ -56,11 +59,18 @@ export interface Tool {
   /** The tool's strength (unit in `strengthInfo`), or null if it has none. */
   strength: number;
   readonly strengthInfo: Strength | null;
+  /** The strength is a length (m): it follows the model's size (tools/scale.ts). */
+  readonly isLength?: boolean;
   connect(ctx: ToolContext): void;
   disconnect(): void;
   dispose(): void;
   /** The tool's drag may start off the body (`start` then gets no hit). */
   readonly anywhere?: boolean;
+  /**
+   * Why a press at `hit` can do nothing (no vertex under the brush), or null. The press is then
+   * the tool's all the same (the view does not turn), the reason is shown and nothing is sent.
+   */
+  refusal?(hit: THREE.Intersection): string | null;
   /** Pointer pressed on the body (or anywhere, for `anywhere` tools): return true to take the drag. */
   start(hit: THREE.Intersection | null, ev: PointerEvent): boolean;
   move(ev: PointerEvent): void;
@@ -90,6 +100,19 @@ export abstract class BaseTool implements Tool {
   connect(ctx: ToolContext): void { this.ctx = ctx; }
   disconnect(): void { if (this.dragging) this.end(); this.ctx = null; }
   dispose(): void { this.disconnect(); }
+
+  /**
+   * A brush with no vertex within its radius of the pressed point would act on nothing and leave
+   * an empty undo step (a small brush on a coarse mesh): say so, with the distance to enlarge it to.
+   */
+  refusal(hit: THREE.Intersection): string | null {
+    const ctx = this.ctx!;
+    const x = ctx.positionsOf?.(bodyOf(hit)) ?? ctx.body().positions, p = hit.point, r = ctx.brush.radius;
+    let nearest = Infinity;
+    for (let i = 0; i < x.length; i += 3) nearest = Math.min(nearest, Math.hypot(x[i] - p.x, x[i + 1] - p.y, x[i + 2] - p.z));
+    if (nearest < r) return null;
+    return `no vertex under the brush (radius ${sig3(r)} m, the nearest is ${sig3(nearest)} m away) — enlarge it with ] or B, or Subdivide (U)`;
+  }
 
   start(hit: THREE.Intersection | null, ev: PointerEvent): boolean {
     const ctx = this.ctx!;

@@ -24,6 +24,11 @@ export const MAX_DISTANCE_RADII = 25;
 /** The turntable's lowest view: just above horizontal (rad from straight down… from the zenith). */
 export const MAX_POLAR = 0.49 * Math.PI;
 
+/** The model's centre may wander this many model radii from where the view keeps it before the camera follows… */
+export const FOLLOW_ZONE = 0.25;
+/** …then the camera closes the excess with this time constant (s): 1 − e^(−Δt/τ) of it per frame. */
+export const FOLLOW_TAU = 0.1;
+
 export interface CameraState { position: number[]; target: number[]; mode: CameraMode }
 
 export class CameraRig {
@@ -58,6 +63,7 @@ export class CameraRig {
     // Touch: one finger on empty space turns the view; two fingers turn and pinch-zoom.
     c.touches = { ONE: THREE.TOUCH.ROTATE, TWO: THREE.TOUCH.DOLLY_ROTATE };
     c.addEventListener('change', this.changed);
+    c.addEventListener('start', this.started);
     c.addEventListener('end', this.ended);
     return c;
   }
@@ -65,7 +71,47 @@ export class CameraRig {
   /** Called when the user has finished moving the camera (a drag or a wheel turn), and after framing. */
   onSettled(f: () => void): void { this.settled.push(f); }
   private settled: (() => void)[] = [];
-  private readonly ended = () => { for (const f of this.settled) f(); };
+  private readonly ended = () => {
+    // What the user moved the target by (a pan) is kept; a turn or a zoom keeps the target, and
+    // the model's own motion meanwhile is not the user's.
+    if (this.moving) this.offset.add(this.target).sub(this.startTarget);
+    else this.reanchor = true;
+    this.moving = false;
+    for (const f of this.settled) f();
+  };
+  private readonly started = () => { this.moving = true; this.startTarget.copy(this.target); };
+  private startTarget = new THREE.Vector3();
+
+  // ----- following the model (a body the wind blows away, one that falls, stays in view) -----
+  /** The user is moving the camera. */
+  private moving = false;
+  /** Where the user put the target relative to the model's centre (a pan): kept while it moves. */
+  private offset = new THREE.Vector3();
+  /** The view was just set (framed, restored, a new model): the next centre seen is where it keeps the model. */
+  private reanchor = true;
+  private followedAt = performance.now();
+
+  /**
+   * The model's centre this frame: when it has left a dead zone of FOLLOW_ZONE model radii around
+   * where the view keeps it (the target less the user's pan), the camera slides with it, keeping
+   * its direction and distance, closing the gap with time constant FOLLOW_TAU (no jump). Not
+   * while the user moves the camera or a tool drags (`enabled` off): the view never moves under
+   * a grab. The zone keeps a press or a grab's wobble from moving the view.
+   */
+  follow(centre: THREE.Vector3, now = performance.now()): void {
+    const dt = Math.min(0.25, Math.max(0, (now - this.followedAt) / 1000));
+    this.followedAt = now;
+    if (this.reanchor) { this.offset.copy(this.target).sub(centre); this.reanchor = false; return; }
+    if (this.moving || !this.controls.enabled) return;
+    const away = centre.clone().add(this.offset).sub(this.target);
+    const len = away.length(), zone = FOLLOW_ZONE * this.radius;
+    if (!(len > zone)) return;
+    away.multiplyScalar((1 - Math.exp(-dt / FOLLOW_TAU)) * (1 - zone / len));
+    this.target.add(away);
+    this.camera.position.add(away);
+    this.controls.update();
+    this.changed();
+  }
 
   private makeTrackball(): TrackballControls {
     const c = new TrackballControls(this.camera, this.dom);
@@ -74,6 +120,7 @@ export class CameraRig {
     c.zoomSpeed = 1.2;
     c.panSpeed = 0.6;
     c.addEventListener('change', this.changed);
+    c.addEventListener('start', this.started);
     c.addEventListener('end', this.ended);
     return c;
   }
@@ -102,6 +149,7 @@ export class CameraRig {
   /** The model's bounding sphere changed (a new model): the zoom limits follow it. */
   setModel(centre: THREE.Vector3, radius: number): void {
     this.centre.copy(centre);
+    this.reanchor = true;
     this.radius = Math.max(radius, 1e-6);
     this.limit();
   }
@@ -149,6 +197,7 @@ export class CameraRig {
     this.controls.target.fromArray(s.target);
     this.camera.lookAt(this.controls.target);
     this.controls.update();
+    this.reanchor = true;
     this.changed();
   }
 

@@ -63,9 +63,14 @@ export class Hud {
     }
   }
 
+  /** Runs after every readout update, so other readings (the panel's P and V) show the same frame. */
+  private shown: (() => void)[] = [];
+  onShow(f: () => void): void { this.shown.push(f); }
+
   show(lines: string[]): void {
     const text = lines.join('\n');
     if (this.readout.textContent !== text) this.readout.textContent = text;
+    for (const f of this.shown) f();
   }
 
   /** A long operation under way ("subdividing", with the fraction done if known), or none (null). */

@@ -8,6 +8,12 @@ export interface Series {
   group?: string;
   /** Shown after the label while the latest value is negative: why it can be. */
   whyNegative?: string;
+  /**
+   * Drawn relative to its first value since the plots were cleared (a new model): the core's gas
+   * energy −nRT ln(V/V0) + P_ref (V − V0) counts from the mesh as loaded, before the gas inflated
+   * it (−5.9 J for the modeler's mushroom as shown); what a user reads is the change from there.
+   */
+  fromFirst?: boolean;
 }
 
 /**
@@ -25,23 +31,33 @@ export class Plots {
     { label: 'pressure Pa', color: '#ffd27f', values: [] },
     { label: 'kinetic J', color: '#ff8f8f', values: [], group: 'energy' },
     { label: 'elastic J', color: '#9dff8f', values: [], group: 'energy', whyNegative: '< 0: a frozen load is doing work' },
-    { label: 'gas J', color: '#d59dff', values: [], group: 'energy', whyNegative: '< 0: expanded since loading or the last freeze' },
+    { label: 'gas J', color: '#d59dff', values: [], group: 'energy', fromFirst: true, whyNegative: '< 0: the gas expanded since the model was shown' },
   ];
   private times: number[] = [];
+  /** The first value of each `fromFirst` series since the last clear (NaN: none yet). */
+  private readonly first = this.series.map(() => NaN);
 
   constructor(readonly canvas: HTMLCanvasElement, private readonly windowSeconds = 10) {
     this.ctx = canvas.getContext('2d')!;
   }
 
+  /** The values of `s` as drawn (a `fromFirst` series: relative to its first). */
+  shown(s: Series): number[] { return s.values; }
+
   clear(): void {
     this.times = [];
     for (const s of this.series) s.values = [];
+    this.first.fill(NaN);
   }
 
   push(time: number, values: number[]): void {
     if (this.times.length && time < this.times[this.times.length - 1]) this.clear();
     this.times.push(time);
-    values.forEach((v, i) => this.series[i].values.push(v));
+    values.forEach((v, i) => {
+      const s = this.series[i];
+      if (s.fromFirst && Number.isNaN(this.first[i]) && Number.isFinite(v)) this.first[i] = v;
+      s.values.push(s.fromFirst ? v - this.first[i] : v);
+    });
     while (this.times.length > 2 && this.times[0] < time - this.windowSeconds) {
       this.times.shift();
       for (const s of this.series) s.values.shift();
@@ -54,7 +70,12 @@ export class Plots {
     let lo = Infinity, hi = -Infinity;
     for (const v of vals) { lo = Math.min(lo, v); hi = Math.max(hi, v); }
     let scale = Math.max(Math.abs(lo), Math.abs(hi));
-    if (s.group) for (const o of this.series) if (o.group === s.group) for (const v of o.values) scale = Math.max(scale, Math.abs(v));
+    // The group's magnitude in the core's own terms (a `fromFirst` series with its first value
+    // added back: 30 J of gas is the scale its wiggles are noise against, shown from 0 or not).
+    if (s.group) this.series.forEach((o, k) => {
+      const at = o.fromFirst && Number.isFinite(this.first[k]) ? this.first[k] : 0;
+      if (o.group === s.group) for (const v of o.values) scale = Math.max(scale, Math.abs(v + at));
+    });
     const floor = Math.max(NOISE_FRACTION * scale, 1e-12);
     if (hi - lo < floor) {
       const mid = (hi + lo) / 2;

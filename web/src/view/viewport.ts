@@ -5,6 +5,7 @@
 import * as THREE from 'three';
 import { CameraRig } from './camera';
 import { SceneExtras } from './extras';
+import { lengthUnit } from '../tools/scale';
 
 export class Viewport {
   readonly renderer: THREE.WebGLRenderer;
@@ -67,13 +68,18 @@ export class Viewport {
   resetView(): void { this.rig.frame(); }
 
   /** The model's bounding sphere (from the drawn positions): zoom limits follow it. */
+  /** The bounding-sphere radius (m) of the model when it was last measured. */
+  modelRadius = 0;
+
   measureModel(): void {
     const g = this.surface.geometry;
     g.computeBoundingSphere();
     if (g.boundingSphere && Number.isFinite(g.boundingSphere.radius)) this.rig.setModel(g.boundingSphere.center, g.boundingSphere.radius);
     // The ground grid follows the model's size (imports keep their units): 20 × 20 squares
-    // of a power of ten metres near the model's diameter / 2.5 (1 m for the built-in models).
-    const grid = g.boundingSphere && g.boundingSphere.radius > 0 ? Math.pow(10, Math.round(Math.log10(g.boundingSphere.radius / 1.25))) : 1;
+    // of a power of ten metres near the model's diameter / 2.5 (1 m for the built-in models),
+    // the brush's length unit too (tools/scale.ts).
+    this.modelRadius = g.boundingSphere?.radius ?? 0;
+    const grid = lengthUnit(this.modelRadius);
     this.grid.scale.setScalar(grid);
     this.groundPlane.scale.setScalar(grid);
   }
@@ -104,6 +110,8 @@ export class Viewport {
     this.invalidate();
     this.surface.geometry.computeVertexNormals();
     this.surface.geometry.computeBoundingSphere();
+    const sphere = this.surface.geometry.boundingSphere;
+    if (sphere && Number.isFinite(sphere.radius)) this.rig.follow(sphere.center);
   }
 
   /** Per-vertex colours (rgb in [0, 1]) or null for the plain material. */
