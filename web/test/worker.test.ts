@@ -175,14 +175,15 @@ describe('worker service', () => {
     expect(h.tick()!.topology!.vertexCount).toBe(8);
     h.flushTimers();
     expect(h.saved.length).toBe(1);
-    await h.send({ type: 'saveProject', ui: { brush: { radius: 0.5 }, tool: 'press', strengths: { press: 99 } } });
+    await h.send({ type: 'saveProject', ui: { brush: { radius: 0.5 }, tool: 'press', strengths: { press: 99 }, symmetry: [false, true, false] } });
     const d = h.replies.find((r) => r.type === 'download') as Reply & { type: 'download' };
     expect(d.filename).toBe('cube.softsculpt.json');
     await h.send({ type: 'loadBuiltin', name: 'sphere' });
     expect(h.service.doc.vertexCount).toBe(642);
     await h.send({ type: 'openProject', name: 'cube.softsculpt.json', text: d.text });
     expect(h.service.doc.vertexCount).toBe(8);
-    expect(h.replies.filter((r) => r.type === 'ui').at(-1)).toEqual({ type: 'ui', ui: { brush: { radius: 0.5 }, tool: 'press', strengths: { press: 99 } } });
+    // The page's state comes back with it, the mirror axes too.
+    expect(h.replies.filter((r) => r.type === 'ui').at(-1)).toEqual({ type: 'ui', ui: { brush: { radius: 0.5 }, tool: 'press', strengths: { press: 99 }, symmetry: [false, true, false] } });
   });
 
   it('a reload keeps the undo steps: the autosave holds them with the snapshot, and undo then works', async () => {

@@ -729,6 +729,7 @@ export class Document {
     if (u.brush && typeof u.brush.radius === 'number') page.brush = { radius: u.brush.radius };
     if (typeof u.tool === 'string') page.tool = u.tool;
     if (u.strengths && typeof u.strengths === 'object') page.strengths = u.strengths;
+    if (Array.isArray(u.symmetry) && u.symmetry.length === 3 && u.symmetry.every((a) => typeof a === 'boolean')) page.symmetry = u.symmetry;
     this.ui = { ...this.ui, ...page };
     this.hooks.ui(page);
   }
