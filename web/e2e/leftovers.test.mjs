@@ -337,6 +337,11 @@ test('the brush\'s ranges follow the model\'s size: a 5 cm ball gets a brush and
   await page.keyboard.press('p');
   const depth = await slider('depth');
   assert.ok(depth.max <= 0.06 && depth.value < 0.03, `press depth ${depth.value} m, up to ${depth.max} m on a 5 cm ball`);
+  // The gas amount a 5 cm ball holds (n ∝ volume: ~1e-6 of a built-in's) reads as a number,
+  // not 0.0000 (the slider's range follows the model's unit cubed); shown to within 1 %.
+  const n = await inspect(page, () => window.softsculpt.param('gas.amount'));
+  const shownN = Number(await control(page, 'amount n').first().locator('input').inputValue());
+  assert.ok(n > 0 && Math.abs(shownN - n) <= 0.01 * n, `the gas amount ${n} mol shows as ${shownN}`);
   // The ring on the ball: the brush covers part of it, not all.
   const top = await topVertex(page);
   await page.mouse.move(top.screen.x, top.screen.y + 20);

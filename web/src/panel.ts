@@ -6,7 +6,7 @@
 
 import GUI, { type Controller } from 'lil-gui';
 import type { App } from './app';
-import { addParams, decimalsFor, takeParams } from './panel-params';
+import { addParams, decimalsFor, scaleSliders, takeParams } from './panel-params';
 import { CUSTOM, MaterialTracker, MODELER } from './panel-material';
 import { brushUnit, nice } from './tools/scale';
 import type { ParamValue } from './protocol';
@@ -47,6 +47,7 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
     if (u === shownUnit) return;
     shownUnit = u;
     radius.min(nice(0.02 * u)).max(nice(2 * u)).step(nice(0.01 * u)).decimals(decimalsFor(2 * u, nice(0.01 * u)));
+    scaleSliders(gui.controllersRecursive(), u); // the gas amount and the contact thickness
     showStrength();
   };
   // The strength slider belongs to the active tool: rebuilt when the tool changes, in the same
@@ -169,8 +170,9 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   function refresh(): void {
     if (!paramsBuilt && app.mirror.table.length > 0) {
       takeParams(p, app.mirror.params);
-    showMaterials();
+      showMaterials();
       addParams(app.mirror.table, { sim, world, gas, wind }, p, (id, v) => app.setParam(id, v), tip);
+      scaleSliders(gui.controllersRecursive(), shownUnit);
       paramsBuilt = true;
     }
     takeParams(p, app.mirror.params);

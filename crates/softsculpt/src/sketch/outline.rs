@@ -85,7 +85,7 @@ impl Outline {
                 let adjacent = j == i + 1 || (i == 0 && j == n - 1);
                 if !adjacent && segments_meet(p[i], p[(i + 1) % n], p[j], p[(j + 1) % n]) {
                     return Err(MeshError::Invalid(format!(
-                        "the outline crosses itself: edge {} ({}, {})–({}, {}) meets edge {} (points are numbered from 1)",
+                        "the outline crosses itself: edge {} ({:.3}, {:.3})–({:.3}, {:.3}) m meets edge {} (points are numbered from 1)",
                         i + 1, p[i][0], p[i][1], p[(i + 1) % n][0], p[(i + 1) % n][1], j + 1
                     )));
                 }
