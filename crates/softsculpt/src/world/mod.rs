@@ -204,10 +204,25 @@ impl World {
             }
         }
 
-        // Stage 1: each body's forces and integration.
-        for b in &mut self.bodies {
-            b.integrate(&self.settings, dt, step, time, &self.threads).map_err(|e| fail(None, e))?;
+        // Stage 1: each body's forces and integration; self-colliding bodies stepped implicitly
+        // carry their self-contacts into the solve (found here, dropped after: `contacts.rs`).
+        let self_contacts = self.settings.integrator == Integrator::Implicit && self.bodies.iter().any(|b| b.material.self_collision);
+        if self_contacts {
+            self.find_self_contacts();
         }
+        let mut stepped = Ok(());
+        for b in &mut self.bodies {
+            stepped = b.integrate(&self.settings, dt, step, time, &self.threads);
+            if stepped.is_err() {
+                break;
+            }
+        }
+        if self_contacts {
+            for b in &mut self.bodies {
+                b.model.self_contacts.list.clear();
+            }
+        }
+        stepped.map_err(|e| fail(None, e))?;
 
         // Stage 2: ground.
         if let Some(g) = self.settings.ground {
