@@ -184,3 +184,75 @@ impl ContactTerms {
         pq
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Eight vertices at pseudo-random positions (m) and a vertex–face and an edge–edge contact
+    /// among them, both within the thickness.
+    fn setup() -> (SelfContacts, Vec<f64>) {
+        let mut seed = 7u64;
+        let mut rnd = || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let x: Vec<f64> = (0..24).map(|_| 0.01 * rnd()).collect();
+        let unit = |v: [f64; 3]| {
+            let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+            [v[0] / l, v[1] / l, v[2] / l]
+        };
+        let list = vec![
+            SelfContact { idx: [0, 1, 2, 3], g: [1.0, -0.2, -0.5, -0.3], n: unit([0.3, 1.0, -0.2]), k: 700.0 },
+            SelfContact { idx: [4, 5, 6, 7], g: [0.6, 0.4, -0.7, -0.3], n: unit([-0.5, 0.2, 1.0]), k: 900.0 },
+        ];
+        (SelfContacts { list, thickness: 0.05 }, x)
+    }
+
+    /// The contact forces sum to zero (Σ g = 0: momentum is conserved; rounding: a few ulps of
+    /// the forces, 1e-12 relative), they are minus the gradient of E = Σ ½ k_c (h − d)² (central
+    /// differences with step 1e-7 m: the energy is quadratic between kinks, so the difference
+    /// is exact up to rounding of E / step ≈ 1e-16 × 1 J / 1e-7 m = 1e-9 N), and the matrix
+    /// dt² Σ k_c u uᵀ is symmetric and gives no force to a uniform translation (every
+    /// vertex free for that check).
+    #[test]
+    fn contact_terms_conserve_momentum_and_are_the_energy_derivatives() {
+        let (sc, x) = setup();
+        let n = 8;
+        let dt = 1.0 / 60.0;
+        let mut ct = ContactTerms::default();
+        ct.eval(&sc, n, dt, &x);
+        assert!(ct.kk.iter().all(|&k| k > 0.0), "both contacts within the thickness");
+        let (mut sum, mut mag) = ([0.0; 3], 0.0);
+        for f in &ct.f {
+            for q in 0..3 {
+                sum[q] += f[q];
+                mag += f[q].abs();
+            }
+        }
+        assert!(sum.iter().all(|s| s.abs() <= 1e-12 * mag), "Σ f = {sum:?} of {mag} N");
+        let energy = |x: &[f64]| sc.list.iter().map(|c| 0.5 * c.k * (sc.thickness - along(c, x)).max(0.0).powi(2)).sum::<f64>();
+        for k in 0..3 * n {
+            let (mut xp, mut xm) = (x.clone(), x.clone());
+            xp[k] += 1e-7;
+            xm[k] -= 1e-7;
+            let grad = (energy(&xp) - energy(&xm)) / 2e-7;
+            assert!((ct.f[k / 3][k % 3] + grad).abs() < 1e-6, "coordinate {k}: force {} against −∇E {}", ct.f[k / 3][k % 3], -grad);
+        }
+        // Symmetry and translation invariance of the product.
+        let free = vec![1.0; n];
+        let p: Vec<f64> = (0..3 * n).map(|k| (k as f64 * 0.37).sin()).collect();
+        let q: Vec<f64> = (0..3 * n).map(|k| (k as f64 * 0.91).cos()).collect();
+        let (mut ap, mut aq) = (vec![0.0; 3 * n], vec![0.0; 3 * n]);
+        ct.product::<false>(&sc, &free, &p, &mut ap);
+        ct.product::<false>(&sc, &free, &q, &mut aq);
+        let (qap, paq): (f64, f64) = (q.iter().zip(&ap).map(|(a, b)| a * b).sum(), p.iter().zip(&aq).map(|(a, b)| a * b).sum());
+        assert!((qap - paq).abs() <= 1e-12 * (qap.abs() + paq.abs()), "qᵀAp {qap} vs pᵀAq {paq}");
+        let t: Vec<f64> = (0..3 * n).map(|k| [0.3, -1.0, 0.7][k % 3]).collect();
+        let mut at = vec![0.0; 3 * n];
+        let tat = ct.product::<false>(&sc, &free, &t, &mut at);
+        assert!(at.iter().all(|v| v.abs() < 1e-12) && tat.abs() < 1e-12, "a translation is pushed: {at:?}");
+        ct.clear(&sc);
+        assert!(ct.f.iter().all(|f| *f == [0.0; 4]) && ct.blk.iter().all(|b| *b == [0.0; 6]));
+    }
+}
