@@ -7,33 +7,11 @@
 //!
 //!     cargo run --release -p softsculpt --example self_collision [STEPS]
 
-use softsculpt::mesh::builtin::builtin;
-use softsculpt::params::Value;
-use softsculpt::world::{World, WorldSettings};
-use softsculpt::{Material, SoftBody};
 use std::time::Instant;
 
-/// The modeler's mushroom on the ground at y = 0, foot pinned, `modeler` preset.
-fn mushroom(self_collision: bool, crushed: bool) -> World {
-    let mut mesh = builtin("mushroom").unwrap();
-    let lo = mesh.positions.iter().skip(1).step_by(3).fold(f64::INFINITY, |a, &y| a.min(y));
-    for y in mesh.positions.iter_mut().skip(1).step_by(3) {
-        *y -= lo;
-    }
-    let mut body = SoftBody::new(&mesh, 1.0, Material::default()).unwrap();
-    for i in 0..body.vertex_count() {
-        if body.positions()[3 * i + 1] < 0.01 {
-            body.set_pinned(i, true).unwrap();
-        }
-    }
-    let mut w = World::single(body, WorldSettings::default());
-    w.apply_preset(0, "modeler").unwrap();
-    w.set_param(0, "self_collision", Value::Flag(self_collision)).unwrap();
-    if crushed {
-        w.set_param(0, "gas.amount", Value::Number(0.0002)).unwrap();
-    }
-    w
-}
+#[path = "../tests/support/mushroom.rs"]
+mod support;
+use support::modeler_mushroom as mushroom;
 
 fn main() {
     let steps: usize = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(600);
