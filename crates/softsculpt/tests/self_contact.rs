@@ -80,7 +80,7 @@ fn winding(p: [f64; 3], x: &[f64], tris: &[[u32; 3]]) -> f64 {
     for t in tris {
         let v: Vec<[f64; 3]> = t.iter().map(|&i| [x[3 * i as usize] - p[0], x[3 * i as usize + 1] - p[1], x[3 * i as usize + 2] - p[2]]).collect();
         let l: Vec<f64> = v.iter().map(|a| (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()).collect();
-        if l.iter().any(|&d| d == 0.0) {
+        if l.contains(&0.0) {
             continue;
         }
         let det = v[0][0] * (v[1][1] * v[2][2] - v[1][2] * v[2][1]) - v[0][1] * (v[1][0] * v[2][2] - v[1][2] * v[2][0]) + v[0][2] * (v[1][0] * v[2][1] - v[1][1] * v[2][0]);

@@ -22,6 +22,13 @@
 //! than their longest edge in the rest shape (the faces around the vertex and the next ring),
 //! which touch it by construction. A fold brings together parts that were far apart at rest, so
 //! they still collide. The response is the same impulse, within one body.
+//!
+//! Bodies stepped implicitly hold their self-contacts inside the solve instead
+//! (`body/selfcontact.rs`): before the bodies step, `World::find_self_contacts` runs the same
+//! broad and narrow phase on each self-colliding body's start positions (vertex–face pairs by the
+//! closest point, with faces farther than min(2 h, longest edge) at rest; edge–edge pairs from
+//! edges at a vertex–face contact) and hands the body one-sided penalty springs. This stage
+//! then only repairs their crossings (a vertex behind a face), never a resting contact.
 
 use super::{Integrator, World};
 use crate::body::selfcontact::{SelfContact, SelfContacts, KAPPA};
@@ -33,7 +40,6 @@ use crate::vec3::{add, cross, dot, get, norm, scale, sub, V3};
 /// Where a self-crossing of an implicit body is put back: this fraction of the thickness in
 /// front of the face.
 const CLEARANCE: f64 = 1e-3;
-
 
 /// sin of the smallest angle between two edges in self-contact (10°).
 const PARALLEL: f64 = 0.17;

@@ -9,6 +9,8 @@
 //!    and a new dt moves "due" with it (t + dt/2), as the scene runner always did.
 //! 1. **bodies**   – each body's forces and integration (`SoftBody::integrate`, `body/`): the
 //!    only stage that reads the material; it takes gravity, wind and the integrator from here.
+//!    Self-colliding bodies stepped implicitly first get their self-contacts, found on the
+//!    step's start positions, as penalty springs in their solve (`contacts.rs`).
 //! 2. **ground**   – vertices below the plane go back onto it (`ground.rs`).
 //! 3. **obstacles** – vertices whose path entered a rigid obstacle stop at the entry point, any
 //!    inside are pushed out; then edges are kept out of thin spheres and capsules
