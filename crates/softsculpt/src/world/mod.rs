@@ -10,7 +10,7 @@
 //! 1. **bodies**   – each body's forces and integration (`SoftBody::integrate`, `body/`): the
 //!    only stage that reads the material; it takes gravity, wind and the integrator from here.
 //!    Self-colliding bodies stepped implicitly first get their self-contacts, found on the
-//!    step's start positions, as penalty springs in their solve (`contacts.rs`).
+//!    step's start positions, as penalty springs in their solve (`selfpairs.rs`).
 //! 2. **ground**   – vertices below the plane go back onto it (`ground.rs`).
 //! 3. **obstacles** – vertices whose path entered a rigid obstacle stop at the entry point, any
 //!    inside are pushed out; then edges are kept out of thin spheres and capsules
@@ -36,6 +36,7 @@ pub mod ground;
 pub mod mesh_obstacle;
 pub mod obstacles;
 mod rollback;
+mod selfpairs;
 pub(crate) mod settings;
 
 pub use clock::Clock;
@@ -207,7 +208,7 @@ impl World {
         }
 
         // Stage 1: each body's forces and integration; self-colliding bodies stepped implicitly
-        // carry their self-contacts into the solve (found here, dropped after: `contacts.rs`).
+        // carry their self-contacts into the solve (found here, dropped after: `selfpairs.rs`).
         let self_contacts = self.settings.integrator == Integrator::Implicit && self.bodies.iter().any(|b| b.material.self_collision);
         if self_contacts {
             self.find_self_contacts();
