@@ -24,11 +24,12 @@
 //! they still collide. The response is the same impulse, within one body.
 //!
 //! Bodies stepped implicitly hold their self-contacts inside the solve instead
-//! (`body/selfcontact.rs`): before the bodies step, `World::find_self_contacts` (`selfpairs.rs`) runs the same
-//! broad and narrow phase on each self-colliding body's start positions (vertex–face pairs by the
-//! closest point, with faces farther than min(2 h, longest edge) at rest; edge–edge pairs from
-//! edges at a vertex–face contact) and hands the body one-sided penalty springs. This stage
-//! then only repairs their crossings (a vertex behind a face), never a resting contact.
+//! (`body/selfcontact.rs`): before the bodies step, `World::find_self_contacts`
+//! (`selfpairs.rs`) runs the same broad and narrow phase on each self-colliding body's start
+//! positions (vertex–face pairs by the closest point, with faces farther than
+//! min(2 h, longest edge) at rest; edge–edge pairs from edges at a vertex–face contact) and
+//! hands the body one-sided penalty springs. This stage then only repairs their crossings (a
+//! vertex behind a face), never a resting contact.
 
 use super::{Integrator, World};
 use crate::body::SoftBody;
