@@ -638,6 +638,7 @@ fn body_from_v1(b: BodyV1) -> Result<SoftBody, String> {
         face_pressure: b.face_pressure,
         gas: gas(b.gas)?,
         targets: Default::default(),
+        self_contacts: Default::default(),
         plastic_dissipation: 0.0,
     };
     let frozen = Frozen { x: b.frozen_x, rest: b.frozen_rest, bending_rest: b.frozen_bending_rest, gas: gas(b.frozen_gas)?, prestress: b.frozen_prestress };

@@ -31,6 +31,7 @@ mod parforces;
 mod persist;
 mod plastic;
 mod remesh;
+pub(crate) mod selfcontact;
 mod springs;
 mod stats;
 mod targets;
@@ -76,6 +77,9 @@ pub(crate) struct Model {
     pub gas: GasReference,
     /// Target springs (`targets.rs`).
     pub targets: targets::Targets,
+    /// Self-contacts of the current step, for the implicit solve (`selfcontact.rs`): set by the
+    /// world before the body's step, empty otherwise.
+    pub self_contacts: selfcontact::SelfContacts,
     /// Energy taken out by the plastic stage so far (J, `plastic.rs`).
     pub plastic_dissipation: f64,
 }
@@ -191,6 +195,7 @@ impl SoftBody {
                 face_pressure_active: false,
                 gas: GasReference { ambient_pressure: 0.0, reference_volume: 1.0 },
                 targets: Default::default(),
+                self_contacts: Default::default(),
                 plastic_dissipation: 0.0,
             },
             state: State { v: vec![0.0; 3 * n], x },

@@ -22,12 +22,24 @@
 //! than their longest edge in the rest shape (the faces around the vertex and the next ring),
 //! which touch it by construction. A fold brings together parts that were far apart at rest, so
 //! they still collide. The response is the same impulse, within one body.
+//!
+//! Bodies stepped implicitly hold their self-contacts inside the solve instead
+//! (`body/selfcontact.rs`): before the bodies step, `World::find_self_contacts`
+//! (`selfpairs.rs`) runs the same broad and narrow phase on each self-colliding body's start
+//! positions (vertex–face pairs by the closest point, with faces farther than
+//! min(2 h, longest edge) at rest; edge–edge pairs from edges at a vertex–face contact) and
+//! hands the body one-sided penalty springs. This stage then only repairs their crossings (a
+//! vertex behind a face), never a resting contact.
 
-use super::World;
+use super::{Integrator, World};
 use crate::body::SoftBody;
 use crate::geometry::closest_on_triangle;
 use crate::hash::SpatialHash;
 use crate::vec3::{add, cross, dot, get, norm, scale, sub, V3};
+
+/// Where a self-crossing of an implicit body is put back: this fraction of the thickness in
+/// front of the face.
+const CLEARANCE: f64 = 1e-3;
 
 /// Scratch of the contact stage, allocated once and reused; nothing in it carries over from
 /// one step to the next (a clone starts empty).
@@ -48,11 +60,13 @@ pub(crate) struct Scratch {
     pub reach_now: f64,
     /// Per body and vertex: near another body's surface this step (edges there are tested).
     pub near: Vec<Vec<bool>>,
+    /// Per vertex of the body whose self-contacts are being found: in a vertex–face one.
+    pub self_near: Vec<bool>,
 }
 
 impl Default for Scratch {
     fn default() -> Self {
-        Scratch { hash: SpatialHash::new(1.0), centroids: Vec::new(), owners: Vec::new(), radii: Vec::new(), candidates: Vec::new(), edge_hash: SpatialHash::new(1.0), mids: Vec::new(), edge_owner: Vec::new(), found: Vec::new(), reach_now: 0.0, near: Vec::new() }
+        Scratch { hash: SpatialHash::new(1.0), centroids: Vec::new(), owners: Vec::new(), radii: Vec::new(), candidates: Vec::new(), edge_hash: SpatialHash::new(1.0), mids: Vec::new(), edge_owner: Vec::new(), found: Vec::new(), reach_now: 0.0, near: Vec::new(), self_near: Vec::new() }
     }
 }
 
@@ -178,26 +192,15 @@ impl World {
                     if ob == bi && (!other.material.self_collision || t.contains(&(vi as u32))) {
                         continue;
                     }
-                    let x = other.positions();
-                    let (a, b, cc) = (get(x, t[0] as usize), get(x, t[1] as usize), get(x, t[2] as usize));
-                    let nf = cross(sub(b, a), sub(cc, a));
-                    let len = norm(nf);
-                    if len == 0.0 {
+                    let Some((w, mut n, mut s)) = narrow(p, other.positions(), t, self.settings.contact.thickness, self.settings.contact.thickness.max(max_depth)) else {
                         continue;
-                    }
-                    let mut n = scale(nf, 1.0 / len);
-                    let (w, q) = closest_on_triangle(p, a, b, cc);
-                    let mut s = dot(sub(p, q), n);
-                    let lateral = norm(sub(sub(p, q), scale(n, s)));
-                    if lateral >= 1e-9 + 0.5 * self.settings.contact.thickness.max(1e-6) || s.abs() >= self.settings.contact.thickness.max(max_depth) {
-                        continue;
-                    }
+                    };
                     if ob == bi {
                         // Only faces away from the vertex on the surface (the checks cost two
                         // more closest points, so they come after the cheap ones). Inside a
                         // closed body its own skin is met from behind: the side the vertex was
                         // on at the start of the step is the side to keep it on.
-                        if !far_at_rest(other, vi, t) {
+                        if !far_at_rest(other, vi, t, self_reach(self.settings.integrator, self.settings.contact.thickness)) {
                             continue;
                         }
                         let side = self_side(&self.prev[bi], vi, t);
@@ -214,9 +217,21 @@ impl World {
                     // went behind the face (moving them further would inject energy).
                     // Within one body a steady load (its weight, a press) would otherwise close
                     // the gap to nothing and leave the two skins coplanar, one step from
-                    // crossing: self-contacts are pushed halfway back to the thickness each step.
-                    let depth = if ob == bi { 0.5 * (self.settings.contact.thickness - s) } else { (-s).max(0.0) };
-                    self.respond(bi, vi, ob, f, w, n, depth);
+                    // crossing: self-contacts of explicit bodies are pushed halfway back to the
+                    // thickness each step. Implicit bodies hold their self-contacts in the
+                    // solve (penalty springs, `body/selfcontact.rs`), so here only a vertex that
+                    // still went behind the face is put back (to a thousandth of the thickness
+                    // in front, so that it has a side next step, as `edges.rs` does) and its
+                    // approach stopped: a resting contact is left alone.
+                    let h = self.settings.contact.thickness;
+                    if ob == bi && self.settings.integrator == Integrator::Implicit {
+                        if s < 0.0 {
+                            self.respond(bi, vi, ob, f, w, n, CLEARANCE * h - s);
+                        }
+                    } else {
+                        let depth = if ob == bi { 0.5 * (h - s) } else { (-s).max(0.0) };
+                        self.respond(bi, vi, ob, f, w, n, depth);
+                    }
                 }
             }
         }
@@ -269,6 +284,27 @@ pub(crate) fn contact_impulse(rel: V3, n: V3, wsum: f64, friction: f64) -> V3 {
     sub(scale(n, j), scale(tangent, jt / vt))
 }
 
+/// Narrow phase of vertex p against face `t` in positions `x`: (barycentric weights of the
+/// closest point q, the face's unit normal n, the signed distance s = (p − q) · n) when p lies
+/// over the face (its offset from q along the face is under half the thickness `h`) and
+/// |s| < `reach` (m); None for a degenerate face.
+pub(crate) fn narrow(p: V3, x: &[f64], t: [u32; 3], h: f64, reach: f64) -> Option<([f64; 3], V3, f64)> {
+    let (a, b, cc) = (get(x, t[0] as usize), get(x, t[1] as usize), get(x, t[2] as usize));
+    let nf = cross(sub(b, a), sub(cc, a));
+    let len = norm(nf);
+    if len == 0.0 {
+        return None;
+    }
+    let n = scale(nf, 1.0 / len);
+    let (w, q) = closest_on_triangle(p, a, b, cc);
+    let s = dot(sub(p, q), n);
+    let lateral = norm(sub(sub(p, q), scale(n, s)));
+    if lateral >= 1e-9 + 0.5 * h.max(1e-6) || s.abs() >= reach {
+        return None;
+    }
+    Some((w, n, s))
+}
+
 /// +1 if vertex `v` was in front of face `t` (along its normal) in positions `x0`, else −1.
 fn self_side(x0: &[f64], v: usize, t: [u32; 3]) -> f64 {
     let (p, a, b, c) = (get(x0, v), get(x0, t[0] as usize), get(x0, t[1] as usize), get(x0, t[2] as usize));
@@ -276,9 +312,21 @@ fn self_side(x0: &[f64], v: usize, t: [u32; 3]) -> f64 {
     if dot(sub(p, q), cross(sub(b, a), sub(c, a))) >= 0.0 { 1.0 } else { -1.0 }
 }
 
-/// Whether vertex `v` was at least the face's longest edge away from face `t` in the rest shape
-/// (so it is not one of the faces around it).
-fn far_at_rest(b: &SoftBody, v: usize, t: [u32; 3]) -> bool {
+/// How far from a vertex (m) a face of its own body must have been at rest to be in
+/// self-contact with it: `None`, the face's longest edge (explicit bodies: the faces around the
+/// vertex and the next ring are left out). Implicit bodies, whose self-contacts are springs
+/// in the solve, keep every face farther than 2 h at rest (h the thickness), so that a skin
+/// crumpled at the scale of one triangle — a vertex folding onto a face of its next ring —
+/// is held too (measured on the crushed mushroom: those local folds were the first crossings,
+/// and tangled the rest); at rest such a face is an altitude (~0.9 edge) away, beyond the
+/// thickness, and only a fold brings the vertex over it.
+pub(super) fn self_reach(integrator: Integrator, h: f64) -> Option<f64> {
+    (integrator == Integrator::Implicit).then_some(2.0 * h)
+}
+
+/// Whether vertex `v` was far from face `t` in the rest shape (so it is not one of the faces
+/// around it): at least `reach` (m) away, or with `None` the face's longest edge.
+pub(super) fn far_at_rest(b: &SoftBody, v: usize, t: [u32; 3], reach: Option<f64>) -> bool {
     if t.contains(&(v as u32)) {
         return false;
     }
@@ -286,7 +334,7 @@ fn far_at_rest(b: &SoftBody, v: usize, t: [u32; 3]) -> bool {
     let (p, a, bb, c) = (get(x, v), get(x, t[0] as usize), get(x, t[1] as usize), get(x, t[2] as usize));
     let (_, q) = closest_on_triangle(p, a, bb, c);
     let longest = norm(sub(bb, a)).max(norm(sub(c, bb))).max(norm(sub(a, c)));
-    norm(sub(p, q)) >= longest
+    norm(sub(p, q)) >= reach.map_or(longest, |r| r.min(longest))
 }
 
 /// Whether p lies in one of the boxes `zones` (lo, hi), each grown by `grow` (m).
@@ -301,6 +349,6 @@ fn min3(a: V3, b: V3) -> V3 {
     [a[0].min(b[0]), a[1].min(b[1]), a[2].min(b[2])]
 }
 
-fn inv_mass(b: &SoftBody, i: usize) -> f64 {
+pub(super) fn inv_mass(b: &SoftBody, i: usize) -> f64 {
     if b.is_pinned(i) { 0.0 } else { 1.0 / b.masses()[i] }
 }

@@ -9,6 +9,8 @@
 //!    and a new dt moves "due" with it (t + dt/2), as the scene runner always did.
 //! 1. **bodies**   – each body's forces and integration (`SoftBody::integrate`, `body/`): the
 //!    only stage that reads the material; it takes gravity, wind and the integrator from here.
+//!    Self-colliding bodies stepped implicitly first get their self-contacts, found on the
+//!    step's start positions, as penalty springs in their solve (`selfpairs.rs`).
 //! 2. **ground**   – vertices below the plane go back onto it (`ground.rs`).
 //! 3. **obstacles** – vertices whose path entered a rigid obstacle stop at the entry point, any
 //!    inside are pushed out; then edges are kept out of thin spheres and capsules
@@ -34,6 +36,7 @@ pub mod ground;
 pub mod mesh_obstacle;
 pub mod obstacles;
 mod rollback;
+mod selfpairs;
 pub(crate) mod settings;
 
 pub use clock::Clock;
@@ -204,10 +207,25 @@ impl World {
             }
         }
 
-        // Stage 1: each body's forces and integration.
-        for b in &mut self.bodies {
-            b.integrate(&self.settings, dt, step, time, &self.threads).map_err(|e| fail(None, e))?;
+        // Stage 1: each body's forces and integration; self-colliding bodies stepped implicitly
+        // carry their self-contacts into the solve (found here, dropped after: `selfpairs.rs`).
+        let self_contacts = self.settings.integrator == Integrator::Implicit && self.bodies.iter().any(|b| b.material.self_collision);
+        if self_contacts {
+            self.find_self_contacts();
         }
+        let mut stepped = Ok(());
+        for b in &mut self.bodies {
+            stepped = b.integrate(&self.settings, dt, step, time, &self.threads);
+            if stepped.is_err() {
+                break;
+            }
+        }
+        if self_contacts {
+            for b in &mut self.bodies {
+                b.model.self_contacts.list.clear();
+            }
+        }
+        stepped.map_err(|e| fail(None, e))?;
 
         // Stage 2: ground.
         if let Some(g) = self.settings.ground {

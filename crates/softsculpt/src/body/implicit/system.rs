@@ -30,6 +30,10 @@
 //!   for a 642-vertex body at dt = 1/60 s, and face pressures are loads.
 //! - **target springs** f_i = k_t (a_i − x_i) − c_t v_i (`body/targets.rs`): K += k_t I,
 //!   D += c_t I (exact), so any strength is stable.
+//! - **self-contacts** (`body/selfcontact.rs`): one-sided penalty springs ½ k_c (h − d)² between
+//!   a vertex and a face of the same body, d linear in x in the step's frame: K += k_c u uᵀ
+//!   where d < h (exact). Forces and diagonal blocks are scattered on the calling thread before
+//!   the vertex pass; the product adds the rank-one terms after its chunked pass.
 //! - **pins**: a pinned vertex keeps v⁺ = v; its rows and columns are removed (its residual,
 //!   preconditioner and product entries are 0).
 //!
@@ -40,6 +44,7 @@ use super::adjacency::{FaceRows, SpringRows};
 use super::super::{gas, Model, Springs};
 use super::super::forces::Fault;
 use super::super::external;
+use super::super::selfcontact::ContactTerms;
 use crate::body::Material;
 use crate::par::{chunk, chunks, Out, Threads};
 use crate::world::WorldSettings;
@@ -104,6 +109,8 @@ pub(crate) struct System {
     pub fext: Vec<f64>,
     /// dt² nRT / (36 V²) (kg/m⁴·… so that γ g gᵀ is in kg): the gas's rank-one term.
     pub gamma: f64,
+    /// Self-contact terms (`body/selfcontact.rs`), used when the model has self-contacts.
+    pub contact: ContactTerms,
     /// Reduction slots, one per chunk.
     pub vslots: Vec<[f64; 4]>,
     eslots: Vec<f64>,
@@ -136,6 +143,7 @@ impl System {
             pre: vec![0.0; 6 * n],
             fext: vec![0.0; 3 * n],
             gamma: 0.0,
+            contact: ContactTerms::default(),
             vslots: vec![[0.0; 4]; chunks(n, VCHUNK)],
             eslots: vec![0.0; chunks(m.springs.len().max(m.bending.len()), ECHUNK)],
             fslots: vec![0.0; chunks(nf, ECHUNK)],
@@ -190,6 +198,12 @@ impl System {
             }
         }
 
+        // Self-contacts: their forces and diagonal blocks, read by the vertex pass.
+        let contacts = m.self_contacts.active();
+        if contacts {
+            self.contact.eval(&m.self_contacts, m.mass.len(), dt, xt);
+        }
+
         // Vertices: gather forces, residual, diagonal blocks.
         let rows = Rows {
             fr,
@@ -205,6 +219,9 @@ impl System {
             nf: &self.nf,
             gamma: self.gamma,
             fext: &self.fext,
+            contacts,
+            cf: &self.contact.f,
+            cblk: &self.contact.blk,
         };
         let (g, diag, pre) = (Out::new(&mut self.g), Out::new(&mut self.diag), Out::new(&mut self.pre));
         let ro = Out::new(r);
@@ -227,6 +244,9 @@ impl System {
             noise2 += sl[1];
         }
         self.vslots = slots;
+        if contacts {
+            self.contact.clear(&m.self_contacts);
+        }
         if !res2.is_finite() {
             return Err(Fault::NonFinite);
         }
@@ -249,6 +269,9 @@ struct Rows<'a> {
     nf: &'a [f64],
     gamma: f64,
     fext: &'a [f64],
+    contacts: bool,
+    cf: &'a [[f64; 4]],
+    cblk: &'a [[f64; 6]],
 }
 
 /// Add row `i` of a spring kind: Σ ±fs d into `f`, Σ (a I + b d dᵀ) into `blk`, Σ|fs d| into
@@ -327,6 +350,16 @@ impl Rows<'_> {
                 blk[3] += gm * gi[0] * gi[1];
                 blk[4] += gm * gi[0] * gi[2];
                 blk[5] += gm * gi[1] * gi[2];
+            }
+            if self.contacts {
+                let (cf, cb) = (&self.cf[i], &self.cblk[i]);
+                f[0] += cf[0];
+                f[1] += cf[1];
+                f[2] += cf[2];
+                abs += cf[3];
+                for q in 0..6 {
+                    blk[q] += cb[q];
+                }
             }
             let mut dg = mi * (1.0 + dt * c);
             let (kt, ct) = if targets.active() { (targets.k[i], targets.c[i]) } else { (0.0, 0.0) };
@@ -460,7 +493,12 @@ impl System {
             let out = unsafe { o.range(3 * vr.start..3 * vr.end) };
             slot[0] = self.product_rows::<SUB>(m, vr, p, gg, b, out);
         });
-        slots.iter().map(|s| s[0]).sum()
+        let pq: f64 = slots.iter().map(|s| s[0]).sum();
+        if m.self_contacts.active() {
+            // The self-contacts' rank-one terms, scattered in list order after the chunks.
+            return pq + self.contact.product::<SUB>(&m.self_contacts, &m.inv_mass, p, out);
+        }
+        pq
     }
 
     /// Rows `vr` of the product into `out`; returns their part of p · A p. On x86-64 with AVX2
