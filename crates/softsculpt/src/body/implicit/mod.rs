@@ -246,9 +246,10 @@ impl Implicit {
         let fr = Frame { p, w, m, x: &s.x, v: &s.v, dt };
         let mut it = SolverIterations::default();
         let warm = (s.warm.len() == s.v.len() && s.warm_dt > 0.0).then(|| (&s.warm[..], dt / s.warm_dt));
-        // A warm-started solve that fails (the guess led Newton into a slower basin of this
-        // non-convex problem; measured once in the implicit tests' dropped balloon) is redone
-        // cold, from v⁺ = v, with the whole iteration cap again: never worse than no warm start.
+        // A warm-started solve that fails (the guess can lead Newton on this non-convex problem
+        // to a slower path than v⁺ = v does) is redone cold, from v⁺ = v, with the whole
+        // iteration cap again: at any state, a step that converged without the warm start still
+        // does.
         let solved = match self.newton(th, &fr, warm, &mut it) {
             Err(_) if warm.is_some() => self.newton(th, &fr, None, &mut it),
             done => done,
