@@ -61,6 +61,13 @@ const LINE_MAX: u32 = 6;
 /// Newton iterations of plain Newton directions before conjugate ones ([`Implicit::conjugate`];
 /// measured: 4 and 8 both rescue the stalled step, 8 costs nothing on fast steps).
 const CONJUGATE_FROM: u32 = 8;
+/// The fraction of the last step's velocity change the warm start takes. With all of it, each
+/// step's within-tolerance error repeats the last one's and no longer damps out: measured on the
+/// modeler's 2,562-vertex sphere at rest at tolerance 1e-3, 1.1e-4 J of kinetic energy kept
+/// (a steady breathing) against 3.3e-6 J cold; with 0.9, 7e-7 J, at 884 Newton iterations in
+/// 240 steps (1.0: 611, 0.8: 1061, cold: 3681). Under-relaxed, the guess errs towards v⁺ = v,
+/// as a cold start does, which damps.
+const WARM_FRACTION: f64 = 0.9;
 
 /// Scratch of the implicit integrator (one per body, allocated on first use).
 #[derive(Debug, Clone, Default)]
@@ -219,7 +226,7 @@ impl Implicit {
         gy
     }
 
-    /// Start Newton from v⁺ = v + (dt / dt_w) Δv_w, Δv_w = v⁺ − v of the last accepted step
+    /// Start Newton from v⁺ = v + [`WARM_FRACTION`] (dt / dt_w) Δv_w, Δv_w = v⁺ − v of the last accepted step
     /// (its dt_w; pinned vertices keep v), if its residual is below `cold`'s, the residual at
     /// v⁺ = v (else back to v⁺ = v). At a quasi-static state (a body resting on the ground, whose
     /// bottom gravity pushes into it and the ground projects back every step, a slow drift) every
@@ -230,7 +237,7 @@ impl Implicit {
     fn warm_start(&mut self, th: &Threads, fr: &Frame, warm: &[f64], scale: f64, cold: (f64, f64)) -> Result<(f64, f64), Fault> {
         let free = fr.m.inv_mass.iter().flat_map(|&im| [im != 0.0; 3]);
         for (((vp, &v), &d), free) in self.vp.iter_mut().zip(fr.v).zip(warm).zip(free) {
-            *vp = if free { v + scale * d } else { v };
+            *vp = if free { v + WARM_FRACTION * scale * d } else { v };
         }
         match self.eval(th, fr) {
             Ok(e) if e.0 < cold.0 => return Ok(e),
