@@ -30,6 +30,9 @@ for (const level of levels) {
       // One page at a time (each its own context), so that the builds never run side by side.
       const { page, ctx } = await openModeler(browser, url);
       await page.locator('input[data-picker=import]').setInputFiles(file);
+      // The import dialog (what was found, the choices): accept its defaults.
+      await page.waitForSelector('.import-dialog', { timeout: 30000 });
+      await page.keyboard.press('Enter');
       await page.waitForFunction((v) => window.softsculpt.vertexCount() === v && !window.softsculpt.busy?.(), n, { timeout: 120000 });
       if (/^[a-z]+$/.test(tol) && tol !== 'default') {
         await page.locator('.lil-controller', { hasText: 'integrator' }).locator('select').selectOption(tol);

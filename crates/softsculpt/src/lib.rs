@@ -25,6 +25,7 @@ pub mod scene;
 pub mod sketch;
 pub mod snapshot;
 pub mod snapshot_v3;
+pub mod snapshot_v4;
 pub mod vec3;
 pub mod workload;
 pub mod world;

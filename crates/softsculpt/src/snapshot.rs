@@ -9,7 +9,7 @@
 //! | 4 | format version (u32), [`VERSION`] |
 //! | 8 | payload length in bytes (u64) |
 //! | 4 | CRC-32 (IEEE) of the payload (u32) |
-//! | … | payload: [`WorldV3`] encoded with postcard (serde); version 2: [`WorldV2`]; version 1: [`WorldV1`] |
+//! | … | payload: [`WorldV4`] encoded with postcard (serde); version 3: [`WorldV3`]; version 2: [`WorldV2`]; version 1: [`WorldV1`] |
 //!
 //! The payload holds everything that carries over from one step to the next: every body's mesh
 //! (triangles), state, rest and bending rest lengths, masses, pins, prestress, user forces and
@@ -30,6 +30,10 @@
 //! Version 3 (plasticity, the ellipsoid volume) is the version-2 payload followed by
 //! `ExtensionV3` (`crate::snapshot_v3`). Versions 1 and 2 read with its defaults.
 //!
+//! Version 4 (the implicit integrator's warm start) is the version-3 payload followed by
+//! `ExtensionV4` (`crate::snapshot_v4`). Versions 1 to 3 read without it (the next implicit step
+//! starts cold).
+//!
 //! Version policy: any change to the payload's types is a new version; this build reads the
 //! versions up to [`VERSION`] (a newer one is refused with a message saying so), and keeps the
 //! types of every older version it reads here, each with its conversion.
@@ -42,15 +46,19 @@ use std::fmt;
 
 pub use crate::snapshot_v3::{BodyV3, ExtensionV3, WorldV3};
 pub(crate) use crate::snapshot_v3::payload_v3;
+pub use crate::snapshot_v4::{ExtensionV4, WarmV4, WorldV4};
+pub(crate) use crate::snapshot_v4::{payload_v4, world_from_v4};
 
 /// The first bytes of every snapshot.
 pub const MAGIC: &[u8; 5] = b"SSNAP";
 /// The format version this build writes (and the newest it reads).
-pub const VERSION: u32 = 3;
+pub const VERSION: u32 = 4;
 /// The first version, still read.
 pub const V1: u32 = 1;
 /// The second version (the implicit integrator), still read.
 pub const V2: u32 = 2;
+/// The third version (plasticity), still read.
+pub const V3: u32 = 3;
 /// Magic, version, payload length, checksum.
 pub const HEADER_LEN: usize = 5 + 4 + 8 + 4;
 
@@ -396,7 +404,7 @@ fn load_v1(l: &Load) -> LoadV1 {
 /// The snapshot of `w`: header and payload (see the module documentation).
 pub fn write(w: &World) -> Vec<u8> {
     // Plain numbers, vectors and enums: postcard cannot fail on them.
-    frame(VERSION, &postcard::to_stdvec(&payload_v3(w)).unwrap_or_default())
+    frame(VERSION, &postcard::to_stdvec(&payload_v4(w)).unwrap_or_default())
 }
 
 /// The version-1 part of `w`'s snapshot (also what `crate::delta` compares).
@@ -471,22 +479,26 @@ fn open(bytes: &[u8]) -> Result<(u32, &[u8]), SnapshotError> {
 pub fn read(bytes: &[u8]) -> Result<World, SnapshotError> {
     let (version, payload) = open(bytes)?;
     let undecodable = |e: postcard::Error| corrupted(format!("the payload does not decode ({e})"));
-    let (v3, rest): (WorldV3, &[u8]) = match version {
+    let (v4, rest): (WorldV4, &[u8]) = match version {
         V1 => {
             let (base, rest) = postcard::take_from_bytes(payload).map_err(undecodable)?;
             let ext = ExtensionV2 { implicit: false, tolerance: crate::params::TOLERANCE.number(), newton_iterations: crate::params::NEWTON_ITERATIONS.number() as u32, targets: Vec::new() };
-            (WorldV3 { base, ext, ext3: ExtensionV3::default() }, rest)
+            (WorldV4 { v3: WorldV3 { base, ext, ext3: ExtensionV3::default() }, ext4: ExtensionV4::default() }, rest)
         }
         V2 => {
             let (v2, rest): (WorldV2, &[u8]) = postcard::take_from_bytes(payload).map_err(undecodable)?;
-            (WorldV3 { base: v2.base, ext: v2.ext, ext3: ExtensionV3::default() }, rest)
+            (WorldV4 { v3: WorldV3 { base: v2.base, ext: v2.ext, ext3: ExtensionV3::default() }, ext4: ExtensionV4::default() }, rest)
+        }
+        V3 => {
+            let (v3, rest) = postcard::take_from_bytes(payload).map_err(undecodable)?;
+            (WorldV4 { v3, ext4: ExtensionV4::default() }, rest)
         }
         _ => postcard::take_from_bytes(payload).map_err(undecodable)?,
     };
     if !rest.is_empty() {
         return Err(corrupted(format!("{} unread bytes at the end of the payload", rest.len())));
     }
-    world_from_v3(v3).map_err(corrupted)
+    world_from_v4(v4).map_err(corrupted)
 }
 
 /// A world from a whole payload (an empty target list means none on any body, an empty
@@ -642,7 +654,7 @@ fn body_from_v1(b: BodyV1) -> Result<SoftBody, String> {
         plastic_dissipation: 0.0,
     };
     let frozen = Frozen { x: b.frozen_x, rest: b.frozen_rest, bending_rest: b.frozen_bending_rest, gas: gas(b.frozen_gas)?, prestress: b.frozen_prestress };
-    Ok(SoftBody { material, model, state: State { x: b.x, v: b.v }, work: Work::new(3 * n), frozen })
+    Ok(SoftBody { material, model, state: State { x: b.x, v: b.v, warm: Vec::new(), warm_dt: 0.0 }, work: Work::new(3 * n), frozen })
 }
 
 /// Indices of `list` checked against `limit`.

@@ -89,6 +89,11 @@ pub(crate) struct Model {
 pub(crate) struct State {
     pub x: Vec<f64>,
     pub v: Vec<f64>,
+    /// The implicit integrator's warm start (`implicit/mod.rs`): v⁺ − v of the last accepted
+    /// implicit step (m/s, flat xyz; empty: none, the next step starts cold) and its dt (s).
+    /// Carried from step to step, so it is state (snapshot version 4).
+    pub warm: Vec<f64>,
+    pub warm_dt: f64,
 }
 
 /// Scratch arrays, allocated once (the Runge–Kutta ones on first use), never inside a step.
@@ -198,7 +203,7 @@ impl SoftBody {
                 self_contacts: Default::default(),
                 plastic_dissipation: 0.0,
             },
-            state: State { v: vec![0.0; 3 * n], x },
+            state: State { v: vec![0.0; 3 * n], x, warm: Vec::new(), warm_dt: 0.0 },
             work: Work::new(3 * n),
             frozen: Frozen { x: Vec::new(), rest: Vec::new(), bending_rest: Vec::new(), gas: GasReference { ambient_pressure: 0.0, reference_volume: 1.0 }, prestress: vec![0.0; 3 * n] },
             material,
