@@ -27,6 +27,7 @@ import { sig3 } from './format';
 import { boxCentre, isSymmetric, meanEdge, type Axes, type Symmetry } from './tools/symmetry';
 import { divergingColor } from './tools/brush';
 import { BrushCursor, clampRadius, clampStrength } from './tools/cursor';
+import { supersede } from './supersede';
 import { brushUnit, rescaleBrush } from './tools/scale';
 
 const CAMERA_KEY = 'softsculpt.camera';
@@ -235,8 +236,7 @@ export class App implements ToolContext {
         if (this.pending) {
           // Not drawn yet and already superseded: what it brought that the new one lacks carries
           // over, and its buffer goes straight back to the worker.
-          const { topology, body, params, table, settings, history } = this.pending;
-          r.frame = { topology, body, params, table, settings, history, ...stripUndefined(r.frame) };
+          r.frame = supersede(this.pending, r.frame);
           this.giveBack(this.pending.positions);
         }
         this.pending = r.frame;
@@ -391,6 +391,3 @@ export function strainColors(colors: Float32Array, strain: Float32Array): void {
   for (let i = 0; i < strain.length; i++) divergingColor(colors, i, strain[i] / STRAIN_FULL);
 }
 
-function stripUndefined<T extends object>(o: T): T {
-  return Object.fromEntries(Object.entries(o).filter(([, v]) => v !== undefined)) as T;
-}

@@ -170,12 +170,13 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   function refresh(): void {
     if (!paramsBuilt && app.mirror.table.length > 0) {
       takeParams(p, app.mirror.params);
-      showMaterials();
       addParams(app.mirror.table, { sim, world, gas, wind }, p, (id, v) => app.setParam(id, v), tip);
       scaleSliders(gui.controllersRecursive(), shownUnit);
       paramsBuilt = true;
     }
     takeParams(p, app.mirror.params);
+    // The material list, once the presets have come (they may come after the parameter table).
+    showMaterials();
     // An open surface (cloth-like) has no gas: its controls stay off, the folder says why.
     const closed = app.mirror.closed;
     gas.title(closed ? 'Gas' : 'Gas — off: open surface (cloth-like)');
