@@ -96,6 +96,8 @@ function main(): void {
 
   window.addEventListener('keydown', (ev) => {
     if (isTextField(ev.target as HTMLElement)) return;
+    // A question on screen (the import dialog) has the keys: nothing acts behind it.
+    if (document.querySelector('.import-dialog')) return;
     // Anything else focused (a list, a checkbox, a button): the key is a shortcut, not for it.
     if ((ev.target as HTMLElement).closest?.('input, select, button') && !ev.ctrlKey && !ev.metaKey && ev.key !== 'Tab') {
       ev.preventDefault();
