@@ -186,6 +186,23 @@ describe('worker service', () => {
     expect(h.replies.filter((r) => r.type === 'ui').at(-1)).toEqual({ type: 'ui', ui: { brush: { radius: 0.5 }, tool: 'press', strengths: { press: 99 }, symmetry: [false, true, false] } });
   });
 
+  it('a reload brings back the shape as it ran on after the last edit (the autosave is written while running)', async () => {
+    const h = await started();
+    const t0 = h.tick()!.stats.time;
+    h.flushTimers();
+    const before = h.saved.length;
+    // 12 s of frames without any operation: the body moves on (the clock, one step a frame).
+    let last = t0;
+    for (let i = 0; i < 720; i++) { const f = h.tick(); if (f) { last = f.stats.time; h.giveBack(f); } }
+    expect(h.saved.length).toBeGreaterThan(before);
+    const g = harness({ record: h.saved.at(-1)! });
+    await g.send({ type: 'init', wasmUrl: 'unused', restore: true });
+    const restored = g.tick(0)!.stats.time;
+    // Saved within the last AUTOSAVE_RUNNING_MS (10 s) of running, after t0 + 2 s at least.
+    expect(restored).toBeGreaterThan(t0 + 1.9);
+    expect(restored).toBeLessThanOrEqual(last + 1e-9);
+  });
+
   it('a reload keeps the undo steps: the autosave holds them with the snapshot, and undo then works', async () => {
     const h = await started();
     await h.send({ type: 'setParam', name: 'stiffness', value: 250 });
