@@ -101,6 +101,7 @@ describe('worker service', () => {
     const h = await started();
     const old = h.tick()!;
     await h.send({ type: 'subdivide' });
+    expect(h.messages().at(-1)).toBe('subdivided: 362 → 1,442 vertices, the shape kept under its weight (Ctrl+Z undoes)');
     const f = h.tick()!;
     expect(f.topology!.vertexCount).toBe(1442);
     expect(f.positions.length).toBe(3 * 1442);

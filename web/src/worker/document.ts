@@ -479,7 +479,8 @@ export class Document {
     if (this.totalVertices > 200_000) { this.hooks.message('the mesh is already very fine; not subdividing', 'warn'); return; }
     this.edit('subdivide', true, () => {
       this.hooks.progress('subdividing');
-      let dropped = 0;
+      let dropped = 0, underLoad = false;
+      const n0 = this.totalVertices;
       for (const b of this.everyBody) {
         const before = this.world.params(b);
         dropped += this.world.subdivide(b);
@@ -490,8 +491,11 @@ export class Document {
         if (before.gravity !== 0) {
           this.world.setParam(b, 'gas.ambient', before['gas.ambient'] as number);
           this.world.freeze(b, true);
+          underLoad = true;
         }
       }
+      // Said, so the last operation's message does not stay on screen as if it were this one's.
+      this.hooks.message(`subdivided: ${n0.toLocaleString('en-US')} → ${this.totalVertices.toLocaleString('en-US')} vertices, the shape kept${underLoad ? ' under its weight' : ''} (Ctrl+Z undoes)`);
       if (dropped > 0) this.hooks.message(`${dropped} pending scene events of the bodies no longer fit their meshes and were dropped`, 'warn');
       // Implicit steps keep dt (the parameters do not depend on the resolution); an explicit
       // integrator needs the finer mesh's stable step.
