@@ -140,7 +140,7 @@ pub const TOLERANCE: Param = Param {
     unit: "",
     default: Value::Number(1e-6),
     range: POSITIVE,
-    help: "implicit integrator: relative residual |r|/|r0| (mass-weighted) at which a step's Newton iterations stop",
+    help: "implicit integrator: relative residual |r|/max(|r0|, |dt M g|) (mass-weighted; the second term is the weight's impulse over the step) at which a step's Newton iterations stop",
 };
 pub const NEWTON_ITERATIONS: Param = Param {
     id: "newton_iterations",

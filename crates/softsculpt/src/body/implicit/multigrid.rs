@@ -506,6 +506,9 @@ impl Multigrid {
                 }
             });
         }
+        // The coarse correction moves ground-held components too: take them out (`ground.rs`),
+        // so that the cycle stays symmetric on the free components.
+        sys.ground.filter(z);
         sys.residual(th, m, z, res, t, slots);
         jacobi(th, sys, n, OMEGA, t, Some(res), z, slots)
     }

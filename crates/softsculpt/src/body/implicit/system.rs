@@ -36,11 +36,15 @@
 //!   the vertex pass; the product adds the rank-one terms after its chunked pass.
 //! - **pins**: a pinned vertex keeps v⁺ = v; its rows and columns are removed (its residual,
 //!   preconditioner and product entries are 0).
+//! - **the ground** (`ground.rs`): a vertex resting on it has v⁺_y = 0 prescribed; that row and
+//!   column are removed the same way, and the residual's removed component is kept as the
+//!   ground's impulse (`GroundSet::react`).
 //!
 //! Dropping terms from the matrix only slows Newton's convergence (an inexact Newton method);
 //! the solution it converges to is the backward-Euler step with every force exact.
 
 use super::adjacency::{FaceRows, SpringRows};
+use super::ground::GroundSet;
 use super::super::{gas, Model, Springs};
 use super::super::forces::Fault;
 use super::super::external;
@@ -111,6 +115,8 @@ pub(crate) struct System {
     pub gamma: f64,
     /// Self-contact terms (`body/selfcontact.rs`), used when the model has self-contacts.
     pub contact: ContactTerms,
+    /// The vertices the ground constrains this step (`ground.rs`).
+    pub ground: GroundSet,
     /// Reduction slots, one per chunk.
     pub vslots: Vec<[f64; 4]>,
     eslots: Vec<f64>,
@@ -144,6 +150,7 @@ impl System {
             fext: vec![0.0; 3 * n],
             gamma: 0.0,
             contact: ContactTerms::default(),
+            ground: GroundSet::new(n),
             vslots: vec![[0.0; 4]; chunks(n, VCHUNK)],
             eslots: vec![0.0; chunks(m.springs.len().max(m.bending.len()), ECHUNK)],
             fslots: vec![0.0; chunks(nf, ECHUNK)],
@@ -222,9 +229,12 @@ impl System {
             contacts,
             cf: &self.contact.f,
             cblk: &self.contact.blk,
+            held: &self.ground.held,
+            grounded: self.ground.active(),
         };
         let (g, diag, pre) = (Out::new(&mut self.g), Out::new(&mut self.diag), Out::new(&mut self.pre));
         let ro = Out::new(r);
+        let react = Out::new(&mut self.ground.react);
         let (ec, bc) = (Out::new(&mut self.ecoef), Out::new(&mut self.bcoef));
         let (es, bs) = (&self.edges.start, &self.bends.start);
         let n = m.mass.len();
@@ -235,7 +245,8 @@ impl System {
             // (The CSR entries of rows vr are start[vr.start]..start[vr.end]: also disjoint.)
             unsafe {
                 let coef = (ec.range(es[vr.start] as usize..es[vr.end] as usize), bc.range(bs[vr.start] as usize..bs[vr.end] as usize));
-                *slot = rows.run(vr.clone(), vp, xt, ro.range(3 * vr.start..3 * vr.end), g.range(3 * vr.start..3 * vr.end), diag.range(vr.clone()), pre.range(6 * vr.start..6 * vr.end), coef);
+                let (r, react) = (ro.range(3 * vr.start..3 * vr.end), react.range(3 * vr.start..3 * vr.end));
+                *slot = rows.run(vr.clone(), vp, xt, (r, react), g.range(3 * vr.start..3 * vr.end), diag.range(vr.clone()), pre.range(6 * vr.start..6 * vr.end), coef);
             }
         });
         let (mut res2, mut noise2) = (0.0, 0.0);
@@ -272,6 +283,8 @@ struct Rows<'a> {
     contacts: bool,
     cf: &'a [[f64; 4]],
     cblk: &'a [[f64; 6]],
+    held: &'a [bool],
+    grounded: bool,
 }
 
 /// Add row `i` of a spring kind: Σ ±fs d into `f`, Σ (a I + b d dᵀ) into `blk`, Σ|fs d| into
@@ -312,7 +325,7 @@ fn inverse_sym(m: &[f64; 6]) -> [f64; 6] {
 
 impl Rows<'_> {
     #[allow(clippy::too_many_arguments)]
-    fn run(&self, vr: std::ops::Range<usize>, vp: &[f64], xt: &[f64], r: &mut [f64], g: &mut [f64], diag: &mut [f64], pre: &mut [f64], coef: (&mut [[f64; 5]], &mut [[f64; 5]])) -> [f64; 4] {
+    fn run(&self, vr: std::ops::Range<usize>, vp: &[f64], xt: &[f64], (r, react): (&mut [f64], &mut [f64]), g: &mut [f64], diag: &mut [f64], pre: &mut [f64], coef: (&mut [[f64; 5]], &mut [[f64; 5]])) -> [f64; 4] {
         let Frame { p, w, m, v, dt, .. } = *self.fr;
         let sys = self;
         let grav = [0.0, -w.gravity, 0.0];
@@ -374,6 +387,8 @@ impl Rows<'_> {
             let va = vp[3 * i].abs() + vp[3 * i + 1].abs() + vp[3 * i + 2].abs();
             abs += (deg * p.stiffness + bdeg * p.bending_stiffness) * xa + (deg + bdeg) * p.spring_damping * va;
             let pinned = m.inv_mass[i] == 0.0;
+            // Ground constraint: v⁺_y prescribed (`ground.rs`).
+            let held = self.grounded && self.held[i];
             let mut r2 = 0.0;
             let mut scale = 0.0;
             for d in 0..3 {
@@ -388,7 +403,13 @@ impl Rows<'_> {
                 if kt != 0.0 || ct != 0.0 {
                     fd += kt * (targets.anchor[k3] - xt[k3]) - ct * vp[k3];
                 }
-                let rd = if pinned { 0.0 } else { mi * (vp[k3] - v[k3]) - dt * fd };
+                let mut rd = if pinned { 0.0 } else { mi * (vp[k3] - v[k3]) - dt * fd };
+                if held {
+                    react[3 * li + d] = rd;
+                    if d == 1 {
+                        rd = 0.0;
+                    }
+                }
                 r[3 * li + d] = rd;
                 r2 += rd * rd;
                 scale += dt * fd.abs() + mi * (vp[k3].abs() + v[k3].abs());
@@ -401,7 +422,15 @@ impl Rows<'_> {
                 blk[0] += dg;
                 blk[1] += dg;
                 blk[2] += dg;
-                pre[6 * li..6 * li + 6].copy_from_slice(&inverse_sym(&blk));
+                if held {
+                    // The inverse of the x–z block alone: y's row and column removed.
+                    (blk[1], blk[3], blk[5]) = (1.0, 0.0, 0.0);
+                }
+                let mut inv = inverse_sym(&blk);
+                if held {
+                    inv[1] = 0.0;
+                }
+                pre[6 * li..6 * li + 6].copy_from_slice(&inv);
                 res2 += r2 / mi;
                 // Rounding of r_i: a few ulps of the magnitudes summed into it.
                 let nz = 16.0 * f64::EPSILON * scale;
@@ -493,10 +522,11 @@ impl System {
             let out = unsafe { o.range(3 * vr.start..3 * vr.end) };
             slot[0] = self.product_rows::<SUB>(m, vr, p, gg, b, out);
         });
-        let pq: f64 = slots.iter().map(|s| s[0]).sum();
+        let mut pq: f64 = slots.iter().map(|s| s[0]).sum();
         if m.self_contacts.active() {
             // The self-contacts' rank-one terms, scattered in list order after the chunks.
-            return pq + self.contact.product::<SUB>(&m.self_contacts, &m.inv_mass, p, out);
+            pq += self.contact.product::<SUB>(&m.self_contacts, &m.inv_mass, p, out);
+            self.ground.filter(out);
         }
         pq
     }
@@ -541,10 +571,13 @@ impl System {
                     q[d] += gg * self.g[3 * i + d];
                 }
             }
+            if self.ground.held[i] {
+                q[1] = 0.0;
+            }
             pq += q[0] * pi[0] + q[1] * pi[1] + q[2] * pi[2];
             if SUB {
                 for d in 0..3 {
-                    q[d] = b[3 * i + d] - q[d];
+                    q[d] = b[3 * i + d] - q[d]; // b is 0 where q is held at 0
                 }
             }
             out[3 * li..3 * li + 3].copy_from_slice(&q);

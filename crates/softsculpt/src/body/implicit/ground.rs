@@ -1,0 +1,136 @@
+//! The ground inside the backward-Euler solve: vertices resting on it are constrained.
+//!
+//! Without this the ground is only the world's after-step projection (`world/ground.rs`): each
+//! step the solve lets gravity push a resting body's bottom into the plane by g dt² and the
+//! projection puts it back. At dt = 1/60 s that is 2.7 mm per step, and the solve's upper body
+//! follows the falling bottom: measured on the modeler's 642-vertex sphere on a frictionless
+//! ground, it came to rest 3.0 cm lower (centre of mass 0.6007 m against 0.6308 m) and with 1.1 %
+//! less volume than the explicit model's equilibrium (symplectic, dt = 2e-4 s: 0.6307 m). And
+//! the solve at rest never met the same problem twice: 3 Newton iterations per step forever.
+//!
+//! **Constraints** (Baraff & Witkin 1998, §5.3: a constrained vertex's velocity is prescribed
+//! along the constrained direction, which is filtered out of the conjugate gradient). At a
+//! step's start, a free vertex with y ≤ h (on or in the plane, as the projection leaves it) that
+//! is not moving up (v_y ≤ 0; a vertex bounced up by a restitution e > 0 is left free to leave)
+//! gets v⁺_y = 0: it stays at its height, x⁺_y = x_y; x and z stay unknowns. Its residual's y
+//! component is then the ground's impulse over the step: from M (v⁺ − v) = dt (f + F_g),
+//! dt F_g,y = r_y(v⁺) (N·s). The vertices with r_y < 0 (the plane would have to pull them
+//! down) are released for the rest of the step, and Newton goes on with them free (the set only
+//! shrinks, so it cannot cycle; the tolerance still counts from the first residual): when Newton
+//! has converged, and at Newton iterations 2, 4, 8, 16, … Measured on a 10,242-vertex sphere
+//! landing with the presets of `tests/presets.rs`: releasing only at convergence, a crumpling
+//! cloth stalled for 100 iterations at a relative residual of ~1e-3 with 140 of its 327 held
+//! vertices pulled down; releasing at every iterate, clay stalled at ~5e-3 (a few vertices let
+//! go every iteration or two, each time a changed problem); the spaced releases let both
+//! converge — but not every landing: a jelly (k = 60 N/m, no bending springs) stalled at
+//! 1e-3–3e-2 between releases. So a step not converged after [`GIVE_UP`] Newton iterations lets
+//! every held vertex go and goes on as without the ground in the solve (the after-step
+//! projection alone, as before). Newton iterations (CG iterations) in the first second of
+//! those landings, before → after: balloon 1042 (22.2k) → 349 (13.1k), jelly 1428 (25.0k) →
+//! 641 (15.0k), clay 1051 (27.4k) → 475 (16.2k), cloth 1352 (32.9k) → 1290 (37.5k); giving up
+//! after 24, 32 or 48 iterations instead cost up to 4× more on clay (the plain solve from a
+//! half-converged held state is slow). A body at rest on the ground is then an equilibrium of the solve: the plane
+//! carries the bottom's weight, and v⁺ = v is already converged (measured: 0–1 Newton
+//! iterations per step at rest, against 3).
+//!
+//! **Friction** after the accepted solve, Coulomb with the solve's normal impulse per unit mass
+//! j = r_y / m (m/s): the tangential velocity loses up to μ j (stops if |v_t| ≤ μ j), as the
+//! projection does with its j (`world/ground.rs`); positions are x + dt v⁺ from the solve.
+//! Tried and dropped: stuck vertices held in all three directions, released to sliding where
+//! |r_t| > μ r_y. While a body lands nearly every stuck vertex then flips to sliding within the
+//! step, each flip another Newton round: 10–22 Newton iterations per step against 5–16.
+//!
+//! Not for self-colliding bodies (their ground stays the after-step projection): with held
+//! vertices the crushed mushroom of `tests/self_contact.rs` had a vertex through its skin after
+//! 8 s (also when the vertices of the step's self-contacts were not held); not investigated.
+//!
+//! The constraints depend only on the state at the step's start, so a restored snapshot takes
+//! the same steps.
+
+use super::super::Model;
+use crate::world::Ground;
+
+/// Newton iterations after which a step still not converged lets the ground's vertices go.
+pub(crate) const GIVE_UP: u32 = 64;
+
+/// The vertices the ground holds in one step, and their impulses.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct GroundSet {
+    /// Indices of the held vertices, ascending.
+    pub list: Vec<u32>,
+    /// Per vertex: held this step (its v⁺_y prescribed 0).
+    pub held: Vec<bool>,
+    /// The residual at held vertices as the last evaluation found it, before its y component
+    /// was zeroed: y is the ground's impulse dt F_g,y (N·s); stale at other vertices.
+    pub react: Vec<f64>,
+}
+
+impl GroundSet {
+    pub fn new(n: usize) -> Self {
+        GroundSet { list: Vec::new(), held: vec![false; n], react: vec![0.0; 3 * n] }
+    }
+
+    /// Any vertex held this step.
+    pub fn active(&self) -> bool {
+        !self.list.is_empty()
+    }
+
+    /// The held vertices from the step's start (x, v).
+    pub fn find(&mut self, m: &Model, ground: Option<&Ground>, x: &[f64], v: &[f64]) {
+        for &i in &self.list {
+            self.held[i as usize] = false;
+        }
+        self.list.clear();
+        let Some(g) = ground else { return };
+        for (i, (p, u)) in x.chunks_exact(3).zip(v.chunks_exact(3)).enumerate() {
+            if m.inv_mass[i] != 0.0 && p[1] <= g.height && u[1] <= 0.0 {
+                self.held[i] = true;
+            }
+        }
+        self.list.extend((0..self.held.len() as u32).filter(|&i| self.held[i as usize]));
+    }
+
+    /// Let every held vertex go (the rest of the step as without the ground in the solve).
+    pub fn release_all(&mut self) {
+        for &i in &self.list {
+            self.held[i as usize] = false;
+        }
+        self.list.clear();
+    }
+
+    /// Put the prescribed v⁺_y = 0 into `vp`; or zero the held components of a vector of the
+    /// conjugate gradient.
+    pub fn filter(&self, y: &mut [f64]) {
+        for &i in &self.list {
+            y[3 * i as usize + 1] = 0.0;
+        }
+    }
+
+    /// On the impulses the last evaluation left in `react`: release the vertices the plane
+    /// would have to pull down. Returns whether any was released.
+    pub fn release(&mut self) -> bool {
+        let GroundSet { list, held, react } = self;
+        let before = list.len();
+        list.retain(|&i| {
+            let keep = react[3 * i as usize + 1] >= 0.0;
+            held[i as usize] = keep;
+            keep
+        });
+        list.len() != before
+    }
+
+    /// Coulomb friction on the held vertices of the accepted v⁺, with the solve's normal
+    /// impulse per unit mass j = r_y / m: |v_t| loses up to μ j.
+    pub fn friction(&self, m: &Model, friction: f64, vp: &mut [f64]) {
+        for &i in &self.list {
+            let i = i as usize;
+            let j = self.react[3 * i + 1].max(0.0) / m.mass[i];
+            let (vx, vz) = (vp[3 * i], vp[3 * i + 2]);
+            let vt = vx.hypot(vz);
+            let drop = friction * j;
+            let keep = if vt <= drop { 0.0 } else { 1.0 - drop / vt };
+            vp[3 * i] = vx * keep;
+            vp[3 * i + 2] = vz * keep;
+        }
+    }
+}
