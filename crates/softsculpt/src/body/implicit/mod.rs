@@ -187,11 +187,11 @@ impl Implicit {
     /// Newton iterations from v⁺ = v, or from the warm start `warm` (Δv_w, dt / dt_w) if that
     /// has the smaller residual, until converged; iterations added to `it`. On success v⁺ is in
     /// `vp` and x + dt v⁺ in `xt`.
-    fn newton(&mut self, th: &Threads, fr: &Frame, warm: Option<(&[f64], f64)>, it: &mut SolverIterations) -> Result<(), Fault> {
+    fn newton(&mut self, th: &Threads, fr: &Frame, warm: Option<(&[f64], f64)>, held: bool, it: &mut SolverIterations) -> Result<(), Fault> {
         let (w, m) = (fr.w, fr.m);
-        // The ground's constraints from the step's start (`ground.rs`), their velocities in v⁺.
-        // (Not for self-colliding bodies: `ground.rs`.)
-        let ground = if fr.p.self_collision { None } else { w.ground.as_ref() };
+        // The ground's constraints from the step's start (`ground.rs`), their velocities in v⁺
+        // (`held`; not for self-colliding bodies: `ground.rs`).
+        let ground = if fr.p.self_collision || !held { None } else { w.ground.as_ref() };
         self.sys.ground.find(m, ground, fr.x, fr.v);
         self.vp.copy_from_slice(fr.v);
         self.sys.ground.filter(&mut self.vp);
@@ -311,10 +311,16 @@ impl Implicit {
         // to a slower path than v⁺ = v does) is redone cold, from v⁺ = v, with the whole
         // iteration cap again: at any state, a step that converged without the warm start still
         // does.
-        let solved = match self.newton(th, &fr, warm, &mut it) {
-            Err(_) if warm.is_some() => self.newton(th, &fr, None, &mut it),
+        // And a cold solve that fails with the ground's vertices held (`ground.rs`) is redone
+        // without them (the plane then only the after-step projection, as before it was part of
+        // the solve).
+        let mut solved = match self.newton(th, &fr, warm, true, &mut it) {
+            Err(_) if warm.is_some() => self.newton(th, &fr, None, true, &mut it),
             done => done,
         };
+        if solved.is_err() && w.ground.is_some() {
+            solved = self.newton(th, &fr, None, false, &mut it);
+        }
         solved?;
         // Accepted: x⁺ = x + dt v⁺ (already in x_t), v⁺.
         s.warm.resize(s.v.len(), 0.0);
