@@ -4,6 +4,7 @@
 // field, as a user would), with the body's volume and height at the end (the result the
 // tolerance buys).
 //   node bench/realtime.mjs [levels=3,4,5] [configs=default|1e-3,1e-4,1e-6,symplectic] [DIST…]
+// env SETTLE, MEASURE: seconds before and of the measurement (default 2, 5).
 // (a config is an implicit tolerance, or an explicit integrator's name chosen in the panel,
 // which then takes the stable dt the modeler picks for it)
 // (needs web/dist built; several builds, e.g. `dist /tmp/softsculpt-main-dist` from
@@ -43,9 +44,11 @@ for (const level of levels) {
         await field.press('Enter');
         await page.waitForFunction((t) => window.softsculpt.param('tolerance') === t, Number(tol));
       }
-      await page.waitForTimeout(2000);
+      // SETTLE and MEASURE (s of wall-clock time, default 2 and 5): when the measurement starts
+      // after the import, and how long it runs (a long SETTLE measures the body at rest).
+      await page.waitForTimeout(1000 * Number(process.env.SETTLE ?? 2));
       const t0 = await page.evaluate(() => [window.softsculpt.stats().time, performance.now()]);
-      await page.waitForTimeout(5000);
+      await page.waitForTimeout(1000 * Number(process.env.MEASURE ?? 5));
       const r = await page.evaluate(() => {
         const s = window.softsculpt, x = s.positions();
         let h = -Infinity;
