@@ -35,10 +35,12 @@ use super::springs::LocalSprings;
 use super::{Model, Springs};
 use crate::par::{chunk, chunks, Out, Threads};
 
-/// Vertices per chunk aimed at: small enough that a chunk's accumulator (24 B per vertex) stays
-/// in the L1/L2 cache and two threads balance at 10,242 vertices, large enough that the
-/// crossing springs stay a small share. Measured (BENCHMARKS.md, explicit passes section).
-const TARGET_CHUNK: usize = 1536;
+/// Vertices per chunk aimed at: a chunk's accumulator (24 B per vertex, ~96 KB) stays in the
+/// L2 cache, two threads get two chunks each at 10,242 vertices, and the crossing springs and
+/// faces (random reads, ~3 % at this size against ~5 % at 1,536) stay few. Measured
+/// (BENCHMARKS.md, "Explicit passes" section): 4096 and 1536 within noise on one thread, 4096
+/// ahead at 163,842 vertices.
+const TARGET_CHUNK: usize = 4096;
 
 /// Vertices per thread below which a pass runs on one thread (the fork and join then cost more
 /// than they save). Measured (BENCHMARKS.md, explicit passes section).
