@@ -9,8 +9,13 @@
 //! (no CPU is burnt while the body is not stepping). The spinning uses the `pause` hint and
 //! bounds itself in time, so a loaded machine loses at most [`SPIN`] of one core per pass.
 //!
-//! A panic on any thread is caught there; the caller waits for every thread to finish the pass
-//! (the job borrows the caller's stack) and then panics itself.
+//! A worker takes part in a pass only if it joins before the caller has finished its own share:
+//! the caller's share must then include all work left (it claims chunks until none remain,
+//! `Threads::blocks`), and it closes the pass to latecomers instead of waiting for a worker the
+//! system has not scheduled (on a loaded machine that wait was milliseconds).
+//!
+//! A panic on any thread is caught there; the caller waits for every thread that joined to
+//! finish the pass (the job borrows the caller's stack) and then panics itself.
 
 use std::cell::UnsafeCell;
 use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
@@ -32,6 +37,8 @@ struct Shared {
     job: UnsafeCell<Option<*const Job>>,
     /// Workers done with the current pass.
     done: AtomicUsize,
+    /// Per worker: 2e once it joined pass e, 2e + 1 once the caller closed pass e to it.
+    joined: Vec<AtomicU64>,
     panicked: AtomicBool,
     quit: AtomicBool,
     /// Worker w (1..) is parked or about to park.
@@ -57,6 +64,7 @@ impl Team {
             epoch: AtomicU64::new(0),
             job: UnsafeCell::new(None),
             done: AtomicUsize::new(0),
+            joined: (0..n).map(|_| AtomicU64::new(0)).collect(),
             panicked: AtomicBool::new(false),
             quit: AtomicBool::new(false),
             sleeping: (0..n).map(|_| AtomicBool::new(false)).collect(),
@@ -75,7 +83,9 @@ impl Team {
         self.workers.len() + 1
     }
 
-    /// Run `f(t)` for t in 0..len(), t = 0 on the calling thread, and return when all are done.
+    /// Run `f(0)` on the calling thread and `f(t)` on each worker t (1..len()) that joins the
+    /// pass before `f(0)` returns; return when those are done. `f(0)` must leave no work undone
+    /// (it takes whatever the others have not claimed).
     pub fn run(&self, f: &(dyn Fn(usize) + Sync)) {
         let Ok(_gate) = self.gate.try_lock() else {
             // Another caller has the team (or this is a nested call): the same work, alone.
@@ -89,11 +99,13 @@ impl Team {
         unsafe { *sh.job.get() = Some(job) };
         sh.done.store(0, Relaxed);
         sh.panicked.store(false, Relaxed);
-        sh.epoch.fetch_add(1, SeqCst);
+        let epoch = sh.epoch.fetch_add(1, SeqCst) + 1;
         self.wake();
         let mine = catch_unwind(AssertUnwindSafe(|| f(0)));
-        let (workers, mut spins) = (self.workers.len(), 0u32);
-        while sh.done.load(Acquire) < workers {
+        // Close the pass to the workers that have not joined; wait for those that have.
+        let joined = (1..self.len()).filter(|&w| !close(&sh.joined[w], epoch)).count();
+        let mut spins = 0u32;
+        while sh.done.load(Acquire) < joined {
             spins += 1;
             if spins < 1 << 14 {
                 std::hint::spin_loop();
@@ -101,7 +113,7 @@ impl Team {
                 thread::yield_now();
             }
         }
-        // SAFETY: every worker is done with the pass.
+        // SAFETY: every worker that joined is done with the pass; the others never will.
         unsafe { *sh.job.get() = None };
         if let Err(p) = mine {
             resume_unwind(p);
@@ -139,6 +151,9 @@ fn worker(sh: &Shared, w: usize) {
         if sh.quit.load(Acquire) {
             return;
         }
+        if !join(&sh.joined[w], seen) {
+            continue; // The caller finished the pass without this worker.
+        }
         // SAFETY: the caller wrote the job before the epoch we saw and clears it only after
         // this worker's `done` below.
         let job = unsafe { (*sh.job.get()).expect("a pass with every epoch") };
@@ -148,6 +163,18 @@ fn worker(sh: &Shared, w: usize) {
         }
         sh.done.fetch_add(1, Release);
     }
+}
+
+/// The worker takes part in pass `epoch` (false: the caller closed it first).
+fn join(slot: &AtomicU64, epoch: u64) -> bool {
+    let old = slot.load(Acquire);
+    old < 2 * epoch && slot.compare_exchange(old, 2 * epoch, AcqRel, Acquire).is_ok()
+}
+
+/// The caller closes pass `epoch` to a worker: true if it had not joined (it never will).
+fn close(slot: &AtomicU64, epoch: u64) -> bool {
+    let old = slot.load(Acquire);
+    old < 2 * epoch && slot.compare_exchange(old, 2 * epoch + 1, AcqRel, Acquire).is_ok()
 }
 
 /// Until the epoch differs from `seen`: spin for up to [`SPIN`], then park.
@@ -177,25 +204,64 @@ mod tests {
     use super::*;
 
     #[test]
-    fn every_thread_runs_its_share_once_per_pass() {
+    fn the_callers_share_runs_every_pass_and_a_worker_at_most_once() {
         let team = Team::new(3).unwrap();
         let hits: Vec<AtomicUsize> = (0..3).map(|_| AtomicUsize::new(0)).collect();
         for pass in 0..1000 {
             if pass % 100 == 0 {
-                // Long enough for the workers to park: the pass must wake them.
+                // Long enough for the workers to park: the pass must not wait for them.
                 thread::sleep(SPIN * 3);
             }
+            let seen: Vec<AtomicUsize> = (0..3).map(|_| AtomicUsize::new(0)).collect();
             team.run(&|t| {
+                seen[t].fetch_add(1, Relaxed);
                 hits[t].fetch_add(1, Relaxed);
             });
+            assert_eq!(seen[0].load(Relaxed), 1);
+            assert!(seen.iter().all(|s| s.load(Relaxed) <= 1));
         }
-        assert!(hits.iter().all(|h| h.load(Relaxed) == 1000));
+        assert_eq!(hits[0].load(Relaxed), 1000);
+    }
+
+    #[test]
+    fn workers_that_join_are_waited_for() {
+        let team = Team::new(2).unwrap();
+        for _ in 0..200 {
+            let done = AtomicUsize::new(0);
+            team.run(&|t| {
+                if t == 0 {
+                    // Give the worker time to join, then return before it is done.
+                    thread::sleep(Duration::from_micros(20));
+                } else {
+                    thread::sleep(Duration::from_micros(200));
+                    done.fetch_add(1, Relaxed);
+                }
+            });
+            // Whatever joined has finished: nothing runs after `run` returns.
+            let d = done.load(Relaxed);
+            thread::sleep(Duration::from_micros(300));
+            assert_eq!(done.load(Relaxed), d);
+        }
     }
 
     #[test]
     fn a_panic_on_a_worker_reaches_the_caller_and_the_team_still_works() {
         let team = Team::new(2).unwrap();
-        let r = catch_unwind(AssertUnwindSafe(|| team.run(&|t| assert!(t == 0, "worker fails"))));
+        // The caller waits for the worker to join (so that it fails), then fails itself if not.
+        let joined = AtomicBool::new(false);
+        let r = catch_unwind(AssertUnwindSafe(|| {
+            team.run(&|t| {
+                if t == 0 {
+                    let t0 = Instant::now();
+                    while !joined.load(SeqCst) && t0.elapsed() < Duration::from_secs(5) {
+                        std::hint::spin_loop();
+                    }
+                } else {
+                    joined.store(true, SeqCst);
+                    panic!("worker fails");
+                }
+            })
+        }));
         assert!(r.is_err());
         let n = AtomicUsize::new(0);
         team.run(&|_| {
