@@ -5,22 +5,22 @@
 //! vertex count only, [`chunk_len`]; vertices are in Morton order, so a chunk is a patch of the
 //! surface). A spring (i, j), i < j, and a face (its smallest corner) belong to the chunk of
 //! their first vertex. A spring or face with every end in its chunk is *interior*; the others
-//! *cross* into later chunks (a tenth of the springs at ~1,500 vertices per chunk).
+//! *cross* into later chunks (about 5 % of the springs at 1,536 vertices per chunk).
 //!
 //! - **Pass A** (per chunk): the chunk's faces: their part of 6V, and Σ n_f into `g` for the
 //!   corners in the chunk (n_f for a later corner into a crossing slot); the chunk's crossing
 //!   springs: their force into a crossing slot each.
 //! - Between the passes, on the calling thread: 6V summed over the chunks in chunk order, the
 //!   gas scale s = (P − P_ref)/6, and the rare stages (wind, face pressures, targets) into `f`.
-//! - **Pass B** (per chunk): every spring of the chunk into an accumulator of the thread's own
-//!   (+ on i, − on j when j is in the chunk: a crossing spring's far end gets its share from its
-//!   slot), then the slots aimed at the chunk (springs −, faces + into g), then the vertex stage
-//!   on the chunk's vertices with f = F + s g + f_rare + f_user (`forces.rs`).
+//! - **Pass B** (per chunk): the chunk's interior springs into an accumulator of the thread's
+//!   own (+ on i, − on j), then its crossing springs' slots (+ on their end in the chunk), the
+//!   slots of earlier chunks aimed at it (springs −, faces + into g), then the vertex stage on
+//!   the chunk's vertices with f = F + s g + f_rare + f_user (`forces.rs`).
 //!
-//! Pass B reads and writes only its chunk's x and v, so the vertex stage fuses into it, and the
-//! spring accumulator (one chunk, ~36 KB) never leaves the thread's cache. A crossing spring's
-//! force is computed twice (pass A for the far end, pass B for the near end) with the same
-//! operations on the same numbers: the same bits, so momentum stays balanced exactly.
+//! Pass B reads and writes only its chunk's x and v (a crossing spring's far end is read in
+//! pass A only, before any vertex moves), so the vertex stage fuses into it, and the spring
+//! accumulator (one chunk, ~96 KB) stays in the thread's cache. Both ends of a crossing spring
+//! get the same slot value, ±: momentum stays balanced exactly.
 //!
 //! Determinism: every value is written by one chunk (slots by their source chunk, vertices by
 //! their own chunk), and each sum runs in an order fixed by the chunks (a vertex's spring forces
@@ -37,13 +37,15 @@ use crate::par::{chunk, chunks, Out, Threads};
 
 /// Vertices per chunk aimed at: a chunk's accumulator (24 B per vertex, ~96 KB) stays in the
 /// L2 cache, two threads get two chunks each at 10,242 vertices, and the crossing springs and
-/// faces (random reads, ~3 % at this size against ~5 % at 1,536) stay few. Measured
-/// (BENCHMARKS.md, "Explicit passes" section): 4096 and 1536 within noise on one thread, 4096
-/// ahead at 163,842 vertices.
+/// faces (whose far ends are random reads: 4.6 % of the springs at 10,242 vertices and 5.5 % at
+/// 163,842 with 1,536-vertex chunks, fewer with larger ones) stay few. 4096 and 1536 measured
+/// within noise of each other on one thread (BENCHMARKS.md, "Explicit passes" section).
 const TARGET_CHUNK: usize = 4096;
 
-/// Vertices per thread below which a pass runs on one thread (the fork and join then cost more
-/// than they save). Measured (BENCHMARKS.md, explicit passes section).
+/// Vertices per thread below which a pass runs on one thread (a fork and join would cost more
+/// than they save). With [`TARGET_CHUNK`] this leaves every body of one chunk (≤ 4,096
+/// vertices) on one thread: at 2,562 vertices the rayon passes took 2× the one-thread time
+/// (BENCHMARKS.md); 2 threads on the new passes were not measured below 10,242 vertices.
 const MIN_PER_THREAD: usize = 2048;
 
 /// Chunk length for `n` vertices: an even number of chunks of equal length (so two threads get
