@@ -129,6 +129,7 @@ impl Threads {
                 });
             }
         }
+        let _ = t; // wasm32: no team
         (0..n).for_each(|c| f(0, c));
     }
 }
