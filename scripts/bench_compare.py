@@ -4,8 +4,11 @@
 Both run the standard workload (see crates/softsculpt/src/workload.rs) on the same icospheres,
 alternating per level and per round so that machine noise hits both alike. Reports the best
 time of each and the ratio, and checks that both end at the same volume (same physics).
+With --baseline BIN, a second softsculpt binary (e.g. a build of main) runs in the same
+rotation, for before/after ratios measured under the same machine load.
 
-usage: scripts/bench_compare.py [--levels 4,5,6,7] [--steps 1000] [--rounds 3] [--shared DIR]
+usage: scripts/bench_compare.py [--levels 4,5,6,7] [--steps 1000] [--rounds 3] [--threads N]
+                                [--baseline BIN] [--shared DIR]
 """
 import argparse
 import json
@@ -22,6 +25,8 @@ def main():
     ap.add_argument("--levels", default="4,5,6,7")
     ap.add_argument("--steps", type=int, default=1000)
     ap.add_argument("--rounds", type=int, default=3)
+    ap.add_argument("--threads", type=int, default=0, help="threads for softsculpt (0: every core)")
+    ap.add_argument("--baseline", help="another softsculpt binary to time in the same rotation")
     ap.add_argument("--shared", default=os.path.join(ROOT, "..", "shared"))
     a = ap.parse_args()
     levels = [int(x) for x in a.levels.split(",")]
@@ -37,16 +42,21 @@ def main():
     subprocess.run(["cargo", "build", "--release", "-q", "-p", "softsculpt-cli"], check=True, cwd=ROOT)
     ours_bin = os.path.join(ROOT, "target", "release", "softsculpt")
 
-    print("%9s %14s %14s %9s %16s %16s" % ("vertices", "ours ms/step", "C++ ms/step", "C++/ours", "our volume", "C++ volume"))
+    base_col = " %14s" % "baseline ms" if a.baseline else ""
+    print("%9s %14s %14s %9s %16s %16s%s" % ("vertices", "ours ms/step", "C++ ms/step", "C++/ours", "our volume", "C++ volume", base_col))
+
+    def ours(binary, level):
+        out = subprocess.run([binary, "bench", "--levels", str(level), "--steps", str(a.steps), "--reps", "1", "--json", "--threads", str(a.threads)],
+                             check=True, capture_output=True, text=True).stdout
+        return json.loads(out.strip().splitlines()[-1])
+
     rows = []
     for level in levels:
-        best_ours, best_peer = float("inf"), float("inf")
+        best_ours, best_peer, best_base = float("inf"), float("inf"), float("inf")
         vol_ours = vol_peer = None
         nv = None
         for _ in range(a.rounds):
-            out = subprocess.run([ours_bin, "bench", "--levels", str(level), "--steps", str(a.steps), "--reps", "1", "--json"],
-                                 check=True, capture_output=True, text=True).stdout
-            r = json.loads(out.strip().splitlines()[-1])
+            r = ours(ours_bin, level)
             best_ours = min(best_ours, r["ms_per_step"])
             vol_ours, nv = r["volume"], r["vertices"]
             out = subprocess.run([peer, os.path.join(work, "ico", "icosphere_L%d.obj" % level), "--steps", str(a.steps), "--reps", "1"],
@@ -54,10 +64,16 @@ def main():
             m = re.search(r"ms_per_step=([0-9.eE+-]+) .*volume=([0-9.eE+-]+)", out)
             best_peer = min(best_peer, float(m.group(1)))
             vol_peer = float(m.group(2))
+            if a.baseline:
+                best_base = min(best_base, ours(a.baseline, level)["ms_per_step"])
         rel = abs(vol_ours - vol_peer) / abs(vol_peer)
-        rows.append({"vertices": nv, "ours_ms": best_ours, "cpp_ms": best_peer, "ratio": best_peer / best_ours, "volume_rel_diff": rel})
-        print("%9d %14.4f %14.4f %9.2f %16.9f %16.9f%s" % (nv, best_ours, best_peer, best_peer / best_ours, vol_ours, vol_peer,
-                                                           "" if rel < 1e-8 else "  VOLUMES DIFFER"))
+        row = {"vertices": nv, "threads": a.threads, "ours_ms": best_ours, "cpp_ms": best_peer, "ratio": best_peer / best_ours, "volume_rel_diff": rel}
+        if a.baseline:
+            row["baseline_ms"] = best_base
+        rows.append(row)
+        print("%9d %14.4f %14.4f %9.2f %16.9f %16.9f%s%s" % (nv, best_ours, best_peer, best_peer / best_ours, vol_ours, vol_peer,
+                                                             " %14.4f" % best_base if a.baseline else "",
+                                                             "" if rel < 1e-8 else "  VOLUMES DIFFER"))
     json.dump(rows, open(os.path.join(work, "last.json"), "w"), indent=1)
 
 

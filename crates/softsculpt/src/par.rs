@@ -7,17 +7,30 @@
 //! into a slot of their own, then the slots in chunk order on the calling thread. The chunk size
 //! does not depend on the thread count, so 1 and N threads give the same bits.
 //!
-//! Native builds use a rayon pool of their own (`Threads::new(n)`, n = 0: every core). On
-//! wasm32 there is no pool: every chunk runs on the calling thread.
+//! Native builds use a rayon pool of their own (`Threads::new(n)`, n = 0: every core) for
+//! [`Threads::each`], and a team of spinning threads (`par/team.rs`, started on first use) for
+//! [`Threads::blocks`], the explicit step's two short passes. On wasm32 there is no pool: every
+//! chunk runs on the calling thread.
 
 use std::marker::PhantomData;
 use std::ops::Range;
+
+#[cfg(not(target_arch = "wasm32"))]
+mod team;
 
 /// A pool of threads (or none: the calling thread). Cheap to clone (shared).
 #[derive(Clone, Default)]
 pub struct Threads {
     #[cfg(not(target_arch = "wasm32"))]
-    pool: Option<std::sync::Arc<rayon::ThreadPool>>,
+    pool: Option<std::sync::Arc<Pool>>,
+}
+
+#[cfg(not(target_arch = "wasm32"))]
+struct Pool {
+    rayon: rayon::ThreadPool,
+    /// Started on the first [`Threads::blocks`]; `None` if its threads could not start.
+    team: std::sync::OnceLock<Option<team::Team>>,
+    n: usize,
 }
 
 impl std::fmt::Debug for Threads {
@@ -40,8 +53,8 @@ impl Threads {
             if n <= 1 {
                 return Ok(Threads::single());
             }
-            let pool = rayon::ThreadPoolBuilder::new().num_threads(n).build().map_err(|e| format!("cannot start {n} threads: {e}"))?;
-            Ok(Threads { pool: Some(std::sync::Arc::new(pool)) })
+            let rayon = rayon::ThreadPoolBuilder::new().num_threads(n).build().map_err(|e| format!("cannot start {n} threads: {e}"))?;
+            Ok(Threads { pool: Some(std::sync::Arc::new(Pool { rayon, team: Default::default(), n })) })
         }
         #[cfg(target_arch = "wasm32")]
         {
@@ -54,7 +67,7 @@ impl Threads {
     pub fn count(&self) -> usize {
         #[cfg(not(target_arch = "wasm32"))]
         if let Some(p) = &self.pool {
-            return p.current_num_threads();
+            return p.n;
         }
         1
     }
@@ -65,13 +78,59 @@ impl Threads {
         if let Some(pool) = &self.pool {
             if slots.len() > 1 {
                 use rayon::prelude::*;
-                pool.install(|| slots.par_iter_mut().enumerate().for_each(|(c, r)| f(c, r)));
+                pool.rayon.install(|| slots.par_iter_mut().enumerate().for_each(|(c, r)| f(c, r)));
                 return;
             }
         }
         for (c, r) in slots.iter_mut().enumerate() {
             f(c, r);
         }
+    }
+}
+
+impl Threads {
+    /// Threads that [`Threads::blocks`] uses for `n` chunks of `min_len` items or more: one
+    /// below `min_len` items per thread (a pass that short costs less than a fork and join).
+    pub(crate) fn for_chunks(&self, chunks: usize, chunk_len: usize, min_len: usize) -> usize {
+        let by_size = (chunks * chunk_len / min_len.max(1)).max(1);
+        self.count().min(chunks).min(by_size).max(1)
+    }
+
+    /// Chunks 0..n in `t` contiguous blocks, block b to thread b: `f(b, c)` for every chunk c,
+    /// with b the thread that runs it (below `t`). Each thread runs its own block in order,
+    /// then helps with the others' (claiming chunks one at a time), so a thread the system
+    /// stalled does not stall the pass. On a quiet machine a thread takes the same block in
+    /// every pass with the same (n, t), so data a pass leaves in its cache is there for the next.
+    pub(crate) fn blocks(&self, n: usize, t: usize, f: impl Fn(usize, usize) + Sync) {
+        #[cfg(not(target_arch = "wasm32"))]
+        if let Some(pool) = self.pool.as_ref().filter(|_| t > 1) {
+            if let Some(team) = pool.team.get_or_init(|| team::Team::new(pool.n).ok()) {
+                /// A claim counter on a cache line of its own.
+                #[repr(align(64))]
+                struct Next(std::sync::atomic::AtomicUsize);
+                const MAX: usize = 16;
+                let t = t.min(MAX).min(team.len());
+                let next: [Next; MAX] = std::array::from_fn(|b| Next((b * n / t).into()));
+                return team.run(&|b| {
+                    if b >= t {
+                        return;
+                    }
+                    for k in 0..t {
+                        let block = (b + k) % t;
+                        let end = (block + 1) * n / t;
+                        loop {
+                            let c = next[block].0.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                            if c >= end {
+                                break;
+                            }
+                            f(b, c);
+                        }
+                    }
+                });
+            }
+        }
+        let _ = t; // wasm32: no team
+        (0..n).for_each(|c| f(0, c));
     }
 }
 
@@ -100,6 +159,9 @@ unsafe impl<T: Send> Sync for Out<'_, T> {}
 impl<'a, T> Out<'a, T> {
     pub fn new(s: &'a mut [T]) -> Self {
         Out { ptr: s.as_mut_ptr(), len: s.len(), _life: PhantomData }
+    }
+    pub fn len(&self) -> usize {
+        self.len
     }
     /// The values in `r`.
     ///

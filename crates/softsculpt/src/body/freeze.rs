@@ -69,7 +69,7 @@ impl SoftBody {
     pub fn freeze(&mut self) {
         self.model.springs.rest_to_current(&self.state.x);
         self.model.bending.rest_to_current(&self.state.x);
-        let volume = self.volume();
+        let volume = self.step_volume();
         self.model.gas.ambient_pressure = gas::pressure(self.material.nrt(), volume);
         self.finish_freeze(None);
     }

@@ -1,18 +1,21 @@
 //! The integrators, on the state (x, v) with a(x, v) from the force stages.
 
-use super::forces::{accelerations, gather, symplectic_update, Fault};
+use super::forces::{accelerations, evaluate, symplectic, Fault};
 use super::parforces::ParForces;
 use super::implicit::{Implicit, SolverIterations};
 use super::{Material, Model, State, Work};
-use crate::par::Threads;
+use crate::par::{Out, Threads};
 use crate::world::{Integrator, WorldSettings};
 
-/// a(x, v) into `a` (m/s²).
+/// a(x, v) into `a` (m/s²); `x` and `v` are only read.
 #[allow(clippy::too_many_arguments)]
-fn eval(th: &Threads, mut par: Option<&mut ParForces>, p: &Material, w: &WorldSettings, m: &Model, x: &[f64], v: &[f64], f: &mut [f64], a: &mut [f64]) -> Result<(), Fault> {
-    let gathered = gather(th, par.as_deref_mut(), p, w, m, x, v, f).inspect_err(|_| f.fill(0.0))?;
-    accelerations(th, par, p, w, m, gathered, v, f, a);
-    Ok(())
+fn eval(th: &Threads, par: &mut ParForces, p: &Material, w: &WorldSettings, m: &Model, x: &mut [f64], v: &mut [f64], rare: &mut [f64], a: &mut [f64]) -> Result<(), Fault> {
+    let ao = Out::new(a);
+    evaluate(th, par, p, w, m, x, v, rare, |vr, f, _, v| {
+        // SAFETY: every chunk writes its own vertices only.
+        let a = unsafe { ao.range(3 * vr.start..3 * vr.end) };
+        accelerations(p, w, m, vr, f, v, a);
+    })
 }
 
 fn ensure(buf: &mut Vec<f64>, n: usize) {
@@ -35,25 +38,24 @@ pub(crate) fn step(p: &Material, world: &WorldSettings, m: &Model, s: &mut State
         w.iterations = solver.step(threads, p, world, m, s, dt)?;
         return Ok(());
     }
-    // Several threads: the explicit stages in chunks (`parforces.rs`), partition built once.
-    if threads.count() > 1 && !w.par.as_ref().is_some_and(|q| q.fits(m)) {
-        w.par = ParForces::new(m).map(Box::new);
+    // The explicit stages in chunks of vertices (`parforces.rs`), partition built once.
+    if !w.par.as_ref().is_some_and(|q| q.fits(m)) {
+        w.par = Some(Box::new(ParForces::new(m)));
     }
     let Work { f, xs, vs, a, par, .. } = w;
-    let mut par = if threads.count() > 1 { par.as_deref_mut() } else { None };
+    let par = par.as_deref_mut().expect("built above");
     let th = threads;
     let w = world;
     match w.integrator {
         Integrator::Implicit => unreachable!("handled above"),
         Integrator::Symplectic => {
-            // v' = v + dt a(x, v); x' = x + dt v'
-            let gathered = gather(th, par.as_deref_mut(), p, w, m, &s.x, &s.v, f).inspect_err(|_| f.fill(0.0))?;
-            symplectic_update(th, par, p, w, m, gathered, dt, &mut s.x, &mut s.v, f);
+            // v' = v + dt a(x, v); x' = x + dt v', fused into the force stages' second pass.
+            evaluate(th, par, p, w, m, &mut s.x, &mut s.v, f, |vr, f, x, v| symplectic(p, w, m, vr, f, dt, x, v))?;
         }
         Integrator::Euler => {
             // x' = x + dt v; v' = v + dt a(x, v)
             ensure(&mut a[0], n);
-            eval(th, par.as_deref_mut(), p, w, m, &s.x, &s.v, f, &mut a[0])?;
+            eval(th, par, p, w, m, &mut s.x, &mut s.v, f, &mut a[0])?;
             for k in 0..n {
                 s.x[k] += dt * s.v[k];
                 s.v[k] += dt * a[0][k];
@@ -66,13 +68,13 @@ pub(crate) fn step(p: &Material, world: &WorldSettings, m: &Model, s: &mut State
             ensure(&mut a[1], n);
             ensure(xs, n);
             ensure(vs, n);
-            eval(th, par.as_deref_mut(), p, w, m, &s.x, &s.v, f, &mut a[0])?;
+            eval(th, par, p, w, m, &mut s.x, &mut s.v, f, &mut a[0])?;
             let h = 0.5 * dt;
             for k in 0..n {
                 xs[k] = s.x[k] + h * s.v[k];
                 vs[k] = s.v[k] + h * a[0][k];
             }
-            eval(th, par.as_deref_mut(), p, w, m, xs, vs, f, &mut a[1])?;
+            eval(th, par, p, w, m, xs, vs, f, &mut a[1])?;
             for k in 0..n {
                 s.x[k] += dt * vs[k];
                 s.v[k] += dt * a[1][k];
@@ -89,24 +91,24 @@ pub(crate) fn step(p: &Material, world: &WorldSettings, m: &Model, s: &mut State
             ensure(xs, n);
             ensure(vs, n);
             let h = dt;
-            eval(th, par.as_deref_mut(), p, w, m, &s.x, &s.v, f, &mut a[0])?;
+            eval(th, par, p, w, m, &mut s.x, &mut s.v, f, &mut a[0])?;
             for k in 0..n {
                 xs[k] = s.x[k] + 0.5 * h * s.v[k];
                 vs[k] = s.v[k] + 0.5 * h * a[0][k];
             }
-            eval(th, par.as_deref_mut(), p, w, m, xs, vs, f, &mut a[1])?;
+            eval(th, par, p, w, m, xs, vs, f, &mut a[1])?;
             for k in 0..n {
                 // x3 = x + h/2 (v + h/2 a1)
                 xs[k] = s.x[k] + 0.5 * h * (s.v[k] + 0.5 * h * a[0][k]);
                 vs[k] = s.v[k] + 0.5 * h * a[1][k];
             }
-            eval(th, par.as_deref_mut(), p, w, m, xs, vs, f, &mut a[2])?;
+            eval(th, par, p, w, m, xs, vs, f, &mut a[2])?;
             for k in 0..n {
                 // x4 = x + h (v + h/2 a2)
                 xs[k] = s.x[k] + h * (s.v[k] + 0.5 * h * a[1][k]);
                 vs[k] = s.v[k] + h * a[2][k];
             }
-            eval(th, par.as_deref_mut(), p, w, m, xs, vs, f, &mut a[3])?;
+            eval(th, par, p, w, m, xs, vs, f, &mut a[3])?;
             for k in 0..n {
                 s.x[k] += h * s.v[k] + h * h / 6.0 * (a[0][k] + a[1][k] + a[2][k]);
                 s.v[k] += h / 6.0 * (a[0][k] + 2.0 * a[1][k] + 2.0 * a[2][k] + a[3][k]);

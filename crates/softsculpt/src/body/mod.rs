@@ -101,7 +101,8 @@ pub(crate) struct State {
 /// steps), so a clone starts from fresh buffers and a restored body rebuilds them.
 #[derive(Debug, Default)]
 pub(crate) struct Work {
-    /// Force accumulator (N, divided by the gas scale, see `forces.rs`), zero between steps.
+    /// Forces of the rare stages: wind, user face pressures, targets (N, flat xyz, see
+    /// `forces.rs`), zero between steps.
     pub f: Vec<f64>,
     /// Intermediate state and stage accelerations of the explicit Runge–Kutta methods.
     pub xs: Vec<f64>,
@@ -109,7 +110,8 @@ pub(crate) struct Work {
     pub a: [Vec<f64>; 4],
     /// The implicit integrator's system and vectors, built on its first step.
     pub implicit: Option<Box<implicit::Implicit>>,
-    /// The explicit stages' partition for several threads, built on the first threaded step.
+    /// The explicit stages' partition into chunks and their buffers, built on the first
+    /// explicit step.
     pub par: Option<Box<parforces::ParForces>>,
     /// Iterations of the last step (reported in the statistics; not state).
     pub iterations: SolverIterations,

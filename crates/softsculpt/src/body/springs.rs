@@ -101,19 +101,30 @@ impl Springs {
     /// Forces fs·u of springs e0..e0 + m (m ≤ BLOCK) into lanes 0..m, coordinate-major.
     #[inline(always)]
     fn block(&self, e0: usize, m: usize, k: f64, cs: f64, x: &[f64], v: &[f64]) -> [[f64; BLOCK]; 3] {
-        let (ii, jj, rest) = (&self.i[..], &self.j[..self.i.len()], &self.rest[..self.i.len()]);
-        assert!(e0 + m <= ii.len());
+        let (ii, jj) = (&self.i[..], &self.j[..self.i.len()]);
+        assert!(e0 + m <= ii.len() && ii.len() <= self.rest.len());
+        // SAFETY: e < ii.len() = jj.len() (asserted); every index is below `vertex_count`
+        // (checked in `new`, never changed) and x and v hold at least 3 · vertex_count values
+        // (asserted by the callers).
+        unsafe { self.block_of(m, |t| (e0 + t, 3 * *ii.get_unchecked(e0 + t) as usize, 3 * *jj.get_unchecked(e0 + t) as usize), k, cs, x, v) }
+    }
+
+    /// Forces fs·u of the springs `ends(t) = (e, 3 a, 3 b)`, t < m ≤ BLOCK (spring e from
+    /// vertex a to b of `x` and `v`), into lanes 0..m, coordinate-major.
+    ///
+    /// # Safety
+    /// Every e is below `self.rest.len()`, every 3 a + 2 and 3 b + 2 below `x.len()` and `v.len()`.
+    #[inline(always)]
+    unsafe fn block_of(&self, m: usize, ends: impl Fn(usize) -> (usize, usize, usize), k: f64, cs: f64, x: &[f64], v: &[f64]) -> [[f64; BLOCK]; 3] {
+        let rest = &self.rest[..];
         let mut d = [[0.0f64; BLOCK]; 3];
         let mut dv = [[0.0f64; BLOCK]; 3];
         let mut l0 = [1.0f64; BLOCK];
         // Gather.
         for t in 0..m {
-            let e = e0 + t;
-            // SAFETY: every index is below `vertex_count` (checked in `new`, never changed)
-            // and the arrays hold at least 3 · vertex_count values (asserted by the callers).
+            let (e, a, b) = ends(t);
+            // SAFETY: the caller's promise.
             unsafe {
-                let a = 3 * *ii.get_unchecked(e) as usize;
-                let b = 3 * *jj.get_unchecked(e) as usize;
                 for c in 0..3 {
                     d[c][t] = *x.get_unchecked(b + c) - *x.get_unchecked(a + c);
                     dv[c][t] = *v.get_unchecked(b + c) - *v.get_unchecked(a + c);
@@ -164,62 +175,130 @@ impl Springs {
 }
 
 impl Springs {
-    /// The springs stage for one chunk of vertices (`parforces.rs`): springs `e` (whose first
-    /// ends are all in `vr`) add their forces into `f`, the chunk's accumulator (vertex
-    /// `vr.start` at 0); a force on a second end past the chunk goes to the next 3 values of
-    /// `cross` instead, in spring order. Same arithmetic as [`Springs::accumulate`].
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn accumulate_part(&self, k: f64, cs: f64, x: &[f64], v: &[f64], e: std::ops::Range<usize>, vr: std::ops::Range<usize>, f: &mut [f64], cross: &mut [f64]) {
+    /// Pass A of the chunked stages (`parforces.rs`): the force fs·u on the first end of each
+    /// spring of `ids` into `out` (3 values per spring, in order). Same arithmetic as
+    /// [`Springs::accumulate`], so the same bits as the pass-B force of the same spring.
+    pub(crate) fn forces_of(&self, k: f64, cs: f64, x: &[f64], v: &[f64], ids: &[u32], out: &mut [f64]) {
         let n = 3 * self.vertex_count;
-        assert!(x.len() >= n && v.len() >= n && f.len() == 3 * vr.len() && e.end <= self.i.len());
+        assert!(x.len() >= n && v.len() >= n && out.len() == 3 * ids.len());
+        assert!(ids.iter().all(|&e| (e as usize) < self.len()) && self.len() <= self.rest.len());
         #[cfg(target_arch = "x86_64")]
         {
             if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
                 // SAFETY: the CPU supports the features the function is compiled for.
-                unsafe { self.part_avx2(k, cs, x, v, e, vr, f, cross) };
+                unsafe { self.forces_of_avx2(k, cs, x, v, ids, out) };
                 return;
             }
         }
-        self.part_blocks(k, cs, x, v, e, vr, f, cross);
+        self.forces_of_blocks(k, cs, x, v, ids, out);
     }
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
-    #[allow(clippy::too_many_arguments)]
-    unsafe fn part_avx2(&self, k: f64, cs: f64, x: &[f64], v: &[f64], e: std::ops::Range<usize>, vr: std::ops::Range<usize>, f: &mut [f64], cross: &mut [f64]) {
-        self.part_blocks(k, cs, x, v, e, vr, f, cross);
+    unsafe fn forces_of_avx2(&self, k: f64, cs: f64, x: &[f64], v: &[f64], ids: &[u32], out: &mut [f64]) {
+        self.forces_of_blocks(k, cs, x, v, ids, out);
     }
 
     #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
-    fn part_blocks(&self, k: f64, cs: f64, x: &[f64], v: &[f64], e: std::ops::Range<usize>, vr: std::ops::Range<usize>, f: &mut [f64], cross: &mut [f64]) {
+    fn forces_of_blocks(&self, k: f64, cs: f64, x: &[f64], v: &[f64], ids: &[u32], out: &mut [f64]) {
         let (ii, jj) = (&self.i[..], &self.j[..self.i.len()]);
-        let (base, end) = (3 * vr.start, vr.end as u32);
-        let mut slot = 0;
-        let mut e0 = e.start;
-        while e0 < e.end {
-            let m = BLOCK.min(e.end - e0);
-            let s = self.block(e0, m, k, cs, x, v);
-            // Scatter: +s on i (in the chunk), −s on j when in the chunk, else into `cross`.
-            for t in 0..m {
-                let e = e0 + t;
-                let a = 3 * ii[e] as usize - base;
-                let j = jj[e];
+        for (ids, out) in ids.chunks(BLOCK).zip(out.chunks_mut(3 * BLOCK)) {
+            // SAFETY: every id is a spring (asserted by the caller); the rest as in `block`.
+            let s = unsafe {
+                self.block_of(
+                    ids.len(),
+                    |t| {
+                        let e = *ids.get_unchecked(t) as usize;
+                        (e, 3 * *ii.get_unchecked(e) as usize, 3 * *jj.get_unchecked(e) as usize)
+                    },
+                    k,
+                    cs,
+                    x,
+                    v,
+                )
+            };
+            for (t, o) in out.chunks_exact_mut(3).enumerate() {
+                o.copy_from_slice(&[s[0][t], s[1][t], s[2][t]]);
+            }
+        }
+    }
+
+    /// Pass B of the chunked stages (`parforces.rs`): chunk c's interior springs of `local`
+    /// add their forces into `f`, the chunk's accumulator (`x`, `v` and `f` chunk-local):
+    /// +s on i, −s on j.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn accumulate_local(&self, local: &LocalSprings, c: usize, k: f64, cs: f64, x: &[f64], v: &[f64], f: &mut [f64]) {
+        let n3 = 3 * local.chunk_len[c] as usize;
+        assert!(x.len() == n3 && v.len() == n3 && f.len() == n3 && local.count == self.len() && self.rest.len() >= self.len());
+        let ends = &local.ends[local.start[c] as usize..local.start[c + 1] as usize];
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
+                // SAFETY: the CPU supports the features the function is compiled for; the
+                // ends are in bounds (asserted lengths, `LocalSprings::new`).
+                unsafe { self.local_avx2(k, cs, x, v, ends, f) };
+                return;
+            }
+        }
+        // SAFETY: as above.
+        unsafe { self.local_blocks(k, cs, x, v, ends, f) };
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    unsafe fn local_avx2(&self, k: f64, cs: f64, x: &[f64], v: &[f64], ends: &[[u32; 3]], f: &mut [f64]) {
+        self.local_blocks(k, cs, x, v, ends, f);
+    }
+
+    /// # Safety
+    /// Every (e, 3a, 3b) of `ends` has e below `self.rest.len()` and 3a + 2, 3b + 2 below the
+    /// lengths of `x`, `v` and `f`.
+    #[inline(always)]
+    unsafe fn local_blocks(&self, k: f64, cs: f64, x: &[f64], v: &[f64], ends: &[[u32; 3]], f: &mut [f64]) {
+        for ends in ends.chunks(BLOCK) {
+            let at = |t: usize| {
+                let [e, a, b] = *ends.get_unchecked(t);
+                (e as usize, a as usize, b as usize)
+            };
+            let s = self.block_of(ends.len(), at, k, cs, x, v);
+            for t in 0..ends.len() {
+                let (_, a, b) = at(t);
                 for c in 0..3 {
-                    f[a + c] += s[c][t];
-                }
-                if j < end {
-                    let b = 3 * j as usize - base;
-                    for c in 0..3 {
-                        f[b + c] -= s[c][t];
-                    }
-                } else {
-                    cross[slot..slot + 3].copy_from_slice(&[s[0][t], s[1][t], s[2][t]]);
-                    slot += 3;
+                    *f.get_unchecked_mut(a + c) += s[c][t];
+                    *f.get_unchecked_mut(b + c) -= s[c][t];
                 }
             }
-            e0 += m;
         }
+    }
+}
+
+/// Springs in chunk-local form for [`Springs::accumulate_local`]: chunk c's springs are
+/// `ends[start[c]..start[c + 1]]`, each (e, 3a, 3b) with a and b the chunk-local indices of its
+/// ends (below `chunk_len[c]`, checked by `new`) and e its index (below `count`).
+
+#[derive(Debug, Clone, Default)]
+pub(crate) struct LocalSprings {
+    start: Vec<u32>,
+    ends: Vec<[u32; 3]>,
+    chunk_len: Vec<u32>,
+    count: usize,
+}
+
+impl LocalSprings {
+    /// For the chunks (first vertex, vertex count, springs with both ends in it) of `sp`.
+    /// Panics if a spring has an end outside its chunk.
+    pub fn new<'a>(sp: &Springs, chunks: impl Iterator<Item = (usize, usize, &'a [u32])>) -> Self {
+        let mut l = LocalSprings { start: vec![0], count: sp.len(), ..Default::default() };
+        for (base, len, ids) in chunks {
+            for &e in ids {
+                let (a, b) = ((sp.i[e as usize] as usize).wrapping_sub(base), (sp.j[e as usize] as usize).wrapping_sub(base));
+                assert!(a < len && b < len && (e as usize) < sp.len(), "an interior spring has both ends in its chunk");
+                l.ends.push([e, 3 * a as u32, 3 * b as u32]);
+            }
+            l.start.push(l.ends.len() as u32);
+            l.chunk_len.push(len as u32);
+        }
+        l
     }
 }
 
