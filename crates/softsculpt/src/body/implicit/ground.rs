@@ -60,14 +60,14 @@ pub(crate) struct GroundSet {
     pub list: Vec<u32>,
     /// Per vertex: held this step (its v⁺_y prescribed 0).
     pub held: Vec<bool>,
-    /// The residual at held vertices as the last evaluation found it, before its y component
-    /// was zeroed: y is the ground's impulse dt F_g,y (N·s); stale at other vertices.
+    /// Per vertex, the residual's y component at a held vertex as the last evaluation found it,
+    /// before it was zeroed: the ground's impulse dt F_g,y (N·s); stale at other vertices.
     pub react: Vec<f64>,
 }
 
 impl GroundSet {
     pub fn new(n: usize) -> Self {
-        GroundSet { list: Vec::new(), held: vec![false; n], react: vec![0.0; 3 * n] }
+        GroundSet { list: Vec::new(), held: vec![false; n], react: vec![0.0; n] }
     }
 
     /// Any vertex held this step.
@@ -85,9 +85,9 @@ impl GroundSet {
         for (i, (p, u)) in x.chunks_exact(3).zip(v.chunks_exact(3)).enumerate() {
             if m.inv_mass[i] != 0.0 && p[1] <= g.height && u[1] <= 0.0 {
                 self.held[i] = true;
+                self.list.push(i as u32);
             }
         }
-        self.list.extend((0..self.held.len() as u32).filter(|&i| self.held[i as usize]));
     }
 
     /// Let every held vertex go (the rest of the step as without the ground in the solve).
@@ -112,7 +112,7 @@ impl GroundSet {
         let GroundSet { list, held, react } = self;
         let before = list.len();
         list.retain(|&i| {
-            let keep = react[3 * i as usize + 1] >= 0.0;
+            let keep = react[i as usize] >= 0.0;
             held[i as usize] = keep;
             keep
         });
@@ -124,7 +124,7 @@ impl GroundSet {
     pub fn friction(&self, m: &Model, friction: f64, vp: &mut [f64]) {
         for &i in &self.list {
             let i = i as usize;
-            let j = self.react[3 * i + 1].max(0.0) / m.mass[i];
+            let j = self.react[i].max(0.0) / m.mass[i];
             let (vx, vz) = (vp[3 * i], vp[3 * i + 2]);
             let vt = vx.hypot(vz);
             let drop = friction * j;

@@ -245,7 +245,7 @@ impl System {
             // (The CSR entries of rows vr are start[vr.start]..start[vr.end]: also disjoint.)
             unsafe {
                 let coef = (ec.range(es[vr.start] as usize..es[vr.end] as usize), bc.range(bs[vr.start] as usize..bs[vr.end] as usize));
-                let (r, react) = (ro.range(3 * vr.start..3 * vr.end), react.range(3 * vr.start..3 * vr.end));
+                let (r, react) = (ro.range(3 * vr.start..3 * vr.end), react.range(vr.clone()));
                 *slot = rows.run(vr.clone(), vp, xt, (r, react), g.range(3 * vr.start..3 * vr.end), diag.range(vr.clone()), pre.range(6 * vr.start..6 * vr.end), coef);
             }
         });
@@ -404,11 +404,9 @@ impl Rows<'_> {
                     fd += kt * (targets.anchor[k3] - xt[k3]) - ct * vp[k3];
                 }
                 let mut rd = if pinned { 0.0 } else { mi * (vp[k3] - v[k3]) - dt * fd };
-                if held {
-                    react[3 * li + d] = rd;
-                    if d == 1 {
-                        rd = 0.0;
-                    }
+                if held && d == 1 {
+                    react[li] = rd;
+                    rd = 0.0;
                 }
                 r[3 * li + d] = rd;
                 r2 += rd * rd;
@@ -554,6 +552,7 @@ impl System {
     #[inline(always)]
     fn product_rows_plain<const SUB: bool>(&self, m: &Model, vr: std::ops::Range<usize>, p: &[f64], gg: f64, b: &[f64], out: &mut [f64]) -> f64 {
         let mut pq = 0.0;
+        let grounded = self.ground.active();
         for (li, i) in vr.enumerate() {
             if m.inv_mass[i] == 0.0 {
                 out[3 * li..3 * li + 3].fill(0.0);
@@ -571,7 +570,7 @@ impl System {
                     q[d] += gg * self.g[3 * i + d];
                 }
             }
-            if self.ground.held[i] {
+            if grounded && self.ground.held[i] {
                 q[1] = 0.0;
             }
             pq += q[0] * pi[0] + q[1] * pi[1] + q[2] * pi[2];
