@@ -98,28 +98,26 @@ impl Springs {
         self.accumulate_blocks(k, cs, x, v, f);
     }
 
-    /// Forces fs·u of springs e0..e0 + m (m ≤ BLOCK) into lanes 0..m, coordinate-major.
+    /// Forces fs·u of springs e0..e0 + m (m ≤ BLOCK) into lanes 0..m of `l.s`, coordinate-major.
     #[inline(always)]
-    fn block(&self, e0: usize, m: usize, k: f64, cs: f64, x: &[f64], v: &[f64]) -> [[f64; BLOCK]; 3] {
+    fn block(&self, l: &mut Lanes, e0: usize, m: usize, k: f64, cs: f64, x: &[f64], v: &[f64]) {
         let (ii, jj) = (&self.i[..], &self.j[..self.i.len()]);
         assert!(e0 + m <= ii.len() && ii.len() <= self.rest.len());
         // SAFETY: e < ii.len() = jj.len() (asserted); every index is below `vertex_count`
         // (checked in `new`, never changed) and x and v hold at least 3 · vertex_count values
         // (asserted by the callers).
-        unsafe { self.block_of(m, |t| (e0 + t, 3 * *ii.get_unchecked(e0 + t) as usize, 3 * *jj.get_unchecked(e0 + t) as usize), k, cs, x, v) }
+        unsafe { self.block_of(l, m, |t| (e0 + t, 3 * *ii.get_unchecked(e0 + t) as usize, 3 * *jj.get_unchecked(e0 + t) as usize), k, cs, x, v) }
     }
 
     /// Forces fs·u of the springs `ends(t) = (e, 3 a, 3 b)`, t < m ≤ BLOCK (spring e from
-    /// vertex a to b of `x` and `v`), into lanes 0..m, coordinate-major.
+    /// vertex a to b of `x` and `v`), into lanes 0..m of `l.s`, coordinate-major.
     ///
     /// # Safety
     /// Every e is below `self.rest.len()`, every 3 a + 2 and 3 b + 2 below `x.len()` and `v.len()`.
     #[inline(always)]
-    unsafe fn block_of(&self, m: usize, ends: impl Fn(usize) -> (usize, usize, usize), k: f64, cs: f64, x: &[f64], v: &[f64]) -> [[f64; BLOCK]; 3] {
+    unsafe fn block_of(&self, l: &mut Lanes, m: usize, ends: impl Fn(usize) -> (usize, usize, usize), k: f64, cs: f64, x: &[f64], v: &[f64]) {
         let rest = &self.rest[..];
-        let mut d = [[0.0f64; BLOCK]; 3];
-        let mut dv = [[0.0f64; BLOCK]; 3];
-        let mut l0 = [1.0f64; BLOCK];
+        let Lanes { d, dv, l0, s } = l;
         // Gather.
         for t in 0..m {
             let (e, a, b) = ends(t);
@@ -133,8 +131,8 @@ impl Springs {
             }
         }
         // Compute: s = [k (l − L) + cs (dv · u)] u with u = d / l. Padding lanes (t ≥ m) hold
-        // d = 0 and are never scattered; their NaN is harmless.
-        let mut s = [[0.0f64; BLOCK]; 3];
+        // an earlier block's springs (or d = 0) and are never scattered; their values, NaN
+        // included, are harmless.
         for t in 0..BLOCK {
             let len = (d[0][t] * d[0][t] + d[1][t] * d[1][t] + d[2][t] * d[2][t]).sqrt();
             let inv = 1.0 / len;
@@ -145,7 +143,6 @@ impl Springs {
             s[1][t] = fs * uy;
             s[2][t] = fs * uz;
         }
-        s
     }
 
     #[inline(always)]
@@ -153,9 +150,11 @@ impl Springs {
         let (ii, jj) = (&self.i[..], &self.j[..self.i.len()]);
         let ne = ii.len();
         let mut e0 = 0;
+        let mut l = Lanes::new();
         while e0 < ne {
             let m = BLOCK.min(ne - e0);
-            let s = self.block(e0, m, k, cs, x, v);
+            self.block(&mut l, e0, m, k, cs, x, v);
+            let s = &l.s;
             // Scatter: +s on i, −s on j.
             for t in 0..m {
                 let e = e0 + t;
@@ -202,10 +201,12 @@ impl Springs {
     #[inline(always)]
     fn forces_of_blocks(&self, k: f64, cs: f64, x: &[f64], v: &[f64], ids: &[u32], out: &mut [f64]) {
         let (ii, jj) = (&self.i[..], &self.j[..self.i.len()]);
+        let mut l = Lanes::new();
         for (ids, out) in ids.chunks(BLOCK).zip(out.chunks_mut(3 * BLOCK)) {
             // SAFETY: every id is a spring (asserted by the caller); the rest as in `block`.
-            let s = unsafe {
+            unsafe {
                 self.block_of(
+                    &mut l,
                     ids.len(),
                     |t| {
                         let e = *ids.get_unchecked(t) as usize;
@@ -217,6 +218,7 @@ impl Springs {
                     v,
                 )
             };
+            let s = &l.s;
             for (t, o) in out.chunks_exact_mut(3).enumerate() {
                 o.copy_from_slice(&[s[0][t], s[1][t], s[2][t]]);
             }
@@ -255,12 +257,14 @@ impl Springs {
     /// lengths of `x`, `v` and `f`.
     #[inline(always)]
     unsafe fn local_blocks(&self, k: f64, cs: f64, x: &[f64], v: &[f64], ends: &[[u32; 3]], f: &mut [f64]) {
+        let mut l = Lanes::new();
         for ends in ends.chunks(BLOCK) {
             let at = |t: usize| {
                 let [e, a, b] = *ends.get_unchecked(t);
                 (e as usize, a as usize, b as usize)
             };
-            let s = self.block_of(ends.len(), at, k, cs, x, v);
+            self.block_of(&mut l, ends.len(), at, k, cs, x, v);
+            let s = &l.s;
             for t in 0..ends.len() {
                 let (_, a, b) = at(t);
                 for c in 0..3 {
@@ -304,3 +308,20 @@ impl LocalSprings {
 
 /// Springs per block of the springs stage (a multiple of the widest vector, 8 f64 lanes).
 const BLOCK: usize = 16;
+
+/// One block's lanes: the gathered differences of positions and velocities, rest lengths and
+/// forces. Kept from block to block of a stage (initialising them per block cost ~10 % of the
+/// stage in stores), so a short last block's padding lanes hold earlier springs' values.
+struct Lanes {
+    d: [[f64; BLOCK]; 3],
+    dv: [[f64; BLOCK]; 3],
+    l0: [f64; BLOCK],
+    s: [[f64; BLOCK]; 3],
+}
+
+impl Lanes {
+    #[inline(always)]
+    fn new() -> Self {
+        Lanes { d: [[0.0; BLOCK]; 3], dv: [[0.0; BLOCK]; 3], l0: [1.0; BLOCK], s: [[0.0; BLOCK]; 3] }
+    }
+}
