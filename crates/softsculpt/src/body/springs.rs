@@ -248,20 +248,20 @@ impl Springs {
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
-    unsafe fn local_avx2(&self, k: f64, cs: f64, x: &[f64], v: &[f64], ends: &[[u32; 3]], f: &mut [f64]) {
+    unsafe fn local_avx2(&self, k: f64, cs: f64, x: &[f64], v: &[f64], ends: &[LocalEnd], f: &mut [f64]) {
         self.local_blocks(k, cs, x, v, ends, f);
     }
 
     /// # Safety
-    /// Every (e, 3a, 3b) of `ends` has e below `self.rest.len()` and 3a + 2, 3b + 2 below the
+    /// Every (e, a, b) of `ends` has e below `self.rest.len()` and 3a + 2, 3b + 2 below the
     /// lengths of `x`, `v` and `f`.
     #[inline(always)]
-    unsafe fn local_blocks(&self, k: f64, cs: f64, x: &[f64], v: &[f64], ends: &[[u32; 3]], f: &mut [f64]) {
+    unsafe fn local_blocks(&self, k: f64, cs: f64, x: &[f64], v: &[f64], ends: &[LocalEnd], f: &mut [f64]) {
         let mut l = Lanes::new();
         for ends in ends.chunks(BLOCK) {
             let at = |t: usize| {
-                let [e, a, b] = *ends.get_unchecked(t);
-                (e as usize, a as usize, b as usize)
+                let LocalEnd { e, a, b } = *ends.get_unchecked(t);
+                (e as usize, 3 * a as usize, 3 * b as usize)
             };
             self.block_of(&mut l, ends.len(), at, k, cs, x, v);
             let s = &l.s;
@@ -277,13 +277,12 @@ impl Springs {
 }
 
 /// Springs in chunk-local form for [`Springs::accumulate_local`]: chunk c's springs are
-/// `ends[start[c]..start[c + 1]]`, each (e, 3a, 3b) with a and b the chunk-local indices of its
+/// `ends[start[c]..start[c + 1]]`, each (e, a, b) with a and b the chunk-local indices of its
 /// ends (below `chunk_len[c]`, checked by `new`) and e its index (below `count`).
-
 #[derive(Debug, Clone, Default)]
 pub(crate) struct LocalSprings {
     start: Vec<u32>,
-    ends: Vec<[u32; 3]>,
+    ends: Vec<LocalEnd>,
     chunk_len: Vec<u32>,
     count: usize,
 }
@@ -297,13 +296,23 @@ impl LocalSprings {
             for &e in ids {
                 let (a, b) = ((sp.i[e as usize] as usize).wrapping_sub(base), (sp.j[e as usize] as usize).wrapping_sub(base));
                 assert!(a < len && b < len && (e as usize) < sp.len(), "an interior spring has both ends in its chunk");
-                l.ends.push([e, 3 * a as u32, 3 * b as u32]);
+                l.ends.push(LocalEnd { e, a: u16::try_from(a).expect("chunks of at most 65,536 vertices"), b: u16::try_from(b).expect("chunks of at most 65,536 vertices") });
             }
             l.start.push(l.ends.len() as u32);
             l.chunk_len.push(len as u32);
         }
         l
     }
+}
+
+/// One interior spring of a chunk: its index e (for the rest length) and its ends' chunk-local
+/// indices, 8 bytes (16-bit indices: chunks hold at most 65,536 vertices; `parforces.rs` makes
+/// them ~4,096). Read once per spring and step, so its size is memory traffic.
+#[derive(Debug, Clone, Copy)]
+struct LocalEnd {
+    e: u32,
+    a: u16,
+    b: u16,
 }
 
 /// Springs per block of the springs stage (a multiple of the widest vector, 8 f64 lanes).
