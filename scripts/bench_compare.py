@@ -17,6 +17,7 @@ import argparse
 import json
 import os
 import re
+import resource
 import subprocess
 import sys
 
@@ -52,11 +53,12 @@ def main():
 
     def run(binary, level, steps):
         """The bench's JSON row and the CPU seconds the child used."""
-        before = os.times()
+        # getrusage's child times are in µs (os.times counts 10 ms clock ticks).
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
         out = subprocess.run([binary, "bench", "--levels", str(level), "--steps", str(steps), "--reps", "1", "--json", "--threads", str(a.threads)],
                              check=True, capture_output=True, text=True).stdout
-        after = os.times()
-        cpu = (after.children_user - before.children_user) + (after.children_system - before.children_system)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
         return json.loads(out.strip().splitlines()[-1]), cpu
 
     def ours(binary, level):

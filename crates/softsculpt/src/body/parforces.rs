@@ -1,5 +1,7 @@
-//! The explicit force stages in chunks of vertices: two passes per force evaluation, on any
-//! number of threads, with the same bits on every number.
+//! The explicit force stages in chunks of vertices: two passes per force evaluation, on two or
+//! more threads, with the same bits on every number; on one thread, pass A and then plain
+//! passes over every spring and every vertex ([`ParForces::serial_b`]), the same forces to
+//! rounding.
 //!
 //! Split the vertices into chunks of consecutive indices (the chunk length depends on the
 //! vertex count only, [`chunk_len`]; vertices are in Morton order, so a chunk is a patch of the
@@ -24,8 +26,9 @@
 //!
 //! Determinism: every value is written by one chunk (slots by their source chunk, vertices by
 //! their own chunk), and each sum runs in an order fixed by the chunks (a vertex's spring forces
-//! in spring order, then its crossing slots in slot order; g in face order, then slots): 1, 2 or
+//! in spring order, then its crossing slots in slot order; g in face order, then slots): 2, 3 or
 //! N threads give the same bits. Which thread runs which chunk is [`Threads::blocks`]' choice.
+//! (Bodies of one chunk, and every body when one thread steps, take the one-thread path.)
 //!
 //! Built once per body (first explicit step) and kept in `Work`; allocates nothing per step
 //! (the per-thread accumulators are resized only when the thread count changes).
