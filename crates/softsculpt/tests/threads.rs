@@ -24,12 +24,17 @@ fn world(integrator: Integrator, threads: usize) -> World {
     world_with(integrator, threads, 2.0)
 }
 
+/// The inflated world on `threads` after 20 steps.
+fn stepped(integrator: Integrator, threads: usize) -> World {
+    let mut w = world(integrator, threads);
+    w.step_n(20).unwrap();
+    w
+}
+
 #[test]
 fn two_and_three_threads_step_the_explicit_integrators_to_the_same_bits() {
     for integrator in [Integrator::Symplectic, Integrator::Rk4] {
-        let (mut two, mut three) = (world(integrator, 2), world(integrator, 3));
-        two.step_n(20).unwrap();
-        three.step_n(20).unwrap();
+        let (two, three) = (stepped(integrator, 2), stepped(integrator, 3));
         // The chunks and every sum's order depend on the vertex count only, never on the
         // threads (`par.rs`): the same operations on the same numbers, so the same bits.
         assert_eq!(two.bodies[0].positions(), three.bodies[0].positions(), "{integrator:?}");
@@ -40,9 +45,7 @@ fn two_and_three_threads_step_the_explicit_integrators_to_the_same_bits() {
 #[test]
 fn one_thread_steps_the_explicit_integrators_like_two() {
     for integrator in [Integrator::Symplectic, Integrator::Rk4] {
-        let (mut one, mut two) = (world(integrator, 1), world(integrator, 2));
-        one.step_n(20).unwrap();
-        two.step_n(20).unwrap();
+        let (one, two) = (stepped(integrator, 1), stepped(integrator, 2));
         let scale = one.bodies[0].positions().iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let vscale = one.bodies[0].velocities().iter().fold(0.0f64, |m, v| m.max(v.abs()));
         // Tolerance: the terms are the same numbers (g to the bit), F summed per vertex in
