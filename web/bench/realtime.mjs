@@ -3,10 +3,11 @@
 // time the simulation keeps up with, at each implicit tolerance asked for (set in the panel's
 // field, as a user would), with the body's volume and height at the end (the result the
 // tolerance buys).
-//   node bench/realtime.mjs [levels=3,4,5] [configs=default|1e-3,1e-4,1e-6,symplectic] [DIST…]
+//   node bench/realtime.mjs [levels=3,4,5] [configs=default|1e-3,1e-4,1e-6,symplectic,material:clay] [DIST…]
 // env SETTLE, MEASURE: seconds before and of the measurement (default 2, 5).
 // (a config is an implicit tolerance, or an explicit integrator's name chosen in the panel,
-// which then takes the stable dt the modeler picks for it)
+// which then takes the stable dt the modeler picks for it, or material:NAME, a material preset
+// chosen in the panel's list)
 // (needs web/dist built; several builds, e.g. `dist /tmp/softsculpt-main-dist` from
 // bench/baseline.sh, are measured side by side, level by level, in one run)
 import { mkdtempSync } from 'node:fs';
@@ -35,7 +36,11 @@ for (const level of levels) {
       await page.waitForSelector('.import-dialog', { timeout: 30000 });
       await page.keyboard.press('Enter');
       await page.waitForFunction((v) => window.softsculpt.vertexCount() === v && !window.softsculpt.busy?.(), n, { timeout: 120000 });
-      if (/^[a-z]+$/.test(tol) && tol !== 'default') {
+      if (tol.startsWith('material:')) {
+        // A material preset chosen in the panel's list, as a user would (e.g. material:stiff_rubber).
+        await page.locator('.lil-controller', { hasText: 'material' }).locator('select').selectOption({ label: tol.slice(9).replace('_', ' ') });
+        await page.waitForFunction(() => !window.softsculpt.busy?.());
+      } else if (/^[a-z]+$/.test(tol) && tol !== 'default') {
         await page.locator('.lil-controller', { hasText: 'integrator' }).locator('select').selectOption(tol);
         await page.waitForFunction((t) => window.softsculpt.param('integrator') === t, tol);
       } else if (tol !== 'default') {

@@ -87,9 +87,12 @@ fn clap_error(e: clap::Error) -> ExitCode {
             ExitCode::SUCCESS
         }
         _ => {
+            // clap's first paragraph, on one line: a missing argument is named on the indented
+            // lines under "the following required arguments were not provided:".
             let text = e.render().to_string();
-            let first = text.lines().find(|l| !l.trim().is_empty()).unwrap_or("error: invalid command line");
-            eprintln!("{} (see --help)", first.trim_end());
+            let first: Vec<&str> = text.lines().skip_while(|l| l.trim().is_empty()).take_while(|l| !l.trim().is_empty()).map(str::trim).collect();
+            let first = if first.is_empty() { "error: invalid command line".to_string() } else { first.join(" ") };
+            eprintln!("{first} (see --help)");
             ExitCode::from(2)
         }
     }

@@ -83,6 +83,10 @@ fn every_bad_flag_is_one_clear_error_naming_the_flag() {
         assert_eq!(o.status.code(), Some(2), "{flags:?}");
     }
     assert!(!Path::new(out).exists());
+    // A missing required argument is named, not only announced.
+    let o = softsculpt(&["simulate", "builtin:sphere", "--steps", "1"]);
+    assert_clean_error(&o, "--out");
+    assert_eq!(o.status.code(), Some(2));
 }
 
 #[test]

@@ -76,3 +76,39 @@ fn a_body_at_rest_on_the_ground_leaves_its_steps_nothing_to_solve() {
     assert!(newton <= 60, "{newton} Newton iterations in 60 steps at rest");
     assert!(s.max_speed < 1e-3, "max speed {} at rest", s.max_speed);
 }
+
+/// A stiffer balloon (the modeler's preset with k = k_b = 500 N/m) of 10,242 vertices landing
+/// on the ground (its first 40 steps, 0.67 s) converges at every step without a retry. Its
+/// flattened, compressed bottom has vertices whose springs are all compressed; the clamped
+/// matrix leaves them almost only their mass (1e-4 kg against dt² k = 0.14 kg) against moving
+/// out of the surface, so a Newton step could move them by centimetres, the springs stretched
+/// at second order (l/L 1.02 → 1.12 in one trial) and Newton wandered at a relative residual of
+/// 1e-2 until the cap; the step was then solved again without the ground's vertices held.
+/// Measured here before the switch to the absolute-value projection after an overshoot
+/// (`body/implicit/mod.rs`, `OVERSHOOT`): 709 Newton iterations in 40 steps, retried steps of
+/// 221; with it: 508, at most 88 per step. Bounds: no step above the cap (a retry adds the
+/// failed attempt's 100 to the step's count), and 600 in all (18 % above the measured 508;
+/// the old count 709 exceeds it). Later, once the ball rolls on its flattened bottom, some
+/// steps still fail and are retried (BENCHMARKS.md): the switch shortens the landing, it does
+/// not make every contact step converge.
+#[test]
+fn a_stiff_balloon_settling_on_the_ground_converges_at_every_step() {
+    let body = SoftBody::new(&icosphere(5, 0.7), 1.0, Material::default()).unwrap();
+    let mut w = World::single(body, WorldSettings::default());
+    w.apply_preset(0, "modeler").unwrap();
+    w.bodies[0].material.stiffness = 500.0;
+    w.bodies[0].material.bending_stiffness = 500.0;
+    let lo = w.bodies[0].positions().chunks_exact(3).map(|p| p[1]).fold(f64::INFINITY, f64::min);
+    let x: Vec<f64> = w.bodies[0].positions().chunks_exact(3).flat_map(|p| [p[0], p[1] - lo, p[2]]).collect();
+    w.bodies[0].set_state(&x, &vec![0.0; x.len()]).unwrap();
+    let cap = w.settings.newton_iterations;
+    let (mut total, mut worst) = (0, 0);
+    for _ in 0..40 {
+        w.step().unwrap();
+        let n = w.bodies[0].solver_iterations().newton;
+        (total, worst) = (total + n, worst.max(n));
+    }
+    println!("Newton iterations in 40 steps: {total}, at most {worst} per step");
+    assert!(worst <= cap, "a step took {worst} Newton iterations (cap {cap}): it was retried");
+    assert!(total <= 600, "{total} Newton iterations in 40 steps");
+}

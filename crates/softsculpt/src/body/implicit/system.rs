@@ -11,7 +11,10 @@
 //! - **spring** (i, j), l = |x_j − x_i|, d = (x_j − x_i)/l, L rest length: f_i = [k (l − L) +
 //!   cs (v_j − v_i)·d] d. Its elastic Hessian block is k [(1 − L/l)(I − d dᵀ) + d dᵀ]; the
 //!   transverse factor (1 − L/l) is negative for a compressed spring, so it is clamped at 0
-//!   (the block is then positive semi-definite: Choi & Ko 2002, the standard projection).
+//!   (the block is then positive semi-definite: Choi & Ko 2002, the standard projection) —
+//!   or, once a step's Newton iteration has overshot (`absolute`, set by the Newton loop:
+//!   `mod.rs`), replaced by its absolute value |1 − L/l| (Chen et al. 2024, trust-region
+//!   eigenvalue filtering: the absolute value where the quadratic model proved untrustworthy).
 //!   Damping adds cs d dᵀ to D. The derivative of the damping force through d (∝ cs (v·d)/l) is
 //!   not symmetric and is dropped. Per spring: B = dt² K_e + dt D_e = a I + b d dᵀ with
 //!   a = dt² k α, b = dt² k (1 − α) + dt cs, α = max(0, 1 − L/l); it couples i and j as
@@ -117,6 +120,9 @@ pub(crate) struct System {
     pub contact: ContactTerms,
     /// The vertices the ground constrains this step (`ground.rs`).
     pub ground: GroundSet,
+    /// Compressed springs enter the matrix with their transverse stiffness's absolute value
+    /// instead of clamped at 0 (see the module documentation; the Newton loop sets it).
+    pub absolute: bool,
     /// Reduction slots, one per chunk.
     pub vslots: Vec<[f64; 4]>,
     eslots: Vec<f64>,
@@ -151,6 +157,7 @@ impl System {
             gamma: 0.0,
             contact: ContactTerms::default(),
             ground: GroundSet::new(n),
+            absolute: false,
             vslots: vec![[0.0; 4]; chunks(n, VCHUNK)],
             eslots: vec![0.0; chunks(m.springs.len().max(m.bending.len()), ECHUNK)],
             fslots: vec![0.0; chunks(nf, ECHUNK)],
@@ -168,10 +175,11 @@ impl System {
         let (p, w, m, dt) = (fr.p, fr.w, fr.m, fr.dt);
 
         // Springs: one pass per kind, chunks of springs (each writes its own springs only).
-        spring_pass(th, &m.springs, p.stiffness, p.spring_damping, dt, xt, vp, &mut self.eb, &mut self.eslots);
+        let abs = self.absolute;
+        spring_pass(th, &m.springs, (p.stiffness, p.spring_damping, abs), dt, xt, vp, &mut self.eb, &mut self.eslots);
         self.bending = p.bending_stiffness > 0.0;
         if self.bending {
-            spring_pass(th, &m.bending, p.bending_stiffness, p.spring_damping, dt, xt, vp, &mut self.bb, &mut self.eslots);
+            spring_pass(th, &m.bending, (p.bending_stiffness, p.spring_damping, abs), dt, xt, vp, &mut self.bb, &mut self.eslots);
         }
 
         // Faces and gas: n_f per face and 6V (per-chunk sums in chunk order), then P.
@@ -441,7 +449,9 @@ impl Rows<'_> {
 
 /// Per spring: fs·d, d, a, b at (xt, vp).
 #[allow(clippy::too_many_arguments)]
-fn spring_pass(th: &Threads, sp: &Springs, k: f64, cs: f64, dt: f64, xt: &[f64], vp: &[f64], out: &mut SpringBlocks, slots: &mut [f64]) {
+/// `(k, cs, absolute)`: stiffness, damping, and how a compressed spring's negative transverse
+/// factor 1 − L/l enters the matrix (clamped at 0, or its absolute value).
+fn spring_pass(th: &Threads, sp: &Springs, (k, cs, absolute): (f64, f64, bool), dt: f64, xt: &[f64], vp: &[f64], out: &mut SpringBlocks, slots: &mut [f64]) {
     let ne = sp.len();
     let nch = chunks(ne, ECHUNK);
     let (fd, d, a, b) = (Out::new(&mut out.fd), Out::new(&mut out.d), Out::new(&mut out.a), Out::new(&mut out.b));
@@ -459,7 +469,7 @@ fn spring_pass(th: &Threads, sp: &Springs, k: f64, cs: f64, dt: f64, xt: &[f64],
             let dvn = (vp[j] - vp[i]) * u[0] + (vp[j + 1] - vp[i + 1]) * u[1] + (vp[j + 2] - vp[i + 2]) * u[2];
             let rest = sp.rest[e];
             let fs = k * (l - rest) + cs * dvn;
-            let alpha = (1.0 - rest * inv).max(0.0);
+            let alpha = if absolute { (1.0 - rest * inv).abs() } else { (1.0 - rest * inv).max(0.0) };
             for q in 0..3 {
                 fd[3 * le + q] = fs * u[q];
                 d[3 * le + q] = u[q];
