@@ -1,16 +1,18 @@
 //! The explicit force stages on several threads (`body/parforces.rs`): the same bits on any
-//! number of threads, one included.
+//! number of threads above one, and the same motion to rounding on one (which runs plain
+//! passes over every spring and vertex, `ParForces::serial_b`).
 
 mod common;
 use common::*;
 use softsculpt::body::Material;
 use softsculpt::world::{Integrator, World, WorldSettings};
 
-/// 10,242 vertices of 1/256 kg (5 chunks of 2048 and a partial one), gas, spring and bending springs,
-/// viscous damping, gravity, a swirl: every explicit stage and both kinds of crossing terms.
-fn world(integrator: Integrator, threads: usize) -> World {
+/// 10,242 vertices of 1/256 kg (4 chunks of 2,561), gas (nRT in J), spring and bending
+/// springs, viscous damping, gravity, a swirl: every explicit stage and both kinds of crossing
+/// terms.
+fn world_with(integrator: Integrator, threads: usize, nrt: f64) -> World {
     let mut p = Material { stiffness: 1000.0, spring_damping: 1.0, damping: 0.2, bending_stiffness: 300.0, ..bare() };
-    p.set_nrt(2.0);
+    p.set_nrt(nrt);
     let mut body = sphere_body(5, 40.0, p);
     swirl(&mut body, 0.5);
     let mut w = alone(body, WorldSettings { gravity: 9.81, integrator, dt: 1e-4, ..still() });
@@ -18,27 +20,60 @@ fn world(integrator: Integrator, threads: usize) -> World {
     w
 }
 
+fn world(integrator: Integrator, threads: usize) -> World {
+    world_with(integrator, threads, 2.0)
+}
+
+/// The inflated world on `threads` after 20 steps.
+fn stepped(integrator: Integrator, threads: usize) -> World {
+    let mut w = world(integrator, threads);
+    w.step_n(20).unwrap();
+    w
+}
+
 #[test]
-fn one_two_and_three_threads_step_the_explicit_integrators_to_the_same_bits() {
+fn two_and_three_threads_step_the_explicit_integrators_to_the_same_bits() {
     for integrator in [Integrator::Symplectic, Integrator::Rk4] {
-        let mut runs: Vec<World> = [1, 2, 3].iter().map(|&t| world(integrator, t)).collect();
-        for w in &mut runs {
-            w.step_n(20).unwrap();
-        }
+        let (two, three) = (stepped(integrator, 2), stepped(integrator, 3));
         // The chunks and every sum's order depend on the vertex count only, never on the
         // threads (`par.rs`): the same operations on the same numbers, so the same bits.
-        for w in &runs[1..] {
-            assert_eq!(w.bodies[0].positions(), runs[0].bodies[0].positions(), "{integrator:?}");
-            assert_eq!(w.bodies[0].velocities(), runs[0].bodies[0].velocities(), "{integrator:?}");
-        }
+        assert_eq!(two.bodies[0].positions(), three.bodies[0].positions(), "{integrator:?}");
+        assert_eq!(two.bodies[0].velocities(), three.bodies[0].velocities(), "{integrator:?}");
     }
 }
 
-/// The chunked stages against a plain serial sum of the same forces: one step from a swirling,
-/// inflated state, compared with the textbook formulas evaluated vertex by vertex.
 #[test]
-fn the_chunked_stages_give_the_textbook_forces() {
-    let w = world(Integrator::Symplectic, 2);
+fn one_thread_steps_the_explicit_integrators_like_two() {
+    for integrator in [Integrator::Symplectic, Integrator::Rk4] {
+        let (one, two) = (stepped(integrator, 1), stepped(integrator, 2));
+        let scale = one.bodies[0].positions().iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let vscale = one.bodies[0].velocities().iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        // Tolerance: the terms are the same numbers (g to the bit), F summed per vertex in
+        // another order (the chunk-crossing springs among the others, not last) and, on one
+        // thread, as s (g + F / s): the division and multiplication by s add 2 ulps. So each
+        // force differs by a few ulps of the largest term, the spring damping forces,
+        // cs |Δv| ≈ 1 · 1 N per spring (the swirl): dt Σ|f| / m ≈ 1e-4 · 10 N / 3.9e-3 kg
+        // ≈ 0.3 m/s per step, ulps of that ~1e-16 m/s per step. The run is stable
+        // (ω dt = sqrt(12 k / m) dt ≈ 0.18 and 12 cs dt / m ≈ 0.3), so over 20 steps they add
+        // up to ~1e-14 of the 0.5 m/s velocities: far inside the 1e-12 relative, which
+        // is what is asserted.
+        let dx = max_abs_diff(one.bodies[0].positions(), two.bodies[0].positions());
+        let dv = max_abs_diff(one.bodies[0].velocities(), two.bodies[0].velocities());
+        assert!(dx <= 1e-12 * scale && dv <= 1e-12 * vscale, "{integrator:?}: |Δx| {dx:e}, |Δv| {dv:e}");
+    }
+}
+
+/// The chunked stages (2 threads) and the plain one-thread passes against a serial sum of the
+/// same forces: one step from a swirling state, inflated (F folded into g on one thread) and
+/// without a gas (F apart), compared with the textbook formulas evaluated vertex by vertex.
+#[test]
+fn the_explicit_stages_give_the_textbook_forces_on_one_and_two_threads() {
+    for (threads, nrt) in [(2, 2.0), (1, 2.0), (2, 0.0), (1, 0.0)] {
+        textbook_step(world_with(Integrator::Symplectic, threads, nrt), &format!("{threads} thread(s), nRT {nrt} J"));
+    }
+}
+
+fn textbook_step(w: World, case: &str) {
     let b = &w.bodies[0];
     let (x0, v0) = (b.positions().to_vec(), b.velocities().to_vec());
     let (p, dt, g) = (b.material.clone(), 1e-4, 9.81);
@@ -93,16 +128,5 @@ fn the_chunked_stages_give_the_textbook_forces() {
     // the largest term (the damping forces, ~1 N per spring with this swirl; the gas forces
     // s |n_f| ≈ 0.3 N); dt / m ≈ 0.026 s/kg turns 1e-15 N into ~3e-17 m/s. 1e-12 is far above
     // rounding and far below any missing or doubled term (≥ 1e-6 m/s here).
-    assert!(worst < 1e-12, "largest difference from the textbook step: {worst:e}");
+    assert!(worst < 1e-12, "{case}: largest difference from the textbook step: {worst:e}");
 }
-
-#[test]
-fn two_and_three_threads_give_the_same_bits() {
-    let (mut two, mut three) = (world(Integrator::Symplectic, 2), world(Integrator::Symplectic, 3));
-    two.step_n(20).unwrap();
-    three.step_n(20).unwrap();
-    // The chunks do not depend on the thread count: the same sums in the same order.
-    assert_eq!(two.bodies[0].positions(), three.bodies[0].positions());
-    assert_eq!(two.bodies[0].velocities(), three.bodies[0].velocities());
-}
-

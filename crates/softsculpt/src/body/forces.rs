@@ -36,9 +36,11 @@ impl Fault {
 /// pressures, targets: on the calling thread, into `rare`, only when active) and f_ext the user
 /// force plus prestress. Same sum as the C++ reference's `F + Pg · G`.
 ///
-/// `vertex(range, f, x, v)` then gets each chunk of vertices with their forces (N, in a buffer
-/// it may overwrite) and their positions and velocities (which it may update: no other chunk
-/// reads them after the forces are known), and may write those vertices of any array it owns.
+/// `vertex(range, f, a, x, v)` then gets each chunk of vertices with their forces a · f (N; f
+/// in a buffer it may overwrite, a = 1 except on one thread, where f is (F + s g) / s and a = s,
+/// `ParForces::serial_b`) and their positions and velocities (which it may update: no other
+/// chunk reads them after the forces are known), and may write those vertices of any array it
+/// owns.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn evaluate(
     th: &Threads,
@@ -49,11 +51,11 @@ pub(crate) fn evaluate(
     x: &mut [f64],
     v: &mut [f64],
     rare: &mut [f64],
-    vertex: impl Fn(std::ops::Range<usize>, &[f64], &mut [f64], &mut [f64]) + Sync,
+    vertex: impl Fn(std::ops::Range<usize>, &[f64], f64, &mut [f64], &mut [f64]) + Sync,
 ) -> Result<(), Fault> {
     let nrt = p.nrt();
     let gas_active = nrt != 0.0 || m.gas.ambient_pressure != 0.0;
-    let q = Coefficients { k: p.stiffness, kb: (p.bending_stiffness > 0.0).then_some(p.bending_stiffness), cs: p.spring_damping, normals: gas_active };
+    let q = Coefficients { k: p.stiffness, kb: (p.bending_stiffness > 0.0).then_some(p.bending_stiffness), cs: p.spring_damping, normals: gas_active, scale: 0.0 };
 
     // Pass A: stage faces (the exact volume, Σ n_f per vertex when a gas uses it) and the
     // crossing springs.
@@ -88,13 +90,19 @@ pub(crate) fn evaluate(
     }
 
     // Pass B: stage springs, then the vertex stage on each chunk.
+    let q = Coefficients { scale, ..q };
     let (ro, user) = (Out::new(rare), m.external_active.then_some(&m.external[..]));
-    par.pass_b(th, m, &q, x, v, |vr, f, g, x, v| {
+    par.pass_b(th, m, &q, x, v, |vr, f, g, mut a, x, v| {
         let r3 = 3 * vr.start..3 * vr.end;
         if !g.is_empty() {
             for (fk, gk) in f.iter_mut().zip(g) {
-                *fk += scale * gk;
+                *fk = a * *fk + scale * gk;
             }
+            a = 1.0;
+        }
+        if a != 1.0 && (has_rare || user.is_some()) {
+            f.iter_mut().for_each(|fk| *fk *= a);
+            a = 1.0;
         }
         if has_rare {
             // SAFETY: every chunk takes its own vertices of `rare`.
@@ -109,7 +117,7 @@ pub(crate) fn evaluate(
                 *fk += uk;
             }
         }
-        vertex(vr, f, x, v);
+        vertex(vr, f, a, x, v);
     });
     Ok(())
 }
@@ -128,16 +136,18 @@ fn accel<const UNIFORM: bool>(im: f64, force: f64, v: f64, c: f64, gravity_k: f6
 }
 
 /// Stage vertices (generic): the accelerations of the vertices `vr` into `a`, from their
-/// forces `f` and velocities `v` (all chunk-local).
-pub(crate) fn accelerations(p: &Material, w: &WorldSettings, m: &Model, vr: std::ops::Range<usize>, f: &[f64], v: &[f64], a: &mut [f64]) {
+/// forces `fa · f` and velocities `v` (all chunk-local).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn accelerations(p: &Material, w: &WorldSettings, m: &Model, vr: std::ops::Range<usize>, f: &[f64], fa: f64, v: &[f64], a: &mut [f64]) {
     if w.gravity != 0.0 || p.damping != 0.0 {
-        accelerations_impl::<true>(p.damping, w.gravity, &m.inv_mass[vr], f, v, a)
+        accelerations_impl::<true>(p.damping, w.gravity, &m.inv_mass[vr], f, fa, v, a)
     } else {
-        accelerations_impl::<false>(p.damping, w.gravity, &m.inv_mass[vr], f, v, a)
+        accelerations_impl::<false>(p.damping, w.gravity, &m.inv_mass[vr], f, fa, v, a)
     }
 }
 
-fn accelerations_impl<const UNIFORM: bool>(damping: f64, gravity: f64, inv_mass: &[f64], f: &[f64], v: &[f64], a: &mut [f64]) {
+#[allow(clippy::too_many_arguments)]
+fn accelerations_impl<const UNIFORM: bool>(damping: f64, gravity: f64, inv_mass: &[f64], f: &[f64], fa: f64, v: &[f64], a: &mut [f64]) {
     let n = inv_mass.len();
     let (v, f, a) = (&v[..3 * n], &f[..3 * n], &mut a[..3 * n]);
     let grav = [0.0, -gravity, 0.0];
@@ -145,23 +155,24 @@ fn accelerations_impl<const UNIFORM: bool>(damping: f64, gravity: f64, inv_mass:
         let im = inv_mass[i];
         for d in 0..3 {
             let k = 3 * i + d;
-            a[k] = accel::<UNIFORM>(im, f[k], v[k], damping, grav[d]);
+            a[k] = accel::<UNIFORM>(im, fa * f[k], v[k], damping, grav[d]);
         }
     }
 }
 
 /// Stage vertices fused with symplectic Euler on the vertices `vr`: v += dt a; x += dt v, with
-/// their forces `f` (all chunk-local).
+/// their forces `fa · f` (all chunk-local).
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn symplectic(p: &Material, w: &WorldSettings, m: &Model, vr: std::ops::Range<usize>, f: &[f64], dt: f64, x: &mut [f64], v: &mut [f64]) {
+pub(crate) fn symplectic(p: &Material, w: &WorldSettings, m: &Model, vr: std::ops::Range<usize>, f: &[f64], fa: f64, dt: f64, x: &mut [f64], v: &mut [f64]) {
     if w.gravity != 0.0 || p.damping != 0.0 {
-        symplectic_impl::<true>(p.damping, w.gravity, &m.inv_mass[vr], f, dt, x, v)
+        symplectic_impl::<true>(p.damping, w.gravity, &m.inv_mass[vr], f, fa, dt, x, v)
     } else {
-        symplectic_impl::<false>(p.damping, w.gravity, &m.inv_mass[vr], f, dt, x, v)
+        symplectic_impl::<false>(p.damping, w.gravity, &m.inv_mass[vr], f, fa, dt, x, v)
     }
 }
 
-fn symplectic_impl<const UNIFORM: bool>(damping: f64, gravity: f64, inv_mass: &[f64], f: &[f64], dt: f64, x: &mut [f64], v: &mut [f64]) {
+#[allow(clippy::too_many_arguments)]
+fn symplectic_impl<const UNIFORM: bool>(damping: f64, gravity: f64, inv_mass: &[f64], f: &[f64], fa: f64, dt: f64, x: &mut [f64], v: &mut [f64]) {
     let n = inv_mass.len();
     let (x, v, f) = (&mut x[..3 * n], &mut v[..3 * n], &f[..3 * n]);
     let grav = [0.0, -gravity, 0.0];
@@ -169,7 +180,7 @@ fn symplectic_impl<const UNIFORM: bool>(damping: f64, gravity: f64, inv_mass: &[
         let im = inv_mass[i];
         for d in 0..3 {
             let k = 3 * i + d;
-            v[k] += dt * accel::<UNIFORM>(im, f[k], v[k], damping, grav[d]);
+            v[k] += dt * accel::<UNIFORM>(im, fa * f[k], v[k], damping, grav[d]);
             x[k] += dt * v[k];
         }
     }

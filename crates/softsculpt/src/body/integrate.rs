@@ -11,10 +11,10 @@ use crate::world::{Integrator, WorldSettings};
 #[allow(clippy::too_many_arguments)]
 fn eval(th: &Threads, par: &mut ParForces, p: &Material, w: &WorldSettings, m: &Model, x: &mut [f64], v: &mut [f64], rare: &mut [f64], a: &mut [f64]) -> Result<(), Fault> {
     let ao = Out::new(a);
-    evaluate(th, par, p, w, m, x, v, rare, |vr, f, _, v| {
+    evaluate(th, par, p, w, m, x, v, rare, |vr, f, fa, _, v| {
         // SAFETY: every chunk writes its own vertices only.
         let a = unsafe { ao.range(3 * vr.start..3 * vr.end) };
-        accelerations(p, w, m, vr, f, v, a);
+        accelerations(p, w, m, vr, f, fa, v, a);
     })
 }
 
@@ -50,7 +50,7 @@ pub(crate) fn step(p: &Material, world: &WorldSettings, m: &Model, s: &mut State
         Integrator::Implicit => unreachable!("handled above"),
         Integrator::Symplectic => {
             // v' = v + dt a(x, v); x' = x + dt v', fused into the force stages' second pass.
-            evaluate(th, par, p, w, m, &mut s.x, &mut s.v, f, |vr, f, x, v| symplectic(p, w, m, vr, f, dt, x, v))?;
+            evaluate(th, par, p, w, m, &mut s.x, &mut s.v, f, |vr, f, fa, x, v| symplectic(p, w, m, vr, f, fa, dt, x, v))?;
         }
         Integrator::Euler => {
             // x' = x + dt v; v' = v + dt a(x, v)

@@ -1,5 +1,7 @@
-//! The explicit force stages in chunks of vertices: two passes per force evaluation, on any
-//! number of threads, with the same bits on every number.
+//! The explicit force stages in chunks of vertices: two passes per force evaluation, on two or
+//! more threads, with the same bits on every number; on one thread, pass A and then plain
+//! passes over every spring and every vertex ([`ParForces::serial_b`]), the same forces to
+//! rounding.
 //!
 //! Split the vertices into chunks of consecutive indices (the chunk length depends on the
 //! vertex count only, [`chunk_len`]; vertices are in Morton order, so a chunk is a patch of the
@@ -24,8 +26,9 @@
 //!
 //! Determinism: every value is written by one chunk (slots by their source chunk, vertices by
 //! their own chunk), and each sum runs in an order fixed by the chunks (a vertex's spring forces
-//! in spring order, then its crossing slots in slot order; g in face order, then slots): 1, 2 or
+//! in spring order, then its crossing slots in slot order; g in face order, then slots): 2, 3 or
 //! N threads give the same bits. Which thread runs which chunk is [`Threads::blocks`]' choice.
+//! (Bodies of one chunk, and every body when one thread steps, take the one-thread path.)
 //!
 //! Built once per body (first explicit step) and kept in `Work`; allocates nothing per step
 //! (the per-thread accumulators are resized only when the thread count changes).
@@ -177,6 +180,8 @@ pub(crate) struct Coefficients {
     pub cs: f64,
     /// Σ n_f per vertex is needed (a gas is active).
     pub normals: bool,
+    /// The gas scale s = (P − P_ref)/6 (Pa) of f = F + s g, known after pass A (0 before).
+    pub scale: f64,
 }
 
 /// The partition of one body's springs, bending springs and faces, and the passes' buffers.
@@ -200,6 +205,9 @@ pub(crate) struct ParForces {
     slots: Vec<f64>,
     /// One spring accumulator per thread (3 · len values each).
     scratch: Vec<f64>,
+    /// One thread's spring forces F (N, flat xyz) when they are not folded into `g` (see
+    /// [`ParForces::serial_b`]); zero between passes, sized on first use.
+    serial_f: Vec<f64>,
 }
 
 impl ParForces {
@@ -234,6 +242,7 @@ impl ParForces {
             g: vec![0.0; 3 * n],
             slots: vec![0.0; nch],
             scratch: Vec::new(),
+            serial_f: Vec::new(),
         }
     }
 
@@ -247,10 +256,12 @@ impl ParForces {
         th.for_chunks(self.slots.len(), self.len, MIN_PER_THREAD)
     }
 
-    /// Pass A: returns 6V (m³); Σ n_f per vertex into `self.g` when `q.normals`, the crossing
-    /// springs into their slots.
+    /// Pass A: returns 6V (m³); Σ n_f per vertex into `self.g` when `q.normals`; on several
+    /// threads the crossing springs into their slots. 6V and g are the same sums, in the same
+    /// order, on any thread count.
     pub fn pass_a(&mut self, th: &Threads, m: &Model, q: &Coefficients, x: &[f64], v: &[f64]) -> f64 {
         let (n, len, t) = (self.n, self.len, self.threads(th));
+        let serial = t == 1;
         let (lf, ctris, cstart) = (&self.local_faces, &self.cross_tris, &self.cross_start);
         // The slot buffers, out of their parts while the pass writes them.
         let (mut sbuf, mut bbuf) = (std::mem::take(&mut self.springs.cross.buf), std::mem::take(&mut self.bending.cross.buf));
@@ -263,22 +274,37 @@ impl ParForces {
             let (g, cb, six_v) = unsafe { (go.range(3 * vr.start..3 * vr.end), fcross.range(3 * fsrc[c] as usize..3 * fsrc[c + 1] as usize), &mut so.range(c..c + 1)[0]) };
             let crossing = &ctris[cstart[c] as usize..cstart[c + 1] as usize];
             *six_v = m.faces.volume6_and_normals_part(lf, c, crossing, x, vr, g, cb, q.normals);
+            if serial {
+                return;
+            }
             sp.crossing(c, &m.springs, q.k, q.cs, x, v, &scross);
             if let Some(kb) = q.kb {
                 bp.crossing(c, &m.bending, kb, q.cs, x, v, &bcross);
             }
         });
         (self.springs.cross.buf, self.bending.cross.buf) = (sbuf, bbuf);
+        if serial && q.normals {
+            // One thread's pass B reads g whole: complete it here with the faces' crossing
+            // slots, as the chunked pass B does chunk by chunk (the same sums in the same order).
+            for c in 0..self.slots.len() {
+                let vr = chunk(c, len, n);
+                self.faces.apply(c, vr.start, 1.0, &mut self.g[3 * vr.start..3 * vr.end]);
+            }
+        }
         self.slots.iter().sum()
     }
 
     /// Pass B: for every chunk, the spring forces F (N) of its vertices, completed by the
-    /// crossing slots, and g completed likewise; then `vertex(range, F, g, x, v)` with the
-    /// chunk's F (the thread's buffer, free to overwrite), g (empty without normals) and
-    /// positions and velocities (free to update: no other chunk reads them in this pass).
-    pub fn pass_b(&mut self, th: &Threads, m: &Model, q: &Coefficients, x: &mut [f64], v: &mut [f64], vertex: impl Fn(std::ops::Range<usize>, &mut [f64], &[f64], &mut [f64], &mut [f64]) + Sync) {
+    /// crossing slots, and g completed likewise; then `vertex(range, F, g, a, x, v)` with the
+    /// chunk's F (the thread's buffer, free to overwrite), g (empty without normals), a = 1
+    /// (the force is a F + s g) and positions and velocities (free to update: no other chunk
+    /// reads them in this pass). On one thread: [`ParForces::serial_b`].
+    pub fn pass_b(&mut self, th: &Threads, m: &Model, q: &Coefficients, x: &mut [f64], v: &mut [f64], vertex: impl Fn(std::ops::Range<usize>, &mut [f64], &[f64], f64, &mut [f64], &mut [f64]) + Sync) {
         let (n, len, t) = (self.n, self.len, self.threads(th));
         assert!(x.len() == 3 * n && v.len() == 3 * n);
+        if t == 1 {
+            return self.serial_b(m, q, x, v, vertex);
+        }
         let per = 3 * len;
         if self.scratch.len() < t * per {
             self.scratch = vec![0.0; t * per];
@@ -299,8 +325,46 @@ impl ParForces {
             if q.normals {
                 faces.apply(c, vr.start, 1.0, g);
             }
-            vertex(vr, f, if q.normals { g } else { &[] }, x, v);
+            vertex(vr, f, if q.normals { g } else { &[] }, 1.0, x, v);
         });
+    }
+}
+
+impl ParForces {
+    /// Pass B on one thread (what WebAssembly runs): the springs stage over every spring in
+    /// spring order, then the vertex stage over every vertex: two streams over the arrays, as
+    /// the explicit stages ran before the chunked passes. The chunks' pass B costs one thread
+    /// 10–25 % more (BENCHMARKS.md, "One thread: plain passes again").
+    ///
+    /// F is folded into g: the springs add F / s to g (stiffness and damping divided by the gas
+    /// scale s once), and the vertex stage gets g + F / s with a = s, so the force is
+    /// s (g + F / s) = F + s g to a few ulps: one accumulator, the one pass A has just written
+    /// (still in cache), instead of a second one of 3n values read and cleared every step.
+    /// Without a gas, or with s = 0 (P = P_ref right after a freeze), F goes to `serial_f`.
+    ///
+    /// Against the chunked pass B only the summation order differs (F sums each vertex's
+    /// springs in spring order, with the chunk-crossing ones among them, not last; the
+    /// division by s): one thread and several agree to rounding (tests/threads.rs).
+    fn serial_b(&mut self, m: &Model, q: &Coefficients, x: &mut [f64], v: &mut [f64], vertex: impl Fn(std::ops::Range<usize>, &mut [f64], &[f64], f64, &mut [f64], &mut [f64])) {
+        let n = self.n;
+        // |s| below this is not divided by (F / s would overflow); such a gas force is nil.
+        const SCALE_MIN: f64 = 1e-200;
+        let fold = q.normals && q.scale.is_finite() && q.scale.abs() >= SCALE_MIN;
+        let inv = if fold { 1.0 / q.scale } else { 1.0 };
+        if !fold && self.serial_f.len() != 3 * n {
+            self.serial_f = vec![0.0; 3 * n];
+        }
+        let f = if fold { &mut self.g } else { &mut self.serial_f };
+        m.springs.accumulate(q.k * inv, q.cs * inv, x, v, f);
+        if let Some(kb) = q.kb {
+            m.bending.accumulate(kb * inv, q.cs * inv, x, v, f);
+        }
+        if fold {
+            vertex(0..n, &mut self.g, &[], q.scale, x, v);
+        } else {
+            vertex(0..n, &mut self.serial_f, if q.normals { &self.g } else { &[] }, 1.0, x, v);
+            self.serial_f.fill(0.0);
+        }
     }
 }
 
@@ -313,7 +377,7 @@ impl super::SoftBody {
         if !w.par.as_ref().is_some_and(|q| q.fits(m)) {
             w.par = Some(Box::new(ParForces::new(m)));
         }
-        let q = Coefficients { k: 0.0, kb: None, cs: 0.0, normals: false };
+        let q = Coefficients { k: 0.0, kb: None, cs: 0.0, normals: false, scale: 0.0 };
         let six_v = w.par.as_mut().expect("built above").pass_a(&Threads::single(), m, &q, x, v);
         super::gas::measure(m.faces.triangles(), self.material.volume_mode, six_v, x)
     }

@@ -98,28 +98,26 @@ impl Springs {
         self.accumulate_blocks(k, cs, x, v, f);
     }
 
-    /// Forces fs·u of springs e0..e0 + m (m ≤ BLOCK) into lanes 0..m, coordinate-major.
+    /// Forces fs·u of springs e0..e0 + m (m ≤ BLOCK) into lanes 0..m of `l.s`, coordinate-major.
     #[inline(always)]
-    fn block(&self, e0: usize, m: usize, k: f64, cs: f64, x: &[f64], v: &[f64]) -> [[f64; BLOCK]; 3] {
+    fn block(&self, l: &mut Lanes, e0: usize, m: usize, k: f64, cs: f64, x: &[f64], v: &[f64]) {
         let (ii, jj) = (&self.i[..], &self.j[..self.i.len()]);
         assert!(e0 + m <= ii.len() && ii.len() <= self.rest.len());
         // SAFETY: e < ii.len() = jj.len() (asserted); every index is below `vertex_count`
         // (checked in `new`, never changed) and x and v hold at least 3 · vertex_count values
         // (asserted by the callers).
-        unsafe { self.block_of(m, |t| (e0 + t, 3 * *ii.get_unchecked(e0 + t) as usize, 3 * *jj.get_unchecked(e0 + t) as usize), k, cs, x, v) }
+        unsafe { self.block_of(l, m, |t| (e0 + t, 3 * *ii.get_unchecked(e0 + t) as usize, 3 * *jj.get_unchecked(e0 + t) as usize), k, cs, x, v) }
     }
 
     /// Forces fs·u of the springs `ends(t) = (e, 3 a, 3 b)`, t < m ≤ BLOCK (spring e from
-    /// vertex a to b of `x` and `v`), into lanes 0..m, coordinate-major.
+    /// vertex a to b of `x` and `v`), into lanes 0..m of `l.s`, coordinate-major.
     ///
     /// # Safety
     /// Every e is below `self.rest.len()`, every 3 a + 2 and 3 b + 2 below `x.len()` and `v.len()`.
     #[inline(always)]
-    unsafe fn block_of(&self, m: usize, ends: impl Fn(usize) -> (usize, usize, usize), k: f64, cs: f64, x: &[f64], v: &[f64]) -> [[f64; BLOCK]; 3] {
+    unsafe fn block_of(&self, l: &mut Lanes, m: usize, ends: impl Fn(usize) -> (usize, usize, usize), k: f64, cs: f64, x: &[f64], v: &[f64]) {
         let rest = &self.rest[..];
-        let mut d = [[0.0f64; BLOCK]; 3];
-        let mut dv = [[0.0f64; BLOCK]; 3];
-        let mut l0 = [1.0f64; BLOCK];
+        let Lanes { d, dv, l0, s } = l;
         // Gather.
         for t in 0..m {
             let (e, a, b) = ends(t);
@@ -133,8 +131,8 @@ impl Springs {
             }
         }
         // Compute: s = [k (l − L) + cs (dv · u)] u with u = d / l. Padding lanes (t ≥ m) hold
-        // d = 0 and are never scattered; their NaN is harmless.
-        let mut s = [[0.0f64; BLOCK]; 3];
+        // an earlier block's springs (or d = 0) and are never scattered; their values, NaN
+        // included, are harmless.
         for t in 0..BLOCK {
             let len = (d[0][t] * d[0][t] + d[1][t] * d[1][t] + d[2][t] * d[2][t]).sqrt();
             let inv = 1.0 / len;
@@ -145,7 +143,6 @@ impl Springs {
             s[1][t] = fs * uy;
             s[2][t] = fs * uz;
         }
-        s
     }
 
     #[inline(always)]
@@ -153,9 +150,11 @@ impl Springs {
         let (ii, jj) = (&self.i[..], &self.j[..self.i.len()]);
         let ne = ii.len();
         let mut e0 = 0;
+        let mut l = Lanes::new();
         while e0 < ne {
             let m = BLOCK.min(ne - e0);
-            let s = self.block(e0, m, k, cs, x, v);
+            self.block(&mut l, e0, m, k, cs, x, v);
+            let s = &l.s;
             // Scatter: +s on i, −s on j.
             for t in 0..m {
                 let e = e0 + t;
@@ -202,10 +201,12 @@ impl Springs {
     #[inline(always)]
     fn forces_of_blocks(&self, k: f64, cs: f64, x: &[f64], v: &[f64], ids: &[u32], out: &mut [f64]) {
         let (ii, jj) = (&self.i[..], &self.j[..self.i.len()]);
+        let mut l = Lanes::new();
         for (ids, out) in ids.chunks(BLOCK).zip(out.chunks_mut(3 * BLOCK)) {
             // SAFETY: every id is a spring (asserted by the caller); the rest as in `block`.
-            let s = unsafe {
+            unsafe {
                 self.block_of(
+                    &mut l,
                     ids.len(),
                     |t| {
                         let e = *ids.get_unchecked(t) as usize;
@@ -217,6 +218,7 @@ impl Springs {
                     v,
                 )
             };
+            let s = &l.s;
             for (t, o) in out.chunks_exact_mut(3).enumerate() {
                 o.copy_from_slice(&[s[0][t], s[1][t], s[2][t]]);
             }
@@ -246,21 +248,23 @@ impl Springs {
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
-    unsafe fn local_avx2(&self, k: f64, cs: f64, x: &[f64], v: &[f64], ends: &[[u32; 3]], f: &mut [f64]) {
+    unsafe fn local_avx2(&self, k: f64, cs: f64, x: &[f64], v: &[f64], ends: &[LocalEnd], f: &mut [f64]) {
         self.local_blocks(k, cs, x, v, ends, f);
     }
 
     /// # Safety
-    /// Every (e, 3a, 3b) of `ends` has e below `self.rest.len()` and 3a + 2, 3b + 2 below the
+    /// Every (e, a, b) of `ends` has e below `self.rest.len()` and 3a + 2, 3b + 2 below the
     /// lengths of `x`, `v` and `f`.
     #[inline(always)]
-    unsafe fn local_blocks(&self, k: f64, cs: f64, x: &[f64], v: &[f64], ends: &[[u32; 3]], f: &mut [f64]) {
+    unsafe fn local_blocks(&self, k: f64, cs: f64, x: &[f64], v: &[f64], ends: &[LocalEnd], f: &mut [f64]) {
+        let mut l = Lanes::new();
         for ends in ends.chunks(BLOCK) {
             let at = |t: usize| {
-                let [e, a, b] = *ends.get_unchecked(t);
-                (e as usize, a as usize, b as usize)
+                let LocalEnd { e, a, b } = *ends.get_unchecked(t);
+                (e as usize, 3 * a as usize, 3 * b as usize)
             };
-            let s = self.block_of(ends.len(), at, k, cs, x, v);
+            self.block_of(&mut l, ends.len(), at, k, cs, x, v);
+            let s = &l.s;
             for t in 0..ends.len() {
                 let (_, a, b) = at(t);
                 for c in 0..3 {
@@ -273,13 +277,12 @@ impl Springs {
 }
 
 /// Springs in chunk-local form for [`Springs::accumulate_local`]: chunk c's springs are
-/// `ends[start[c]..start[c + 1]]`, each (e, 3a, 3b) with a and b the chunk-local indices of its
+/// `ends[start[c]..start[c + 1]]`, each (e, a, b) with a and b the chunk-local indices of its
 /// ends (below `chunk_len[c]`, checked by `new`) and e its index (below `count`).
-
 #[derive(Debug, Clone, Default)]
 pub(crate) struct LocalSprings {
     start: Vec<u32>,
-    ends: Vec<[u32; 3]>,
+    ends: Vec<LocalEnd>,
     chunk_len: Vec<u32>,
     count: usize,
 }
@@ -293,7 +296,7 @@ impl LocalSprings {
             for &e in ids {
                 let (a, b) = ((sp.i[e as usize] as usize).wrapping_sub(base), (sp.j[e as usize] as usize).wrapping_sub(base));
                 assert!(a < len && b < len && (e as usize) < sp.len(), "an interior spring has both ends in its chunk");
-                l.ends.push([e, 3 * a as u32, 3 * b as u32]);
+                l.ends.push(LocalEnd { e, a: u16::try_from(a).expect("chunks of at most 65,536 vertices"), b: u16::try_from(b).expect("chunks of at most 65,536 vertices") });
             }
             l.start.push(l.ends.len() as u32);
             l.chunk_len.push(len as u32);
@@ -302,5 +305,32 @@ impl LocalSprings {
     }
 }
 
+/// One interior spring of a chunk: its index e (for the rest length) and its ends' chunk-local
+/// indices, 8 bytes (16-bit indices: chunks hold at most 65,536 vertices; `parforces.rs` makes
+/// them ~4,096). Read once per spring and step, so its size is memory traffic.
+#[derive(Debug, Clone, Copy)]
+struct LocalEnd {
+    e: u32,
+    a: u16,
+    b: u16,
+}
+
 /// Springs per block of the springs stage (a multiple of the widest vector, 8 f64 lanes).
 const BLOCK: usize = 16;
+
+/// One block's lanes: the gathered differences of positions and velocities, rest lengths and
+/// forces. Kept from block to block of a stage (initialising them per block cost ~10 % of the
+/// stage in stores), so a short last block's padding lanes hold earlier springs' values.
+struct Lanes {
+    d: [[f64; BLOCK]; 3],
+    dv: [[f64; BLOCK]; 3],
+    l0: [f64; BLOCK],
+    s: [[f64; BLOCK]; 3],
+}
+
+impl Lanes {
+    #[inline(always)]
+    fn new() -> Self {
+        Lanes { d: [[0.0; BLOCK]; 3], dv: [[0.0; BLOCK]; 3], l0: [1.0; BLOCK], s: [[0.0; BLOCK]; 3] }
+    }
+}
