@@ -5,7 +5,9 @@
 //! output value is written by exactly one chunk (per-vertex gathers, never scatters from two
 //! chunks into one value), and reductions (volume, dot products, norms) are summed per chunk
 //! into a slot of their own, then the slots in chunk order on the calling thread. The chunk size
-//! does not depend on the thread count, so 1 and N threads give the same bits.
+//! does not depend on the thread count, so 1 and N threads give the same bits — except the
+//! explicit stages on one thread, which take plain passes in spring and vertex order
+//! (`body/parforces.rs` `serial_b`: faster on one core) and agree with N threads to rounding.
 //!
 //! Native builds use a rayon pool of their own (`Threads::new(n)`, n = 0: every core) for
 //! [`Threads::each`], and a team of spinning threads (`par/team.rs`, started on first use) for

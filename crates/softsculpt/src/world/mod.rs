@@ -66,7 +66,8 @@ pub struct World {
     pub(crate) cx: contacts::Scratch,
     /// Positions and velocities at the start of a `step_n` call. Scratch.
     pub(crate) backup: rollback::Backup,
-    /// Threads the bodies' passes run on (results do not depend on their number).
+    /// Threads the bodies' passes run on (results do not depend on their number beyond rounding:
+    /// `par.rs`).
     pub(crate) threads: crate::par::Threads,
 }
 
@@ -140,7 +141,9 @@ impl World {
     }
 
     /// Run the bodies' force stages and the implicit solver on `n` threads (0: one per core;
-    /// WebAssembly builds always use one). The results do not depend on the number.
+    /// WebAssembly builds always use one). The results do not depend on the number beyond
+    /// rounding: the same bits on any count for the implicit solver, on 2 or more for the
+    /// explicit stages (one thread sums their springs in another order; `par.rs`).
     pub fn set_threads(&mut self, n: usize) -> Result<(), String> {
         self.threads = crate::par::Threads::new(n)?;
         Ok(())

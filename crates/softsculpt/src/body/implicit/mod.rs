@@ -75,9 +75,12 @@ pub struct SolverIterations {
 /// Most trials of the line search after the full step.
 const LINE_MAX: u32 = 6;
 /// A full Newton step whose slope along δ has turned positive beyond this fraction of its
-/// starting magnitude, s(1) > OVERSHOOT |s(0)| (for a quadratic along δ: the true curvature is
-/// more than (1 + OVERSHOOT)× the model's, s(1)/s(0) = 1 − c_true/c_model), switches the step's matrices to the absolute-value projection of
-/// compressed springs (`system.rs`; Chen et al. 2024, "Trust-region eigenvalue filtering for
+/// starting magnitude, s(1) > OVERSHOOT |s(0)| (for a quadratic along the plain Newton direction:
+/// the true curvature is more than (1 + OVERSHOOT)× the model's, s(1)/s(0) = 1 − c_true/c_model;
+/// an inexact linear solve, or a conjugate direction from [`CONJUGATE_FROM`] on, blurs this —
+/// a needless switch costs speed only), switches the rest of this Newton solve's matrices to the
+/// absolute-value projection of compressed springs (the multigrid's coarse levels, assembled at
+/// the solve's first iteration, keep the clamp) (`system.rs`; Chen et al. 2024, "Trust-region eigenvalue filtering for
 /// projected Newton"). Why: on a compressed, flattened bottom (a body on the ground), a vertex
 /// whose springs are all compressed has almost nothing but its mass against moving out of the
 /// surface in the clamped matrix (m = 1e-4 kg against dt² k ≈ 0.14 kg at 10,242 vertices and

@@ -17,7 +17,9 @@
 //!   eigenvalue filtering: the absolute value where the quadratic model proved untrustworthy).
 //!   Damping adds cs d dᵀ to D. The derivative of the damping force through d (∝ cs (v·d)/l) is
 //!   not symmetric and is dropped. Per spring: B = dt² K_e + dt D_e = a I + b d dᵀ with
-//!   a = dt² k α, b = dt² k (1 − α) + dt cs, α = max(0, 1 − L/l); it couples i and j as
+//!   a = dt² k α, b = dt² k (1 − α) + dt cs, α = max(0, 1 − L/l) (or |1 − L/l| after an
+//!   overshoot: then b < 0 for a spring compressed below about half its rest length, but B's
+//!   eigenvalues a, a and a + b = dt² k + dt cs stay positive); it couples i and j as
 //!   [B −B; −B B]. Bending springs are the same with k_b.
 //! - **viscous damping** −c m v: D += c m I (exact).
 //! - **gravity**, user forces, the kept load of a freeze under load: constant, nothing.
