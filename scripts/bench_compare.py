@@ -34,6 +34,9 @@ def main():
     ap.add_argument("--cpu", action="store_true", help="also report CPU ms per step (best of the rounds)")
     ap.add_argument("--shared", default=os.path.join(ROOT, "..", "shared"))
     a = ap.parse_args()
+    if a.cpu and a.steps < 2:
+        # CPU per step is (CPU of the run − CPU of a one-step run) / (steps − 1).
+        sys.exit("error: --cpu needs --steps 2 or more (it subtracts a one-step run's setup)")
     levels = [int(x) for x in a.levels.split(",")]
     bench = os.path.join(a.shared, "bench")
     if not os.path.isfile(os.path.join(bench, "peer_cpp.cpp")):

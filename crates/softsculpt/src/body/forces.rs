@@ -37,7 +37,8 @@ impl Fault {
 /// force plus prestress. Same sum as the C++ reference's `F + Pg · G`.
 ///
 /// `vertex(range, f, a, x, v)` then gets each chunk of vertices with their forces a · f (N; f
-/// in a buffer it may overwrite, a = 1 except on one thread, where f is (F + s g) / s and a = s,
+/// in a buffer it may overwrite, a = 1 except on one thread with a gas scale s that can be
+/// divided by and no rare stage or user force active, where f is (F + s g) / s and a = s,
 /// `ParForces::serial_b`) and their positions and velocities (which it may update: no other
 /// chunk reads them after the forces are known), and may write those vertices of any array it
 /// owns.
