@@ -77,10 +77,7 @@ impl GroundSet {
 
     /// The held vertices from the step's start (x, v).
     pub fn find(&mut self, m: &Model, ground: Option<&Ground>, x: &[f64], v: &[f64]) {
-        for &i in &self.list {
-            self.held[i as usize] = false;
-        }
-        self.list.clear();
+        self.release_all();
         let Some(g) = ground else { return };
         for (i, (p, u)) in x.chunks_exact(3).zip(v.chunks_exact(3)).enumerate() {
             if m.inv_mass[i] != 0.0 && p[1] <= g.height && u[1] <= 0.0 {
