@@ -45,6 +45,14 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    // A reader that stops early (`softsculpt info mesh.obj | head -3`) closes the pipe: end
+    // quietly, as other Unix tools do, rather than panic in `println!` (Rust starts programs
+    // with SIGPIPE ignored, so a write to a closed pipe is an error every print unwraps).
+    #[cfg(unix)]
+    // SAFETY: restores the default action of one signal before any thread or I/O exists.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let matches = match Cli::command().try_get_matches() {
         Ok(m) => m,
         Err(e) => return clap_error(e),

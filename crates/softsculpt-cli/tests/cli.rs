@@ -268,3 +268,20 @@ fn implicit_runs_report_solver_iterations_and_bad_tolerances_are_refused() {
         assert!(e.starts_with("error:") && e.contains("--tolerance") && e.lines().count() == 1, "{e}");
     }
 }
+
+/// `softsculpt info … | head -1`: the reader closes the pipe before the command has printed
+/// everything; the command ends quietly (killed by SIGPIPE, as `cat` is), no panic message.
+#[cfg(unix)]
+#[test]
+fn a_reader_that_closes_the_pipe_early_gets_no_panic() {
+    use std::io::Read;
+    use std::process::{Command, Stdio};
+    for args in [&["info", "builtin:octopus"][..], &["bench", "--levels", "1", "--steps", "2", "--reps", "1"][..]] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_softsculpt")).args(args).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().unwrap();
+        drop(child.stdout.take()); // closed before the first line is read
+        let mut e = String::new();
+        child.stderr.take().unwrap().read_to_string(&mut e).unwrap();
+        child.wait().unwrap();
+        assert!(!e.contains("panicked") && !e.contains("Broken pipe"), "{args:?}: {e}");
+    }
+}
