@@ -1,6 +1,8 @@
 //! The conjugate gradient's preconditioner: one aggregation-multigrid V-cycle on A = M + dt D +
 //! dt² K (`system.rs`), its coarse matrices rebuilt from the fine coefficients at the first
-//! Newton iteration of every step.
+//! Newton iteration of every solve and whenever the fine matrices change in it (the ground
+//! releases vertices, compressed springs switch to the absolute value: `stale` in
+//! `Implicit::newton`).
 //!
 //! **Why**: block Jacobi leaves every smooth error to the conjugate gradient, whose iterations
 //! then grow with √(dt² k / m) and the resolution (142 per step at 40,962 vertices of the
@@ -28,7 +30,12 @@
 //! P_iᵀ P_j = [[I, −[r_j]×], [[r_i]×, (r_i·r_j) I − r_j r_iᵀ]]. Left out of the coarse
 //! matrices and of the cycle's own products: the gas's rank-one term γ g gᵀ (the conjugate
 //! gradient, whose product has it, takes care of that one direction). Pinned vertices are no
-//! part of the system: their springs count on the free end's diagonal only. A rotation a node
+//! part of the system: their springs count on the free end's diagonal only. Vertices the
+//! ground holds have no y unknown (`ground.rs`): the fine matrix is F A F (F zeroes their y rows
+//! and columns, as the fine product does), and a spring block touching one is F_i B F_j, added
+//! as a general 3×3 block ([`add_general`]). Counting their y stiffness instead made the coarse
+//! levels see a bottom stiffer than the cycle's fine level: measured on 10,242-vertex spheres
+//! landing, 1.2–1.7× more iterations (cloth, clay, stiff rubber). A rotation a node
 //! cannot feel (one vertex; an aggregate on a line) has a zero pivot: it is left out of that
 //! node's solve (a pseudo-inverse), see [`cholesky`].
 //!
@@ -36,9 +43,8 @@
 //! correction; coarse levels, a forward block Gauss–Seidel sweep before and a backward one
 //! after (so the cycle is a symmetric positive definite operator, as the conjugate gradient
 //! needs); the coarsest level (≤ [`COARSEST`] nodes) solved by a dense Cholesky factor. The
-//! coarse matrices are those of the step's first Newton iteration (the preconditioner only has
-//! to be positive definite, not exact; they depend on the step's state only, so a restored
-//! snapshot continues with the same bits). Coarse levels run on the calling thread (a fixed
+//! coarse matrices depend on the step's state only, so a restored snapshot continues with the
+//! same bits. Coarse levels run on the calling thread (a fixed
 //! order: the same bits for any thread count); the finest level's passes are chunked like the
 //! rest of the solver.
 
@@ -47,12 +53,15 @@ use super::system::{System, VCHUNK};
 use super::super::Model;
 use crate::par::{chunk, Out, Threads};
 
-/// Vertices from which the V-cycle preconditions (below: block Jacobi). Measured
-/// (BENCHMARKS.md, "Multigrid preconditioner"): the cycle cuts the conjugate gradient's
-/// iterations 2–7× at every size, but one cycle costs ~3 products plus the coarse levels, so it
-/// only pays where block Jacobi's iterations are many: 163,842 vertices (1.3–1.7× faster), not
-/// 40,962 (even) or below (slower).
-pub(crate) const MULTIGRID_FROM: usize = 100_000;
+/// Vertices from which the V-cycle preconditions (below: block Jacobi). One cycle costs ~5
+/// block-Jacobi iterations (two more fine products, the coarse levels), so it pays where block
+/// Jacobi's iterations are many. Measured (BENCHMARKS.md, "Multigrid preconditioner" and "The
+/// V-cycle where the modeler lands"): 10,242-vertex spheres landing with the modeler's
+/// materials, 5–10× fewer iterations and 1.1–2.3× less time (the default material 2×; in
+/// Chromium 1.8–3.3× closer to real time), a collapsed cloth 1.2× more; 2,562 vertices, even
+/// or slower (cloth 2×); the free-floating standard workload 1.1–1.4× slower at 10,242–40,962,
+/// 1.3–1.7× faster at 163,842.
+pub(crate) const MULTIGRID_FROM: usize = 8_000;
 /// Nodes of the coarsest level at most (solved densely: 6 n unknowns).
 pub(crate) const COARSEST: usize = 24;
 /// Levels below the finest at most.
@@ -138,9 +147,9 @@ fn add_ptp(blk: &mut Blk, s: f64, ri: &[f64; 3], rj: &[f64; 3]) {
     }
 }
 
-/// blk += P_iᵀ S P_i for a symmetric 3×3 S: [[S, −S R], [R S, −R S R]], R = [r_i]×.
-fn add_sandwich(blk: &mut Blk, sm: &[[f64; 3]; 3], r: &[f64; 3]) {
-    let rm = skew(r);
+/// blk += s P_iᵀ S P_j for a general 3×3 S: [[S, −S R_j], [R_i S, −R_i S R_j]], R = [r]×.
+fn add_general(blk: &mut Blk, s: f64, sm: &[[f64; 3]; 3], ri: &[f64; 3], rj: &[f64; 3]) {
+    let (ri, rj) = (skew(ri), skew(rj));
     let mm = |x: &[[f64; 3]; 3], y: &[[f64; 3]; 3]| {
         let mut z = [[0.0; 3]; 3];
         for p in 0..3 {
@@ -150,16 +159,21 @@ fn add_sandwich(blk: &mut Blk, sm: &[[f64; 3]; 3], r: &[f64; 3]) {
         }
         z
     };
-    let (sr, rs) = (mm(sm, &rm), mm(&rm, sm));
-    let rsr = mm(&rs, &rm);
+    let (sr, rs) = (mm(sm, &rj), mm(&ri, sm));
+    let rsr = mm(&rs, &rj);
     for p in 0..3 {
         for q in 0..3 {
-            blk[6 * p + q] += sm[p][q];
-            blk[6 * p + 3 + q] -= sr[p][q];
-            blk[6 * (3 + p) + q] += rs[p][q];
-            blk[6 * (3 + p) + 3 + q] -= rsr[p][q];
+            blk[6 * p + q] += s * sm[p][q];
+            blk[6 * p + 3 + q] -= s * sr[p][q];
+            blk[6 * (3 + p) + q] += s * rs[p][q];
+            blk[6 * (3 + p) + 3 + q] -= s * rsr[p][q];
         }
     }
+}
+
+/// blk += P_iᵀ S P_i for a symmetric 3×3 S: [[S, −S R], [R S, −R S R]], R = [r_i]×.
+fn add_sandwich(blk: &mut Blk, sm: &[[f64; 3]; 3], r: &[f64; 3]) {
+    add_general(blk, 1.0, sm, r, r);
 }
 
 /// blk += P_uᵀ A P_w, P = [[I, −[r]×], [0, I]] (coarse to coarser).
@@ -293,6 +307,9 @@ impl Multigrid {
     pub fn assemble(&mut self, sys: &System, m: &Model, x: &[f64]) {
         let Some((first, rest)) = self.levels.split_first_mut() else { return };
         let free = |i: usize| m.inv_mass[i] != 0.0;
+        // The ground's held vertices have no y unknown (`ground.rs`): the cycle's fine level is
+        // F A F (F zeroes their y rows and columns), and so are the coarse ones.
+        let held = |i: usize| sys.ground.active() && sys.ground.held[i];
         // Level 1: centres, offsets, then the springs' CSR entries row by row.
         let s = &first.s;
         centres(s, |i| [x[3 * i], x[3 * i + 1], x[3 * i + 2]], &mut first.c, &mut first.off);
@@ -321,8 +338,33 @@ impl Multigrid {
                         }
                         if free(j) {
                             let rj = first.off[j];
-                            add_spring(&mut first.a[pos[k] as usize], -1.0, a, b, &d, &ri, &rj);
+                            let blk = &mut first.a[pos[k] as usize];
+                            if held(i) || held(j) {
+                                let mut sm = [[0.0; 3]; 3];
+                                for p in 0..3 {
+                                    for q in 0..3 {
+                                        sm[p][q] = b * d[p] * d[q] + if p == q { a } else { 0.0 };
+                                    }
+                                }
+                                if held(i) {
+                                    sm[1] = [0.0; 3];
+                                }
+                                if held(j) {
+                                    for row in sm.iter_mut() {
+                                        row[1] = 0.0;
+                                    }
+                                }
+                                add_general(blk, -1.0, &sm, &ri, &rj);
+                            } else {
+                                add_spring(blk, -1.0, a, b, &d, &ri, &rj);
+                            }
                         }
+                    }
+                }
+                if held(i) {
+                    sum[1] = [0.0; 3];
+                    for row in sum.iter_mut() {
+                        row[1] = 0.0;
                     }
                 }
                 add_sandwich(&mut first.a[dpos], &sum, &ri);
@@ -565,7 +607,8 @@ mod tests {
     use super::*;
     use crate::body::{Material, SoftBody};
     use crate::mesh::builtin::icosphere;
-    use crate::world::{Integrator, WorldSettings};
+    use crate::world::{Ground, Integrator, WorldSettings};
+    use super::super::system::Frame;
 
     /// One tight implicit step of a swirled, inflated sphere (2,562 vertices in two chunks of the
     /// vertex passes, the standard workload's ω dt ≈ 27 per spring, far
@@ -604,5 +647,92 @@ mod tests {
         let err = vm.iter().zip(&vj).fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
         assert!(err <= 1e-8 * scale, "max |Δv| = {err:e} of {scale}");
         assert!(2 * itm < itj, "V-cycle {itm} vs block Jacobi {itj} CG iterations");
+    }
+
+    /// The coarse matrix is the Galerkin product of the fine one the cycle works on: for any
+    /// coarse vector x₁ (six unknowns per node of level 1), A₁ x₁ = Pᵀ F A F P x₁, F zeroing
+    /// the ground-held vertices' y components (the fine product's rows and the cycle's vectors
+    /// are 0 there, `ground.rs`). On a jittered sphere (compressed and stretched springs,
+    /// bending springs, damping, one pinned vertex) whose bottom rests on the ground. Both sides
+    /// sum the same products of the same coefficients in other orders: they agree to rounding,
+    /// ~1e-15 of the largest term per entry times the ~100 terms an entry sums; 1e-11 of
+    /// max |A₁ x₁| leaves room for that. A coarse matrix that counts the held vertices' y
+    /// stiffness misses by O(1) of it on the bottom's nodes.
+    #[test]
+    fn the_coarse_matrix_is_the_galerkin_product_of_the_fine_one_with_the_ground_holding_vertices() {
+        let mut p = Material { stiffness: 300.0, spring_damping: 0.5, bending_stiffness: 50.0, ..Material::default() };
+        p.set_nrt(2.0);
+        let mut body = SoftBody::new(&icosphere(3, 1.0), 1.0, p.clone()).unwrap();
+        let n = body.model.mass.len();
+        let mut seed = 12345u64;
+        let mut rnd = move || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        for x in body.state.x.iter_mut() {
+            *x += 0.02 * rnd();
+        }
+        for v in body.state.v.iter_mut() {
+            *v = 0.1 * rnd();
+        }
+        body.set_pinned(7, true).unwrap();
+        let w = WorldSettings { integrator: Integrator::Implicit, gravity: 9.81, ground: Some(Ground::at(-0.85)), ..WorldSettings::default() };
+        let th = Threads::single();
+        let mut imp = Implicit::new(&body.model);
+        imp.mg = Multigrid::new(&imp.sys, n, 0);
+        let m = &body.model;
+        let fr = Frame { p: &p, w: &w, m, x: &body.state.x, v: &body.state.v, dt: 1.0 / 60.0 };
+        imp.sys.ground.find(m, w.ground.as_ref(), fr.x, fr.v);
+        assert!(imp.sys.ground.list.len() >= 10, "{} held", imp.sys.ground.list.len());
+        imp.vp.copy_from_slice(fr.v);
+        imp.sys.ground.filter(&mut imp.vp);
+        imp.eval(&th, &fr).unwrap();
+        imp.mg.assemble(&imp.sys, m, &imp.xt);
+        let l1 = &imp.mg.levels[0];
+        let mut slots = vec![[0.0; 4]; imp.cg.slots.len()];
+        for _ in 0..3 {
+            let x1: Vec<[f64; 6]> = (0..l1.s.n).map(|_| std::array::from_fn(|_| rnd())).collect();
+            // u = F P x₁ on the free vertices; q = A u.
+            let mut u = vec![0.0; 3 * n];
+            for i in 0..n {
+                if m.inv_mass[i] != 0.0 {
+                    let xp = &x1[l1.s.parent[i] as usize];
+                    let wv = cross(&[xp[3], xp[4], xp[5]], &l1.off[i]);
+                    for d in 0..3 {
+                        u[3 * i + d] = xp[d] + wv[d];
+                    }
+                }
+            }
+            imp.sys.ground.filter(&mut u);
+            let mut q = vec![0.0; 3 * n];
+            imp.sys.product(&th, m, &u, 0.0, &mut q, &mut slots);
+            // Pᵀ q against A₁ x₁.
+            let mut ptq = vec![[0.0; 6]; l1.s.n];
+            for i in 0..n {
+                let qi = [q[3 * i], q[3 * i + 1], q[3 * i + 2]];
+                let wv = cross(&l1.off[i], &qi);
+                let acc = &mut ptq[l1.s.parent[i] as usize];
+                for d in 0..3 {
+                    acc[d] += qi[d];
+                    acc[3 + d] += wv[d];
+                }
+            }
+            let mut scale = 0.0f64;
+            let mut err = 0.0f64;
+            for c in 0..l1.s.n {
+                let mut y = [0.0; 6];
+                for e in l1.s.start[c] as usize..l1.s.start[c + 1] as usize {
+                    let t = mul6(&l1.a[e], &x1[l1.s.col[e] as usize]);
+                    for d in 0..6 {
+                        y[d] += t[d];
+                    }
+                }
+                for d in 0..6 {
+                    scale = scale.max(y[d].abs());
+                    err = err.max((y[d] - ptq[c][d]).abs());
+                }
+            }
+            assert!(err <= 1e-11 * scale, "max |A₁x₁ − PᵀFAFPx₁| = {err:e} of {scale:e}");
+        }
     }
 }
