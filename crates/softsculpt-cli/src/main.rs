@@ -2,7 +2,9 @@
 //!
 //! Subcommands: `simulate` (run a body and write the result), `run` (play a scene file), `info` (what a mesh is made of), `remesh`, `sketch` (an outline becomes a balloon),
 //! `bench` (the standard workload). Every failure prints one line starting `error:` on stderr
-//! and exits with status 1 (2 for a malformed command line); nothing panics on bad input.
+//! and exits with status 1 (2 for a malformed command line); nothing panics on bad input. A
+//! reader that closes the output pipe early ends the command quietly, by SIGPIPE (status 141 in
+//! a shell), as other Unix tools.
 
 mod args;
 mod bench;

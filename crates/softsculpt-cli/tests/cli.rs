@@ -271,6 +271,8 @@ fn implicit_runs_report_solver_iterations_and_bad_tolerances_are_refused() {
 
 /// `softsculpt info … | head -1`: the reader closes the pipe before the command has printed
 /// everything; the command ends quietly (killed by SIGPIPE, as `cat` is), no panic message.
+/// `bench` prints only after its work, so it always meets the closed pipe; `info` might, in
+/// principle, have written everything into the pipe's buffer first and exit normally.
 #[cfg(unix)]
 #[test]
 fn a_reader_that_closes_the_pipe_early_gets_no_panic() {
@@ -281,7 +283,10 @@ fn a_reader_that_closes_the_pipe_early_gets_no_panic() {
         drop(child.stdout.take()); // closed before the first line is read
         let mut e = String::new();
         child.stderr.take().unwrap().read_to_string(&mut e).unwrap();
-        child.wait().unwrap();
+        let status = child.wait().unwrap();
         assert!(!e.contains("panicked") && !e.contains("Broken pipe"), "{args:?}: {e}");
+        use std::os::unix::process::ExitStatusExt;
+        let killed = status.signal() == Some(13); // SIGPIPE
+        assert!(killed || (args[0] == "info" && status.success()), "{args:?}: {status:?}");
     }
 }

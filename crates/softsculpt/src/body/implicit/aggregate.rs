@@ -11,8 +11,8 @@
 //! **Sparsity**: node I of a level is coupled to node J when a spring (edge or bending spring)
 //! or a coupling of the level above joins a member of I to a member of J. Each row lists its
 //! diagonal first, then the other columns in increasing order. Per entry of the level above,
-//! `pos` says where in this level's entries its 3×3 block is summed (the Galerkin product
-//! Pᵀ A P with P piecewise constant: `multigrid.rs`).
+//! `pos` says where in this level's entries its block is summed (the Galerkin product Pᵀ A P,
+//! 6×6 blocks of a translation and a rotation per node: `multigrid.rs`).
 
 use super::adjacency::SpringRows;
 

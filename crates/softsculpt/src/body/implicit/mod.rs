@@ -245,7 +245,8 @@ impl Implicit {
         // solve and after the matrices change (ground vertices released, compressed springs
         // switched to the absolute value: a stale coarse level mis-preconditions the
         // conjugate gradient; measured on the 10,242-vertex sphere at k = 500 landing, 205,797
-        // CG iterations in 60 steps with the first iteration's coarse levels, 6,733 with these).
+        // CG iterations in 60 steps with the first iteration's coarse levels, 6,733 with these;
+        // 8,527 with the held vertices' F A F as well, on another Newton path: BENCHMARKS.md).
         let mut stale = true;
         loop {
             // Vertices the ground would have to pull down are let go for the rest of the step

@@ -1,8 +1,9 @@
 //! The conjugate gradient's preconditioner: one aggregation-multigrid V-cycle on A = M + dt D +
-//! dt² K (`system.rs`), its coarse matrices rebuilt from the fine coefficients at the first
-//! Newton iteration of every solve and whenever the fine matrices change in it (the ground
-//! releases vertices, compressed springs switch to the absolute value: `stale` in
-//! `Implicit::newton`).
+//! dt² K (`system.rs`), its coarse matrices built from the fine coefficients at the first
+//! Newton iteration of every solve and again when the fine matrix changes its kind in it (the
+//! ground releases vertices, compressed springs switch to the absolute value: `stale` in
+//! `Implicit::newton`). In between the fine coefficients move with each Newton iterate and the
+//! coarse ones lag: the preconditioner only has to be symmetric positive definite, not exact.
 //!
 //! **Why**: block Jacobi leaves every smooth error to the conjugate gradient, whose iterations
 //! then grow with √(dt² k / m) and the resolution (142 per step at 40,962 vertices of the
@@ -32,7 +33,7 @@
 //! gradient, whose product has it, takes care of that one direction). Pinned vertices are no
 //! part of the system: their springs count on the free end's diagonal only. Vertices the
 //! ground holds have no y unknown (`ground.rs`): the fine matrix is F A F (F zeroes their y rows
-//! and columns, as the fine product does), and a spring block touching one is F_i B F_j, added
+//! and columns: the fine product zeroes the rows, and every vector it is given is 0 there), and a spring block touching one is F_i B F_j, added
 //! as a general 3×3 block ([`add_general`]). Counting their y stiffness instead made the coarse
 //! levels see a bottom stiffer than the cycle's fine level: measured on 10,242-vertex spheres
 //! landing, 1.2–1.7× more iterations (cloth, clay, stiff rubber). A rotation a node
@@ -56,11 +57,14 @@ use crate::par::{chunk, Out, Threads};
 /// Vertices from which the V-cycle preconditions (below: block Jacobi). One cycle costs ~5
 /// block-Jacobi iterations (two more fine products, the coarse levels), so it pays where block
 /// Jacobi's iterations are many. Measured (BENCHMARKS.md, "Multigrid preconditioner" and "The
-/// V-cycle where the modeler lands"): 10,242-vertex spheres landing with the modeler's
-/// materials, 5–10× fewer iterations and 1.1–2.3× less time (the default material 2×; in
-/// Chromium 1.8–3.3× closer to real time), a collapsed cloth 1.2× more; 2,562 vertices, even
-/// or slower (cloth 2×); the free-floating standard workload 1.1–1.4× slower at 10,242–40,962,
-/// 1.3–1.7× faster at 163,842.
+/// V-cycle where the modeler lands"), spheres landing with the modeler's materials: at 10,242
+/// vertices 3.5–10× fewer iterations and 1.05–2.3× less time (the default material 2×; in
+/// Chromium 1.8–3.3× closer to real time) except a collapsed cloth (1.2× more time); at 2,562,
+/// the default material and clay faster, stiff rubber even, cloth 2× slower; at 40,962 the
+/// default material even (72 Newton iterations per step there: the cycle's iterations cost what
+/// they save), cloth 1.3× slower. The free-floating standard workload: 1.1–1.4× slower at
+/// 10,242–40,962, 1.13–1.15× faster at 163,842. Bodies of 10,000–20,000 vertices, the modeler's
+/// largest that can run near real time, decided it.
 pub(crate) const MULTIGRID_FROM: usize = 8_000;
 /// Nodes of the coarsest level at most (solved densely: 6 n unknowns).
 pub(crate) const COARSEST: usize = 24;

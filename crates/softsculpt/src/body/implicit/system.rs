@@ -507,7 +507,8 @@ fn face_pass(th: &Threads, tris: &[[u32; 3]], x: &[f64], nf: &mut [f64], slots: 
 /// The matrix-free product and the preconditioner, for the conjugate gradient.
 impl System {
     /// out = A p, A = M + dt D + dt² K (see the module documentation); `gp` = g · p. Pinned
-    /// rows are 0 (p is 0 there too).
+    /// rows are 0 (p is 0 there too), and so are the ground-held vertices' y rows (the callers'
+    /// vectors are 0 there too: with both, the product is F A F, `ground.rs`).
     pub fn product(&self, th: &Threads, m: &Model, p: &[f64], gp: f64, out: &mut [f64], slots: &mut [[f64; 4]]) -> f64 {
         self.rows_pass::<false>(th, m, p, self.gamma * gp, &[], out, slots)
     }
