@@ -451,8 +451,53 @@ impl Multigrid {
         r
     }
 
-    /// One block Gauss–Seidel sweep on x, forward or backward.
+    /// One block Gauss–Seidel sweep on x, forward or backward; on x86-64 with AVX2 the same
+    /// code compiled a second time for it (no FMA contraction: the same bits), as
+    /// `System::product_rows`.
     fn sweep(lv: &mut Level, forward: bool) {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::arch::is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU supports the feature the function is compiled for.
+                return unsafe { Self::sweep_avx2(lv, forward) };
+            }
+        }
+        Self::sweep_plain(lv, forward)
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn sweep_avx2(lv: &mut Level, forward: bool) {
+        Self::sweep_plain(lv, forward)
+    }
+
+    /// r = b − A x on every node of a coarse level (dispatched as [`Self::sweep`]).
+    fn residual(lv: &mut Level) {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::arch::is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU supports the feature the function is compiled for.
+                return unsafe { Self::residual_avx2(lv) };
+            }
+        }
+        Self::residual_plain(lv)
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn residual_avx2(lv: &mut Level) {
+        Self::residual_plain(lv)
+    }
+
+    #[inline(always)]
+    fn residual_plain(lv: &mut Level) {
+        for c in 0..lv.s.n {
+            lv.r[c] = Self::row(lv, c, false);
+        }
+    }
+
+    #[inline(always)]
+    fn sweep_plain(lv: &mut Level, forward: bool) {
         let n = lv.s.n;
         for k in 0..n {
             let c = if forward { k } else { n - 1 - k };
@@ -473,9 +518,7 @@ impl Multigrid {
         for _ in 0..nu {
             Self::sweep(lv, true);
         }
-        for c in 0..lv.s.n {
-            lv.r[c] = Self::row(lv, c, false);
-        }
+        Self::residual(lv);
         // Restrict: B_C = Σ_u P_uᵀ r_u = Σ (t_u, θ_u + r_u × t_u).
         let nb = &mut below[0];
         for c in 0..nb.s.n {
