@@ -4,7 +4,11 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
+import { mkdtempSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
 import { browserSuite, shot, dist, inspect, openModeler, settle, topVertex, vertex } from './harness.mjs';
+import { writeIcosphere } from './icosphere.mjs';
 
 const suite = browserSuite();
 
@@ -27,6 +31,26 @@ async function setStrength(page, label, value) {
 
 /** Highest point (m) of the body. */
 const height = (page) => inspect(page, () => { const x = window.softsculpt.positions(); let h = -Infinity; for (let i = 1; i < x.length; i += 3) h = Math.max(h, x[i]); return h; });
+
+/** Height (m) of the body: highest minus lowest point. */
+const extent = (page) => inspect(page, () => { const x = window.softsculpt.positions(); let lo = Infinity, hi = -Infinity; for (let i = 1; i < x.length; i += 3) { lo = Math.min(lo, x[i]); hi = Math.max(hi, x[i]); } return hi - lo; });
+
+/**
+ * The highest vertex of the side facing the camera (its direction from the centre of mass within
+ * 60° of the camera's): on a sphere the top vertex itself sits on the outline, where a click can
+ * miss the surface.
+ */
+const upperFront = (page) => inspect(page, () => {
+  const s = window.softsculpt, x = s.positions(), c = s.stats().centerOfMass, e = s.camera();
+  const unit = (v) => { const l = Math.hypot(...v); return v.map((a) => a / l); };
+  const d = unit([e[0] - c[0], e[1] - c[1], e[2] - c[2]]);
+  let best = -1;
+  for (let i = 0; i < x.length / 3; i++) {
+    const n = unit([x[3 * i] - c[0], x[3 * i + 1] - c[1], x[3 * i + 2] - c[2]]);
+    if (n[0] * d[0] + n[1] * d[1] + n[2] * d[2] >= 0.5 && (best < 0 || x[3 * i + 1] > x[3 * best + 1])) best = i;
+  }
+  return best;
+});
 
 /** Hold the grab on vertex `i`'s screen point and drag by (dx, dy) px; returns the cursor. */
 async function grabAndHold(page, i, dx, dy, holdMs) {
@@ -124,5 +148,43 @@ test('subdivide keeps dt at 1/60 s and the mushroom keeps its height', async () 
   await shot(page, '24-subdivided');
   // Within 3 % (5 cm of 1.8 m): the finer mesh has the same material, so the same shape.
   assert.ok(Math.abs(h1 - h0) < 0.03 * h0, `height ${h0.toFixed(3)} -> ${h1.toFixed(3)} m after 2 s`);
+  await page.context().close();
+});
+
+test('an imported 10,242-vertex sphere lands and settles; a grab keeps its point on the cursor and the sphere comes back', async () => {
+  // The size the issue asks to run in real time at the defaults (the multigrid preconditioner
+  // works from 8,000 vertices); the sphere as a user brings it, through the import dialog.
+  const file = writeIcosphere(mkdtempSync(join(tmpdir(), 'ico-')), 5);
+  const { page, errors } = await openModeler(suite.browser, suite.server.url);
+  await page.locator('input[data-picker=import]').setInputFiles(file);
+  await page.waitForSelector('.import-dialog', { timeout: 30000 });
+  await page.keyboard.press('Enter');
+  await page.waitForFunction(() => window.softsculpt.vertexCount() === 10242 && !window.softsculpt.busy(), null, { timeout: 120000 });
+  // Dropped on the ground: it lands and comes to rest (the page here reaches real time ~15 s
+  // after the import, a loaded machine takes longer). At rest: below 5 mm/s (0.02 m/s is also
+  // met at the top of a bounce).
+  await settle(page, 0.005, 150000);
+  const v0 = (await inspect(page, () => window.softsculpt.stats())).volume;
+  const h0 = await extent(page);
+  const top = await upperFront(page);
+  const cursor = await grabAndHold(page, top, 40, -60, 2500);
+  const at = await inspect(page, (j) => window.softsculpt.screenOf(j), top);
+  await shot(page, '25-grab-imported-10242');
+  await page.mouse.up();
+  // As for the built-ins above: the target spring holds the grabbed vertex within 8 px.
+  const off = Math.hypot(at.x - cursor.x, at.y - cursor.y);
+  assert.ok(off < 8, `the grabbed point is ${off.toFixed(1)} px from the cursor`);
+  await page.waitForTimeout(300);
+  await settle(page, 0.005, 150000);
+  // Released and settled: the shape holds (it may have rolled: the grab pulled sideways). The gas
+  // (nRT fixed) and the springs set the shape at rest: the same volume within 1 % and the same
+  // height within 2 % as before the grab (measured 0.1–0.3 % and 0.3–0.8 %; a stretched or crumpled
+  // skin shows in both).
+  const v1 = (await inspect(page, () => window.softsculpt.stats())).volume;
+  const h1 = await extent(page);
+  console.log(`10,242 vertices: grab ${off.toFixed(1)} px off; volume ${v0.toFixed(4)} -> ${v1.toFixed(4)} m³; height ${h0.toFixed(4)} -> ${h1.toFixed(4)} m`);
+  assert.ok(Math.abs(v1 - v0) < 0.01 * v0, `volume ${v0.toFixed(4)} -> ${v1.toFixed(4)} m³`);
+  assert.ok(Math.abs(h1 - h0) < 0.02 * h0, `height ${h0.toFixed(4)} -> ${h1.toFixed(4)} m`);
+  assert.deepEqual(errors, []);
   await page.context().close();
 });
