@@ -699,6 +699,22 @@ mod tests {
         assert!(2 * itm < itj, "V-cycle {itm} vs block Jacobi {itj} CG iterations");
     }
 
+    /// The implicit scratch of `body` with the V-cycle at any size, its system evaluated at
+    /// v⁺ = v (the ground's held vertices from the state, their v⁺_y prescribed) with dt = 1/60 s
+    /// and the coarse levels assembled from it.
+    fn assembled(body: &SoftBody, p: &Material, w: &WorldSettings) -> Implicit {
+        let m = &body.model;
+        let mut imp = Implicit::new(m);
+        imp.mg = Multigrid::new(&imp.sys, m.mass.len(), 0);
+        let fr = Frame { p, w, m, x: &body.state.x, v: &body.state.v, dt: 1.0 / 60.0 };
+        imp.sys.ground.find(m, w.ground.as_ref(), fr.x, fr.v);
+        imp.vp.copy_from_slice(fr.v);
+        imp.sys.ground.filter(&mut imp.vp);
+        imp.eval(&Threads::single(), &fr).unwrap();
+        imp.mg.assemble(&imp.sys, m, &imp.xt);
+        imp
+    }
+
     /// The coarse matrix is the Galerkin product of the fine one the cycle works on: for any
     /// coarse vector x₁ (six unknowns per node of level 1), A₁ x₁ = Pᵀ F A F P x₁, F zeroing
     /// the ground-held vertices' y components (the fine product's rows and the cycle's vectors
@@ -728,16 +744,9 @@ mod tests {
         body.set_pinned(7, true).unwrap();
         let w = WorldSettings { integrator: Integrator::Implicit, gravity: 9.81, ground: Some(Ground::at(-0.85)), ..WorldSettings::default() };
         let th = Threads::single();
-        let mut imp = Implicit::new(&body.model);
-        imp.mg = Multigrid::new(&imp.sys, n, 0);
+        let imp = assembled(&body, &p, &w);
         let m = &body.model;
-        let fr = Frame { p: &p, w: &w, m, x: &body.state.x, v: &body.state.v, dt: 1.0 / 60.0 };
-        imp.sys.ground.find(m, w.ground.as_ref(), fr.x, fr.v);
         assert!(imp.sys.ground.list.len() >= 10, "{} held", imp.sys.ground.list.len());
-        imp.vp.copy_from_slice(fr.v);
-        imp.sys.ground.filter(&mut imp.vp);
-        imp.eval(&th, &fr).unwrap();
-        imp.mg.assemble(&imp.sys, m, &imp.xt);
         let l1 = &imp.mg.levels[0];
         let mut slots = vec![[0.0; 4]; imp.cg.slots.len()];
         for _ in 0..3 {
@@ -795,14 +804,8 @@ mod tests {
         let mut p = Material { stiffness: 1000.0, spring_damping: 1.0, bending_stiffness: 100.0, ..Material::default() };
         p.set_nrt(2.0);
         let body = SoftBody::new(&icosphere(4, 1.0), 1.0, p.clone()).unwrap();
-        let n = body.model.mass.len();
         let w = WorldSettings { integrator: Integrator::Implicit, ..WorldSettings::default() };
-        let mut imp = Implicit::new(&body.model);
-        imp.mg = Multigrid::new(&imp.sys, n, 0);
-        let fr = Frame { p: &p, w: &w, m: &body.model, x: &body.state.x, v: &body.state.v, dt: 1.0 / 60.0 };
-        imp.vp.copy_from_slice(fr.v);
-        imp.eval(&Threads::single(), &fr).unwrap();
-        imp.mg.assemble(&imp.sys, &body.model, &imp.xt);
+        let mut imp = assembled(&body, &p, &w);
         assert!(imp.mg.levels.len() >= 2);
         for (l, lv) in imp.mg.levels.iter_mut().enumerate() {
             for (c, b) in lv.b.iter_mut().enumerate() {
