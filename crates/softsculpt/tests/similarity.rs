@@ -23,9 +23,16 @@ fn settled(s: f64, size: f64, seconds: f64) -> (Vec<f64>, Vec<&'static str>) {
 #[test]
 fn a_ball_scaled_by_s_rests_in_the_same_shape_scaled_by_s() {
     // The reference: radius 1 m at size 1 (the preset as tuned). At 1 cm the preset scaled gives
-    // dt × s^½ too: the same dimensionless problem step by step, so the same positions up to
-    // rounding and the solver's tolerance (1e-3 relative residual per step, on a sag of ~0.16 of
-    // the radius: bound 1e-6 of the radius, measured 2e-8). At 20 m dt stays 1/60 s, finer than
+    // dt × s^½ too: the same dimensionless problem step by step, so the same rest shape up to
+    // rounding, the solver's tolerance (1e-3 relative residual per step, on a sag of ~0.16 of
+    // the radius) and the footprint friction holds: the two paths differ by ~5e-4 of the
+    // radius at 3 s while settling (measured), and what friction keeps of that stays. Measured
+    // at 8 s: 2e-8 of the radius; 1.7e-6 since the vertices landing in a step are held in the
+    // implicit solve (`body/implicit/ground.rs`: another path to a footprint held by friction).
+    // Bound 1e-5 of the radius (6× that; the scaled cases below miss by ≥ 0.048). Noticed: the
+    // ball at rest is unstable (`tests/ground_implicit.rs`: rounding grows into a roll after
+    // ~10 s); at other tolerances (1e-4, 1e-7) one of the runs rolls before 8 s and they differ
+    // by 0.12 — before and after that change. At 20 m dt stays 1/60 s, finer than
     // similar: the path is less damped and friction holds another footprint; measured 0.048 of
     // the radius, bound 0.06 (the preset unscaled on the 1 cm ball is off by more than 0.05·20,
     // checked below, so the bound still tells scaled from unscaled).
@@ -34,7 +41,7 @@ fn a_ball_scaled_by_s_rests_in_the_same_shape_scaled_by_s() {
     let top = |x: &[f64]| x.chunks_exact(3).map(|p| p[1]).fold(f64::NEG_INFINITY, f64::max);
     let sag = 2.0 - top(&reference);
     assert!(sag > 0.02, "the reference ball sags under its weight (by {sag} m)");
-    for (s, seconds, bound) in [(0.01, 8.0, 1e-6), (20.0, 40.0, 0.06)] {
+    for (s, seconds, bound) in [(0.01, 8.0, 1e-5), (20.0, 40.0, 0.06)] {
         let (x, _) = settled(s, s, seconds);
         let worst = x.iter().zip(&reference).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
         assert!(worst < bound, "size {s}: rest shape off by {worst} of the radius");

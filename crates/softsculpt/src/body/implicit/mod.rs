@@ -41,8 +41,10 @@
 //! [`CONJUGATE_FROM`] Newton iterations, against the zig-zag of a wrinkling membrane.
 //!
 //! **The ground** ([`ground`]): vertices resting on it at the step's start are constrained in
-//! the solve (v⁺_y = 0) and released where the plane would have to pull them; a body at rest on
-//! the ground is an equilibrium of the step.
+//! the solve (v⁺_y = 0), and so are those landing in the step (predicted from the step's start
+//! or put below the plane by an early iterate: v⁺_y = (h − y) / dt, they end the step on it);
+//! each is released where the plane would have to pull it; a body at rest on the ground is an
+//! equilibrium of the step.
 //!
 //! At most `newton_iterations` Newton iterations (world setting) and [`cg::LINEAR_MAX`] linear
 //! iterations per Newton iteration; a step that has not converged is refused with the state
@@ -218,14 +220,15 @@ impl Implicit {
     /// `vp` and x + dt v⁺ in `xt`.
     fn newton(&mut self, th: &Threads, fr: &Frame, warm: Option<(&[f64], f64)>, held: bool, it: &mut SolverIterations) -> Result<(), Fault> {
         let (w, m) = (fr.w, fr.m);
-        // The ground's constraints from the step's start (`ground.rs`), their velocities in v⁺
-        // (`held`; not for self-colliding bodies: `ground.rs`).
+        // The ground's constraints from the step's start (`ground.rs`: the vertices resting on
+        // it and those predicted to land in the step), their velocities in v⁺ (`held`; not for
+        // self-colliding bodies: `ground.rs`).
         let ground = if fr.p.self_collision || !held { None } else { w.ground.as_ref() };
-        self.sys.ground.find(m, ground, fr.x, fr.v);
+        self.sys.ground.find(m, ground, fr.x, fr.v, fr.dt);
         self.sys.absolute = false;
         self.warmed = false;
         self.vp.copy_from_slice(fr.v);
-        self.sys.ground.filter(&mut self.vp);
+        self.sys.ground.prescribe(&mut self.vp);
         let (mut r0, mut noise) = self.eval(th, fr)?;
         let mut norm = r0;
         // The reference is at least the weight's impulse over the step (see the module doc; not
@@ -241,6 +244,7 @@ impl Implicit {
         let mut k: u32 = 0;
         let mut gyprev = 0.0;
         let mut released = None;
+        let mut added = None;
         // The coarse matrices need assembling (`multigrid.rs`): at the first V-cycle of this
         // solve and after the matrices change (ground vertices released, compressed springs
         // switched to the absolute value: a stale coarse level mis-preconditions the
@@ -258,6 +262,17 @@ impl Implicit {
                 stale = true;
                 (norm, noise) = self.eval(th, fr)?;
                 continue;
+            }
+            // Vertices the iterate puts below the plane are taken into the set, each once in a
+            // step (no cycling), at iterations 1, 2, 4, …, `ground::ADD_UNTIL` (`ground.rs`).
+            if let (Some(g), true) = (ground, !converged && k >= 1 && k <= ground::ADD_UNTIL && k.is_power_of_two() && added != Some(k)) {
+                added = Some(k);
+                if self.sys.ground.add(m, g, fr.dt, fr.x, &self.xt) {
+                    self.sys.ground.prescribe(&mut self.vp);
+                    stale = true;
+                    (norm, noise) = self.eval(th, fr)?;
+                    continue;
+                }
             }
             if converged {
                 return Ok(());
@@ -334,7 +349,7 @@ impl Implicit {
         for (((vp, &v), &d), free) in self.vp.iter_mut().zip(fr.v).zip(warm).zip(free) {
             *vp = if free { v + WARM_FRACTION * scale * d } else { v };
         }
-        self.sys.ground.filter(&mut self.vp);
+        self.sys.ground.prescribe(&mut self.vp);
         match self.eval(th, fr) {
             Ok(e) if e.0 < cold.0 => {
                 self.warmed = true;
@@ -343,7 +358,7 @@ impl Implicit {
             _ => {}
         }
         self.vp.copy_from_slice(fr.v);
-        self.sys.ground.filter(&mut self.vp);
+        self.sys.ground.prescribe(&mut self.vp);
         self.eval(th, fr)?;
         Ok(cold)
     }
@@ -376,7 +391,9 @@ impl Implicit {
         }
         s.warm_dt = dt;
         if let Some(g) = w.ground {
+            // Friction, then the vertices that landed in the step come to rest on the plane.
             self.sys.ground.friction(m, g.friction, &mut self.vp);
+            self.sys.ground.land(g.height, &mut self.xt, &mut self.vp);
         }
         s.x.copy_from_slice(&self.xt);
         s.v.copy_from_slice(&self.vp);
