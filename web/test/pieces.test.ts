@@ -101,10 +101,16 @@ describe('a collapse', () => {
     doc.world.sync();
     const v0 = doc.world.body(0).stats.volume;
     // Soft springs, no bending and almost no gas: the mushroom caves in under its weight (at
-    // t ≈ 6.7 s, 0.7 s after the changes; the volume falls 2.46 → 1.80 → 0.12 m³ in the last 0.3 s).
+    // t ≈ 6.7 s, 0.7 s after the changes; the volume falls 2.46 → 1.80 → 0.12 m³ in the last 0.3 s)
+    // and its top goes through its bottom. A restitution, however small, leaves the vertices
+    // reaching the ground in a step to the after-step projection (core: body/implicit/ground.rs);
+    // without one they are held in the implicit solve, the top comes down onto the plane too and
+    // the mushroom only flattens (measured with the CLI: volume 0.4 % of the start, never
+    // negative): no collapse to rewind from.
     doc.setParam('stiffness', 1);
     doc.setParam('bending', 0);
     doc.setParam('gas.amount', 1e-6);
+    doc.setParam('ground.restitution', 0.01);
     doc.world.sync();
     const changedAt = doc.world.body(0).stats.time;
     for (let i = 0; i < 600 && doc.settings.playing; i++) doc.advance(doc.settings.dt, 1);
