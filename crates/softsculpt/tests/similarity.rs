@@ -26,10 +26,11 @@ fn a_ball_scaled_by_s_rests_in_the_same_shape_scaled_by_s() {
     // dt × s^½ too: the same dimensionless problem step by step, so the same rest shape up to
     // rounding, the solver's tolerance (1e-3 relative residual per step, on a sag of ~0.16 of
     // the radius) and the footprint friction holds: the two paths differ by ~5e-4 of the
-    // radius at 3 s while settling (measured), and what friction keeps of that stays. Measured
+    // radius at 3 s while settling (measured), and what friction keeps of that may stay. Measured
     // at 8 s: 2e-8 of the radius; 1.7e-6 since the vertices landing in a step are held in the
-    // implicit solve (`body/implicit/ground.rs`: another path to a footprint held by friction).
-    // Bound 1e-5 of the radius (6× that; the scaled cases below miss by ≥ 0.048). Noticed: the
+    // implicit solve (`body/implicit/ground.rs`; why it grew is not confirmed: another footprint
+    // held by friction, or a discrete choice of the held set flipping on rounding). Bound 1e-5 of
+    // the radius, empirical (6× that; the scaled cases below miss by ≥ 0.048). Noticed: the
     // ball at rest is unstable (`tests/ground_implicit.rs`: rounding grows into a roll after
     // ~10 s); at other tolerances (1e-4, 1e-7) one of the runs rolls before 8 s and they differ
     // by 0.12 — before and after that change. At 20 m dt stays 1/60 s, finer than

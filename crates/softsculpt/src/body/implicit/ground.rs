@@ -35,9 +35,10 @@
 //!
 //! **Landing in the step**: without restitution, a vertex whose explicit prediction
 //! x_y + dt v_y falls below the plane is held from the step's start too, with
-//! v⁺_y = (h − x_y) / dt (it ends the step exactly on the plane), and so is any vertex the
-//! iterate x + dt v⁺ puts below it at Newton iterations 1, 2, 4, …, [`ADD_UNTIL`] (each vertex
-//! at most once in a step: with the shrinking releases the set cannot cycle). Both go through
+//! v⁺_y = (h − x_y) / dt (it ends the step exactly on the plane), and so is a vertex a
+//! not-yet-converged iterate x + dt v⁺ puts below it at Newton iterations 1, 2, 4, …,
+//! [`ADD_UNTIL`] (each vertex at most once in a step: with the shrinking releases the set
+//! cannot cycle; a step converged by then leaves the rest to the projection). All go through
 //! the same release test as the resting vertices (a vertex the body would hold back above the
 //! plane has r_y < 0 and is let go). After the accepted solve the landed vertices are at rest
 //! along the normal on the plane ([`GroundSet::land`]), as the after-step projection leaves an
@@ -46,17 +47,20 @@
 //! pushed back only by the projection. On a fine mesh that fold is as deep as the mesh is fine
 //! (|v_y| dt = 2 cm at 1.3 m/s, one edge at 40,962 vertices on the modeler's 2.5 m sphere):
 //! measured there, from step 12 of the drop the held attempt stalled at a relative residual of
-//! 2e-3–3e-2 with 60–75 % of the residual on the ~600–1,200 vertices below the plane, 85–180
+//! 2e-3–3e-2 with 60–75 % of the residual on the ~600–1,200 vertices below the plane, 72–180
 //! Newton iterations per step; with the landing held, 4–17 (45 steps of the drop: 2,327 → 383
-//! Newton iterations, 138 → 21.6 s; the centre of mass within 0.8–2.3 cm of a dt/4 reference
-//! where before 1.0–3.8 cm). At 10,242 vertices, where the ring is half an edge deep, the
-//! landing's first second changed 0.85–1.45× in time with the presets of `tests/presets.rs`
-//! (k = k_b = 500 2.6× faster; balloon 1.45×, jelly 1.3×, clay 1.4×, cloth 1.25× slower: the
-//! prediction over-holds vertices the body stops above the plane, each release one more
-//! Newton round; BENCHMARKS.md). With restitution the projection's bounce is kept.
+//! Newton iterations, 138 → 22 s; the centre of mass 0.8–2.3 cm from a dt/4 reference run
+//! this way, where the old way at dt was 1.0–3.8 cm from it; three times sampled). At 10,242
+//! vertices, where the ring is half an edge deep, the landing's first second with the presets
+//! of `tests/presets.rs` (BENCHMARKS.md, "Landing inside the implicit step"): k = k_b = 500
+//! 2.7× faster; the default 1.1×, balloon 1.4×, jelly 1.2×, clay 1.5×, cloth 1.2–1.3× slower
+//! (the prediction over-holds vertices the body stops above the plane, each release one more
+//! Newton round); stiff rubber chaotic either way. With restitution the projection's bounce is
+//! kept.
 //!
-//! **Friction** after the accepted solve, Coulomb with the solve's normal impulse per unit mass
-//! j = r_y / m (m/s): the tangential velocity loses up to μ j (stops if |v_t| ≤ μ j), as the
+//! **Friction** after the accepted solve, Coulomb with the normal impulse per unit mass
+//! j = r_y / m (m/s; plus the landing's stop |v⁺_y| for a vertex landing in the step): the
+//! tangential velocity loses up to μ j (stops if |v_t| ≤ μ j), as the
 //! projection does with its j (`world/ground.rs`); positions are x + dt v⁺ from the solve.
 //! Tried and dropped: stuck vertices held in all three directions, released to sliding where
 //! |r_t| > μ r_y. While a body lands nearly every stuck vertex then flips to sliding within the
@@ -66,8 +70,8 @@
 //! vertices the crushed mushroom of `tests/self_contact.rs` had a vertex through its skin after
 //! 8 s (also when the vertices of the step's self-contacts were not held); not investigated.
 //!
-//! The constraints depend only on the state at the step's start, so a restored snapshot takes
-//! the same steps.
+//! The constraints depend only on the state at the step's start and the Newton iterates, so a
+//! restored snapshot takes the same steps.
 
 use super::super::Model;
 use crate::world::Ground;
@@ -144,7 +148,9 @@ impl GroundSet {
             if !self.was[i] && m.inv_mass[i] != 0.0 && xt[3 * i + 1] < g.height {
                 self.held[i] = true;
                 self.was[i] = true;
-                self.target[i] = (g.height - x[3 * i + 1]) / dt;
+                // A vertex already below the plane (moving up at the step's start) is held at
+                // its height, as `find` holds one resting there: never pushed up by the solve.
+                self.target[i] = ((g.height - x[3 * i + 1]) / dt).min(0.0);
                 self.list.push(i as u32);
             }
         }
@@ -183,8 +189,8 @@ impl GroundSet {
         self.list.clear();
     }
 
-    /// Put the prescribed v⁺_y = 0 into `vp`; or zero the held components of a vector of the
-    /// conjugate gradient.
+    /// Zero the held components of a vector of the conjugate gradient (v⁺'s prescribed
+    /// components: [`GroundSet::prescribe`]).
     pub fn filter(&self, y: &mut [f64]) {
         for &i in &self.list {
             y[3 * i as usize + 1] = 0.0;
@@ -210,7 +216,7 @@ impl GroundSet {
     pub fn friction(&self, m: &Model, friction: f64, vp: &mut [f64]) {
         for &i in &self.list {
             let i = i as usize;
-            let j = self.react[i].max(0.0) / m.mass[i] - self.target[i];
+            let j = self.react[i].max(0.0) / m.mass[i] - self.target[i].min(0.0);
             let (vx, vz) = (vp[3 * i], vp[3 * i + 2]);
             let vt = vx.hypot(vz);
             let drop = friction * j;

@@ -269,6 +269,9 @@ impl Implicit {
                 added = Some(k);
                 if self.sys.ground.add(m, g, fr.dt, fr.x, &self.xt) {
                     self.sys.ground.prescribe(&mut self.vp);
+                    // The last direction moved the new vertices' y freely: the next one is a
+                    // plain Newton step (`conjugate`), so their prescribed v⁺_y stays.
+                    gyprev = 0.0;
                     stale = true;
                     (norm, noise) = self.eval(th, fr)?;
                     continue;

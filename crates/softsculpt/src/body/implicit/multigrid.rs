@@ -709,7 +709,7 @@ mod tests {
         let fr = Frame { p, w, m, x: &body.state.x, v: &body.state.v, dt: 1.0 / 60.0 };
         imp.sys.ground.find(m, w.ground.as_ref(), fr.x, fr.v, fr.dt);
         imp.vp.copy_from_slice(fr.v);
-        imp.sys.ground.filter(&mut imp.vp);
+        imp.sys.ground.prescribe(&mut imp.vp);
         imp.eval(&Threads::single(), &fr).unwrap();
         imp.mg.assemble(&imp.sys, m, &imp.xt);
         imp
