@@ -23,13 +23,20 @@
 //! vertices pulled down; releasing at every iterate, clay stalled at ~5e-3 (a few vertices let
 //! go every iteration or two, each time a changed problem); the spaced releases let both
 //! converge — but not every landing: a jelly (k = 60 N/m, no bending springs) stalled at
-//! 1e-3–3e-2 between releases. So a step not converged after [`GIVE_UP`] Newton iterations lets
-//! every held vertex go and goes on as without the ground in the solve (the after-step
-//! projection alone, as before). Newton iterations (CG iterations) in the first second of
-//! those landings, before → after: balloon 1042 (22.2k) → 349 (13.1k), jelly 1428 (25.0k) →
-//! 641 (15.0k), clay 1051 (27.4k) → 475 (16.2k), cloth 1352 (32.9k) → 1290 (37.5k); giving up
-//! after 24, 32 or 48 iterations instead cost up to 4× more on clay (the plain solve from a
-//! half-converged held state is slow). A body at rest on the ground is then an equilibrium of the solve: the plane
+//! 1e-3–3e-2 between releases. So a step not converged after [`GIVE_UP`] Newton iterations is
+//! solved again from v⁺ = v without the ground in the solve (the after-step projection alone,
+//! as before it was part of the solve). Newton iterations (CG iterations) in the first second
+//! of those landings, before → after: balloon 1042 (22.2k) → 349 (13.1k), jelly 1428 (25.0k) →
+//! 641 (15.0k), clay 1051 (27.4k) → 475 (16.2k), cloth 1352 (32.9k) → 1290 (37.5k). Giving up
+//! after 24, 32 or 48 iterations instead cost up to 4× more on clay; and going on from the
+//! half-converged held iterate (as this did until the landing was held too) is slower than
+//! starting again: with the landing held, the stiff rubber preset (k = 2000 N/m) at 10,242
+//! vertices stalls in most steps of its landing, each step 64 held iterations, 36 more from
+//! that iterate to the cap of 100, and a third solve without the ground; starting again at
+//! 64 took its first second from 4,117 to 4,541 Newton iterations but 123k to 44k CG
+//! iterations, 97 → 38 s (the other presets unchanged or faster: clay 5.3 → 4.3 s; BENCHMARKS
+//! "Landing inside the implicit step"). Giving up at 32 or 48 then: rubber 29 / 34 s but
+//! cloth 10.6 → 16–17 s. A body at rest on the ground is then an equilibrium of the solve: the plane
 //! carries the bottom's weight, and v⁺ = v is already converged (measured: 0–1 Newton
 //! iterations per step at rest, against 3).
 //!
@@ -79,7 +86,8 @@ use crate::world::Ground;
 /// The last Newton iteration at which vertices the iterate puts below the plane are taken into
 /// the set (at 1, 2, 4, …, this): later the set only shrinks.
 pub(crate) const ADD_UNTIL: u32 = 16;
-/// Newton iterations after which a step still not converged lets the ground's vertices go.
+/// Newton iterations after which a step still not converged with the ground's vertices held
+/// is solved again without them.
 pub(crate) const GIVE_UP: u32 = 64;
 
 /// The vertices the ground holds in one step, and their impulses.

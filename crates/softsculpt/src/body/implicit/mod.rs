@@ -280,13 +280,12 @@ impl Implicit {
             if converged {
                 return Ok(());
             }
-            if k == ground::GIVE_UP && self.sys.ground.active() {
-                self.sys.ground.release_all();
-                stale = true;
-                (norm, noise) = self.eval(th, fr)?;
-                continue;
-            }
             let rho = norm / r0;
+            // A held attempt stalled this long is redone from v⁺ = v without the ground
+            // (`step`; `ground.rs`).
+            if k == ground::GIVE_UP && self.sys.ground.active() {
+                return Err(Fault::NotConverged { iterations: k, residual: rho });
+            }
             if k >= w.newton_iterations {
                 return Err(Fault::NotConverged { iterations: k, residual: rho });
             }
