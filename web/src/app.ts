@@ -9,6 +9,7 @@
 import { Box3, Sphere, Vector3, type Camera } from 'three';
 import type { Command, Frame, MessageKind, ParamValue, Reply, Settings, UiState } from './protocol';
 import { SimulationClient } from './client';
+import { paceText } from './view/pace';
 import { Mirror } from './mirror';
 import { Viewport } from './view/viewport';
 import { Plots } from './view/plots';
@@ -54,6 +55,8 @@ export class App implements ToolContext {
   private readonly client: SimulationClient;
   /** A frame received and not drawn yet. */
   private pending: Frame | null = null;
+  /** When the last frame arrived (performance.now(), ms): the HUD says when steps stall (view/pace.ts). */
+  private frameArrived = performance.now();
   /** The buffer drawn before the current one, to hand back after rendering. */
   private drawn: Float32Array | null = null;
   private busyLabel: string | null = null;
@@ -233,6 +236,7 @@ export class App implements ToolContext {
   private onReply(r: Reply): void {
     switch (r.type) {
       case 'frame':
+        this.frameArrived = performance.now();
         if (this.pending) {
           // Not drawn yet and already superseded: what it brought that the new one lacks carries
           // over, and its buffer goes straight back to the worker.
@@ -332,7 +336,7 @@ export class App implements ToolContext {
     this.hud.tick();
     if (m.ready) {
       // How fast the simulation goes comes first (the drawing's fps can be high while it crawls).
-      const pace = !m.settings.playing ? 'paused' : m.slowMotion ? `${(m.realTimeFraction * 100).toFixed(0)}% of real time (slow motion)` : 'real time';
+      const pace = paceText({ playing: m.settings.playing, busy: this.busyLabel !== null, slowMotion: m.slowMotion, realTimeFraction: m.realTimeFraction, sinceFrameMs: performance.now() - this.frameArrived });
       this.hud.show([
         `simulation: ${pace}   ${m.simMs.toFixed(1)} ms of steps/frame   view ${this.hud.fps.toFixed(0)} fps` +
           (m.recording ? `   ● REC ${m.recording.frames} frames, ${m.recording.seconds.toFixed(1)} s` : ''),

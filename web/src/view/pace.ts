@@ -1,0 +1,27 @@
+// The HUD's first words: how fast the simulation goes. The worker reports its pace with each
+// frame (real time, or the fraction of it in slow motion); a step that takes seconds (a stiff
+// body at 10,242 vertices lifting off the ground: one step ~2 s in wasm) sends no frame for
+// that long, and the last frame's "real time" would stay on screen while the model sits still.
+// So after STALL_MS without a frame the line says the page is waiting, and for how long.
+
+/** Milliseconds without a new frame (while playing, nothing else under way) after which the HUD says it waits for a step. */
+export const STALL_MS = 1000;
+
+export interface PaceInput {
+  /** The simulation plays (not paused by the user or an error). */
+  playing: boolean;
+  /** A long operation (import, subdivide, …) shows its own progress. */
+  busy: boolean;
+  /** The last frame's slow-motion flag and its fraction of real time (0–1). */
+  slowMotion: boolean;
+  realTimeFraction: number;
+  /** Milliseconds since the last frame arrived. */
+  sinceFrameMs: number;
+}
+
+/** The pace as the HUD shows it. */
+export function paceText(p: PaceInput): string {
+  if (!p.playing) return 'paused';
+  if (!p.busy && p.sinceFrameMs >= STALL_MS) return `waiting for a step: ${(p.sinceFrameMs / 1000).toFixed(1)} s so far`;
+  return p.slowMotion ? `${(p.realTimeFraction * 100).toFixed(0)}% of real time (slow motion)` : 'real time';
+}
