@@ -130,18 +130,20 @@ impl GroundSet {
             if m.inv_mass[i] == 0.0 || u[1] > 0.0 {
                 continue;
             }
-            let target = if p[1] <= g.height {
-                0.0
+            if p[1] <= g.height {
+                self.take(i, 0.0);
             } else if predict && p[1] + dt * u[1] < g.height {
-                (g.height - p[1]) / dt
-            } else {
-                continue;
-            };
-            self.held[i] = true;
-            self.was[i] = true;
-            self.target[i] = target;
-            self.list.push(i as u32);
+                self.take(i, (g.height - p[1]) / dt);
+            }
         }
+    }
+
+    /// Hold vertex `i` with v⁺_y = `target` for the rest of the step (once: `was`).
+    fn take(&mut self, i: usize, target: f64) {
+        self.held[i] = true;
+        self.was[i] = true;
+        self.target[i] = target;
+        self.list.push(i as u32);
     }
 
     /// Without restitution: take the vertices the iterate x_t = x + dt v⁺ puts below the plane
@@ -154,12 +156,9 @@ impl GroundSet {
         let before = self.list.len();
         for i in 0..m.inv_mass.len() {
             if !self.was[i] && m.inv_mass[i] != 0.0 && xt[3 * i + 1] < g.height {
-                self.held[i] = true;
-                self.was[i] = true;
                 // A vertex already below the plane (moving up at the step's start) is held at
                 // its height, as `find` holds one resting there: never pushed up by the solve.
-                self.target[i] = ((g.height - x[3 * i + 1]) / dt).min(0.0);
-                self.list.push(i as u32);
+                self.take(i, ((g.height - x[3 * i + 1]) / dt).min(0.0));
             }
         }
         if self.list.len() == before {

@@ -41,9 +41,9 @@
 //!   the vertex pass; the product adds the rank-one terms after its chunked pass.
 //! - **pins**: a pinned vertex keeps v⁺ = v; its rows and columns are removed (its residual,
 //!   preconditioner and product entries are 0).
-//! - **the ground** (`ground.rs`): a held vertex has its v⁺_y prescribed (0 at rest, landing: `ground.rs`); that row and
-//!   column are removed the same way, and the residual's removed component is kept as the
-//!   ground's impulse (`GroundSet::react`).
+//! - **the ground** (`ground.rs`): a held vertex has its v⁺_y prescribed (0 at rest; a vertex
+//!   landing in the step: `ground.rs`); that row and column are removed the same way, and the
+//!   residual's removed component is kept as the ground's impulse (`GroundSet::react`).
 //!
 //! Dropping terms from the matrix only slows Newton's convergence (an inexact Newton method);
 //! the solution it converges to is the backward-Euler step with every force exact.
