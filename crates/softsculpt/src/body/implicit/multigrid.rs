@@ -73,8 +73,23 @@ const MAX_LEVELS: usize = 10;
 /// Damping of the finest level's block Jacobi sweeps (λ_max(D⁻¹A) ≲ 2 on a triangle mesh's
 /// spring matrix; 2/3 is the classic choice for smoothing).
 const OMEGA: f64 = 0.7;
-/// A pivot below this fraction of its diagonal is a rotation the node cannot feel.
+/// A pivot of the coarsest level's dense factor below this fraction of its diagonal is a mode
+/// the level cannot feel (a rotation of a one-vertex node, …): solved as 0.
 const PIVOT: f64 = 1e-10;
+/// The same for the 6×6 diagonal block of a coarse node, which the Gauss–Seidel sweeps invert
+/// while reading the off-diagonal blocks in single precision (`Level::af`: rounding u = 2⁻²⁴ ≈
+/// 6e-8 of each entry). A mode the node barely feels (pivot ratio ρ) has an exactly tiny
+/// coupling to its neighbours, which their rounded blocks replace by ~u of the entries: the
+/// sweep multiplies that by ~1/ρ. Found on a stiff ball's contact patch (`ground.rs`): a node
+/// of five held vertices (no y unknown, offsets' y ≈ 0 on the plane) and two released ones
+/// feels its tilts about horizontal axes only through the two, pivot ratios 6.8e-8 and 2.6e-9
+/// (kept at 1e-10): u/ρ ≈ 23, the cycle was no longer positive definite and every conjugate
+/// gradient after that assembly ran to its cap of `LINEAR_MAX` (the stiff rubber preset at
+/// 10,242 vertices landing: 64,598 iterations in one step). At 1e-5 the amplification is at
+/// most 0.6 %, and dropping a mode felt at 1e-5 of its diagonal costs the preconditioner
+/// nothing measurable (BENCHMARKS.md: the other presets' landings take the same iterations;
+/// 1e-6 measured alike).
+const BLOCK_PIVOT: f64 = 1e-5;
 /// Gauss–Seidel sweeps before and after the coarse correction on levels 2 and below (level 1,
 /// the largest coarse level, gets one): measured at 40,962 vertices, 1 → 3 sweeps there took
 /// the conjugate gradient from 37 to 30 iterations per step for little cost.
@@ -230,16 +245,17 @@ fn add_galerkin(blk: &mut Blk, a: &Blk, ru: &[f64; 3], rw: &[f64; 3]) {
 }
 
 /// In-place Cholesky factor (lower triangle) of the symmetric positive semi-definite n×n
-/// matrix `l` (row-major). A pivot at most [`PIVOT`] times its diagonal is an unknown the
-/// matrix does not see: it is marked in `drop` and solved as 0 (a pseudo-inverse on the rest).
-fn cholesky(l: &mut [f64], n: usize, drop: &mut [bool]) {
+/// matrix `l` (row-major). A pivot at most `pivot` times its diagonal ([`PIVOT`],
+/// [`BLOCK_PIVOT`]) is an unknown the matrix does not see: it is marked in `drop` and solved as
+/// 0 (a pseudo-inverse on the rest).
+fn cholesky(l: &mut [f64], n: usize, drop: &mut [bool], pivot: f64) {
     for k in 0..n {
         let diag = l[k * n + k];
         let mut d = diag;
         for q in 0..k {
             d -= l[k * n + q] * l[k * n + q];
         }
-        drop[k] = !(d > PIVOT * diag.abs() && d.is_finite());
+        drop[k] = !(d > pivot * diag.abs() && d.is_finite());
         let d = if drop[k] { 0.0 } else { d.sqrt() };
         l[k * n + k] = if drop[k] { 1.0 } else { d };
         for r in k + 1..n {
@@ -405,7 +421,7 @@ impl Multigrid {
             }
             for c in 0..lv.s.n {
                 f.copy_from_slice(&lv.a[lv.s.start[c] as usize]);
-                cholesky(&mut f, 6, &mut drop);
+                cholesky(&mut f, 6, &mut drop, BLOCK_PIVOT);
                 for q in 0..6 {
                     let mut e = [0.0; 6];
                     e[q] = 1.0;
@@ -435,7 +451,7 @@ impl Multigrid {
                 }
             }
         }
-        cholesky(l, n, &mut self.drop);
+        cholesky(l, n, &mut self.drop, PIVOT);
     }
 
     /// r = b − A x on a coarse level (`skip_diagonal`: without the diagonal block, for the
