@@ -23,32 +23,35 @@ fn settled(s: f64, size: f64, seconds: f64) -> (Vec<f64>, Vec<&'static str>) {
 #[test]
 fn a_ball_scaled_by_s_rests_in_the_same_shape_scaled_by_s() {
     // The reference: radius 1 m at size 1 (the preset as tuned). At 1 cm the preset scaled gives
-    // dt × s^½ too: the same dimensionless problem step by step, so the same rest shape up to
-    // rounding, the solver's tolerance (1e-3 relative residual per step, on a sag of ~0.16 of
-    // the radius) and the footprint friction holds: the two paths differ by ~5e-4 of the
-    // radius at 3 s while settling (measured), and what friction keeps of that may stay. Measured
-    // at 8 s: 2e-8 of the radius; 1.7e-6 since the vertices landing in a step are held in the
-    // implicit solve (`body/implicit/ground.rs`; why it grew is not confirmed: another footprint
-    // held by friction, or a discrete choice of the held set flipping on rounding). Bound 1e-5 of
-    // the radius, empirical (6× that; the scaled cases below miss by ≥ 0.048). Noticed: the
-    // ball at rest is unstable (`tests/ground_implicit.rs`: rounding grows into a roll after
-    // ~10 s); at other tolerances (1e-4, 1e-7) one of the runs rolls before 8 s and they differ
-    // by 0.12 — before and after that change. At 20 m dt stays 1/60 s, finer than
-    // similar: the path is less damped and friction holds another footprint; measured 0.048 of
-    // the radius, bound 0.06 (the preset unscaled on the 1 cm ball is off by more than 0.05·20,
-    // checked below, so the bound still tells scaled from unscaled).
-    let (reference, none) = settled(1.0, 1.0, 8.0);
+    // dt × s^½ too: the same dimensionless problem step by step, so the same shape at the same
+    // scaled time up to rounding and the solver's tolerance (1e-3 relative residual per step, on
+    // a sag of ~0.16 of the radius): compared at 4 s (0.4 s at 1 cm), when the ball has sagged
+    // onto its footprint. Measured there 1.6e-5 of the radius; bound 1e-4 (the unscaled preset
+    // is off by more than 1, checked below). Why not later: the ball at rest is unstable — an
+    // asymmetry grows from rounding into a roll (measured on the 1 cm ball, its centre's x:
+    // 1.3e-8 at 4 s, 9e-7 at 5, 6e-5 at 6, then a roll of 0.048 of the radius by 7 s, at ~70×
+    // per second; the 1 m ball's grows from 1e-17 at ~3× per second), so a comparison at 8 s
+    // (as this test made until 2026-11-27) met a roll whenever a change to the solver moved the
+    // rounding — at 1e-4 and 1e-7 tolerance before, with the ground's releases at Newton
+    // iterations 1–4 after (off by 0.12). Not investigated: why the resting ball is unstable.
+    // At 20 m dt stays 1/60 s, finer than similar: the path is less damped and friction holds
+    // another footprint; compared at rest (40 s, against the reference at 8 s): measured 0.048
+    // of the radius until 2026-11-27, 1.7e-5 with the releases at 1–4; bound 0.06 (the preset unscaled on the 1 cm ball is off by more than
+    // 0.05·20, so the bound still tells scaled from unscaled).
+    let (reference, none) = settled(1.0, 1.0, 4.0);
+    let (rest, _) = settled(1.0, 1.0, 8.0);
     assert!(none.is_empty());
     let top = |x: &[f64]| x.chunks_exact(3).map(|p| p[1]).fold(f64::NEG_INFINITY, f64::max);
     let sag = 2.0 - top(&reference);
     assert!(sag > 0.02, "the reference ball sags under its weight (by {sag} m)");
-    for (s, seconds, bound) in [(0.01, 8.0, 1e-5), (20.0, 40.0, 0.06)] {
+    for (s, seconds, bound, reference) in [(0.01, 4.0, 1e-4, &reference), (20.0, 40.0, 0.06, &rest)] {
         let (x, _) = settled(s, s, seconds);
-        let worst = x.iter().zip(&reference).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+        let worst = x.iter().zip(reference).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+        println!("size {s}: off by {worst:e} of the radius");
         assert!(worst < bound, "size {s}: rest shape off by {worst} of the radius");
     }
     // Unscaled parameters on the 1 cm ball: nothing like the reference (the check has teeth).
-    let (x, _) = settled(0.01, 1.0, 8.0);
+    let (x, _) = settled(0.01, 1.0, 4.0);
     let worst = x.iter().zip(&reference).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
     assert!(worst > 1.0, "unscaled, the 1 cm ball rests differently (off by {worst})");
 }

@@ -17,7 +17,14 @@
 //! dt F_g,y = r_y(v⁺) (N·s). The vertices with r_y < 0 (the plane would have to pull them
 //! down) are released for the rest of the step, and Newton goes on with them free (the set only
 //! shrinks, so it cannot cycle; the tolerance still counts from the first residual): when Newton
-//! has converged, and at Newton iterations 2, 4, 8, 16, … Measured on a 10,242-vertex sphere
+//! has converged, and at Newton iterations 1, 2, 3, 4, then 8, 16, … ([`release_due`]; until
+//! 2026-11-27 at 2, 4, 8, …: the first iterations' releases let go at once the vertices the
+//! landing's prediction over-held, and a stiff ball's patch peels faster — 10,242 vertices, the
+//! presets' first second: Newton iterations default 324 → 271, balloon 328 → 228, jelly 343 →
+//! 245, clay 412 → 375, k = k_b = 500 330 → 297, stiff rubber 4,561 → 1,061 (61 → 13 s), cloth
+//! 1,363 → 1,452; at 40,962 the default's drop 361 → 264; at 2,562 even or fewer but stiff
+//! rubber's 353 → 401 (fewer CG iterations); releasing at every iteration instead cost clay
+//! 2.5×, at 1, 2, 4, 8, … clay 2.1×: BENCHMARKS.md). Measured on a 10,242-vertex sphere
 //! landing with the presets of `tests/presets.rs`: releasing only at convergence, a crumpling
 //! cloth stalled for 100 iterations at a relative residual of ~1e-3 with 140 of its 327 held
 //! vertices pulled down; releasing at every iterate, clay stalled at ~5e-3 (a few vertices let
@@ -89,6 +96,15 @@ pub(crate) const ADD_UNTIL: u32 = 16;
 /// Newton iterations after which a step still not converged with the ground's vertices held
 /// is solved again without them.
 pub(crate) const GIVE_UP: u32 = 64;
+/// Releases at every Newton iteration up to this one, then at powers of two ([`release_due`]).
+pub(crate) const RELEASE_EVERY_UNTIL: u32 = 4;
+
+/// Whether the held vertices the plane would pull down are released after Newton iteration `k`
+/// (besides at convergence): at 1, 2, …, [`RELEASE_EVERY_UNTIL`], then 8, 16, 32, … (see the
+/// module doc, "Constraints").
+pub(crate) fn release_due(k: u32) -> bool {
+    k >= 1 && (k <= RELEASE_EVERY_UNTIL || k.is_power_of_two())
+}
 
 /// The vertices the ground holds in one step, and their impulses.
 #[derive(Debug, Clone, Default)]

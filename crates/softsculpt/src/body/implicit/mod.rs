@@ -254,10 +254,10 @@ impl Implicit {
         let mut stale = true;
         loop {
             // Vertices the ground would have to pull down are let go for the rest of the step
-            // (the set only shrinks: no cycling), at convergence and at iterations 2, 4, 8, …
-            // (`ground.rs`).
+            // (the set only shrinks: no cycling), at convergence and at iterations 1, 2, 3, 4,
+            // 8, 16, … (`ground::release_due`).
             let converged = norm <= (w.tolerance * r0).max(noise);
-            if (converged || (k >= 2 && k.is_power_of_two())) && released != Some(k) && self.sys.ground.active() && self.sys.ground.release() {
+            if (converged || ground::release_due(k)) && released != Some(k) && self.sys.ground.active() && self.sys.ground.release() {
                 released = Some(k);
                 stale = true;
                 (norm, noise) = self.eval(th, fr)?;
