@@ -152,38 +152,18 @@ fn a_sphere_landing_an_edge_deep_in_one_step_converges_in_a_few_newton_iteration
     assert!(total <= 280, "{total} Newton iterations in 60 steps");
 }
 
-/// The icosphere of `web/e2e/icosphere.mjs` (level 5: 10,242 vertices) as the modeler imports
-/// it, 2.5 m across its bounding box's diagonal, resting on y = 0, written with 9 significant
-/// digits: the same OBJ text, so the same bits, as the benchmarks' `g5.obj` (BENCHMARKS.md).
+/// The icosphere (`mesh::builtin::icosphere`, the construction of `web/e2e/icosphere.mjs`) as the
+/// modeler imports it, 2.5 m across its bounding box's diagonal, resting on y = 0, written with 9
+/// significant digits as that script writes it: the same OBJ text, so the same bits, as the
+/// benchmarks' `g5.obj` at level 5 (BENCHMARKS.md).
 fn imported_icosphere_obj(level: u32) -> String {
-    let t = (1.0 + 5f64.sqrt()) / 2.0;
-    let unit = |p: [f64; 3]| {
-        let n = p[0].hypot(p[1]).hypot(p[2]);
-        [p[0] / n, p[1] / n, p[2] / n]
-    };
-    let mut v: Vec<[f64; 3]> = [[-1.0, t, 0.0], [1.0, t, 0.0], [-1.0, -t, 0.0], [1.0, -t, 0.0], [0.0, -1.0, t], [0.0, 1.0, t], [0.0, -1.0, -t], [0.0, 1.0, -t], [t, 0.0, -1.0], [t, 0.0, 1.0], [-t, 0.0, -1.0], [-t, 0.0, 1.0]].map(unit).to_vec();
-    let mut f: Vec<[usize; 3]> = vec![[0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11], [1, 5, 9], [5, 11, 4], [11, 10, 2], [10, 7, 6], [7, 1, 8], [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8], [3, 8, 9], [4, 9, 5], [2, 4, 11], [6, 2, 10], [8, 6, 7], [9, 8, 1]];
-    for _ in 0..level {
-        let mut mid = std::collections::HashMap::new();
-        let mut next = Vec::with_capacity(4 * f.len());
-        for &[a, b, c] in &f {
-            let mut m = |a: usize, b: usize| -> usize {
-                *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
-                    v.push(unit([(v[a][0] + v[b][0]) / 2.0, (v[a][1] + v[b][1]) / 2.0, (v[a][2] + v[b][2]) / 2.0]));
-                    v.len() - 1
-                })
-            };
-            let (ab, bc, ca) = (m(a, b), m(b, c), m(c, a));
-            next.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
-        }
-        f = next;
-    }
     let r = 2.5 / (2.0 * 3f64.sqrt());
+    let ball = icosphere(level, 1.0);
     let mut text = String::new();
-    for p in &v {
+    for p in ball.positions.chunks_exact(3) {
         text += &format!("v {:.8e} {:.8e} {:.8e}\n", p[0] * r, p[1] * r + r, p[2] * r);
     }
-    for t in &f {
+    for t in &ball.triangles {
         text += &format!("f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1);
     }
     text
