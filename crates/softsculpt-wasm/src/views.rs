@@ -137,6 +137,16 @@ pub extern "C" fn ss_body_count(w: u32) -> i32 {
     crate::index(|| with_world(w, |h| Ok(h.world.bodies.len())))
 }
 
+/// Newton iterations of body `b`'s last step (0 after an explicit one), or −1 (error set).
+#[no_mangle]
+pub extern "C" fn ss_body_newton_iterations(w: u32, b: u32) -> i32 {
+    crate::index(|| {
+        with_world(w, |h| {
+            Ok(h.world.bodies[h.body(b)?].solver_iterations().newton as usize)
+        })
+    })
+}
+
 /// Body `b`'s layout table (see the module documentation), or 0 (error set).
 #[no_mangle]
 pub extern "C" fn ss_body_views(w: u32, b: u32) -> *const u32 {

@@ -29,6 +29,7 @@ export interface RawEngine {
   ss_sync(w: number): number;
   ss_body_count(w: number): number;
   ss_body_views(w: number, b: number): number;
+  ss_body_newton_iterations(w: number, b: number): number;
   ss_param_table(): number;
   ss_material_presets(): number;
   ss_params(w: number, b: number): number;

@@ -265,6 +265,8 @@ export class World {
 
   get bodyCount(): number { return check(raw().ss_body_count(this.handle)); }
   body(i: number): BodyView { return new BodyView(this, i); }
+  /** Newton iterations of body `b`'s last step (0 after an explicit one). */
+  newtonIterations(b: number): number { return check(raw().ss_body_newton_iterations(this.handle, b)); }
 
   /** `n` steps or none: on a blow-up the whole world is rolled back and this throws (kind 'step'). */
   step(n = 1): void { this.call((w) => raw().ss_step(w, n)); }

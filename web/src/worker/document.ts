@@ -14,6 +14,7 @@ import { initEngine } from '../engine/wasm';
 import { World, type DeltaScope, type FreezeReport, type ParamInfo, type ParamValue } from '../engine/world';
 import { addModel, dtFor, stableDt, useDefaults } from '../engine/models';
 import { stepSplitting } from './split';
+import { Pace, stepPaced } from './pace';
 import { History, travel } from '../history';
 import { parse, ProjectError, serialize } from '../project';
 import type { Autosave, AutosaveRecord } from '../storage';
@@ -223,6 +224,8 @@ export class Document {
   /** A model built in the world (an import): its name, the settings from the world's dt, its file's frame. */
   adopt(model: string, frame: ImportFrame): void {
     this.splitFrames = 0;
+    this.pace.reset();
+    this.paceSaid = false;
     this.settings.dt = this.world.params(0).dt as number;
     this.settings.substeps = Math.max(1, Math.round(1 / 60 / this.settings.dt));
     this.settings.model = model;
@@ -237,6 +240,8 @@ export class Document {
     if (this.pausedByError) { this.pausedByError = false; this.settings.playing = true; }
     const dt = useDefaults(this.world, 0);
     this.splitFrames = 0;
+    this.pace.reset();
+    this.paceSaid = false;
     this.settings.dt = dt;
     this.settings.substeps = Math.max(1, Math.round(1 / 60 / dt));
     this.settings.model = model;
@@ -517,6 +522,7 @@ export class Document {
     // A brush keeps what it painted and the state of those vertices; a drag moves everything.
     this.strokeScope = s.tool === 'grab' || s.tool === 'press' ? 'all' : 'touched';
     this.stroke.start(this.strokeBody());
+    if (this.stroke.path && this.world.params(0).integrator === 'implicit') this.pace.brace();
     if (this.stroke.paintsBodyData) this.bodyVersion++;
   }
   strokeMove(point: Vec3 | null, inverted: boolean, pressure?: number): void {
@@ -551,7 +557,7 @@ export class Document {
   /** The stroke acts for `dt` simulated seconds (before the steps of a tick). */
   updateStroke(dt: number): void {
     if (!this.stroke) return;
-    this.stroke.update(this.strokeBody(), dt);
+    this.stroke.update(this.strokeBody(), dt, this.settings.dt);
     if (this.stroke.paintsBodyData) this.bodyVersion++;
   }
 
@@ -563,8 +569,17 @@ export class Document {
     try {
       if (dt !== this.settings.dt) this.setDt(dt);
       if (this.rewind.size === 0) this.offerRewind();
-      const splits = stepSplitting((h, k) => this.stepAt(h, k), dt, n);
+      const path = this.stroke?.path ?? null;
+      const anchors = path && { aim: (h: number) => path.aim(this.strokeBody(), h), took: (h: number) => path.took(h), stepped: path.stepped };
+      // Implicit steps and grabs in adaptive substeps (`pace.ts`); explicit ones in batches.
+      const splits = path || this.world.params(0).integrator === 'implicit'
+        ? stepPaced(this.pace, anchors, (h) => { this.stepAt(h, 1); return this.newtonIterations(); }, dt, n)
+        : stepSplitting((h, k) => this.stepAt(h, k), dt, n);
       if (splits > 0) this.splitFrame(splits);
+      if (this.pace.pieces > 1 && !this.paceSaid) {
+        this.paceSaid = true;
+        this.hooks.message(`steps of ${fmt(this.settings.dt)} s took many Newton iterations on this body: taking them as ${this.pace.pieces} substeps (fewer again once they are quick)`, 'info');
+      }
       this.sinceRewind += dt * n;
       if (this.sinceRewind >= this.rewind.every - 1e-9) this.offerRewind();
       return true;
@@ -608,6 +623,14 @@ export class Document {
     }
     this.bodyVersion++;
     return p.time;
+  }
+
+  /** Substeps per implicit step (`pace.ts`), per model; whether the user was told they are above 1. */
+  readonly pace = new Pace();
+  private paceSaid = false;
+  /** Newton iterations of the last step, the most over the bodies. */
+  private newtonIterations(): number {
+    return Math.max(0, ...this.everyBody.map((b) => this.world.newtonIterations(b)));
   }
 
   /** `n` steps of `h` (s), the world's dt back to the settings' after a split step. */

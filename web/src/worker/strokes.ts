@@ -13,6 +13,7 @@ import type { StrokeTool, Vec3 } from '../protocol';
 import type { BodyView } from '../engine/world';
 import { inflateFactor, targetSpring, vertexNormals, verticesAround, type Weighted } from '../tools/brush';
 import { reflect, reflections, type Symmetry } from '../tools/symmetry';
+import { AnchorPath } from './anchorpath';
 
 /** Pen pressure as a strength scale: (0, 1], 1 when not given (a mouse). */
 function clampPressure(p: number | undefined): number {
@@ -86,11 +87,21 @@ export abstract class Stroke {
   /** The stroke begins (the document has remembered the state for undo). */
   abstract start(body: StrokeBody): void;
   move(point: Vec3 | null, inverted: boolean, _body: StrokeBody): void { this.point = point; this.inverted = inverted; }
-  /** Every tick before the steps (dt: simulated seconds this tick, 0 when paused). */
-  update(_body: StrokeBody, _dt: number): void {}
+  /** Every tick before the steps (dt: simulated seconds this tick, 0 when paused; step: the world's dt). */
+  update(_body: StrokeBody, _dt: number, _step?: number): void {}
+  /** Anchors that move along a path within the tick (the grab), stepped by the document in substeps (`pace.ts`). */
+  get path(): StrokePath | null { return null; }
   abstract end(body: StrokeBody): void;
   /** Whether it changes masses or pins (which the page then needs again). */
   get paintsBodyData(): boolean { return false; }
+}
+
+/** A stroke's anchors in time within a tick (worker/anchorpath.ts), as the document steps them (worker/pace.ts). */
+export interface StrokePath {
+  /** Before a substep of `h` s: the anchors where the path is at its end. */
+  aim(body: StrokeBody, h: number): void;
+  took(h: number): void;
+  stepped(pieces: number, newton: number, split: boolean): void;
 }
 
 class Grab extends Stroke {
@@ -98,6 +109,8 @@ class Grab extends Stroke {
   /** Each picked vertex's offset from the (mirrored) grab point. */
   private offsets: number[] = [];
   private records = new Float64Array(0);
+  /** Where the anchors are and where they head this tick (set at `start`). */
+  private anchors = new AnchorPath([0, 0, 0], 1);
   /** The reflections this grab acts through: an image whose brush overlaps the grab's own is left out. */
   private images: Vec3[] = [[1, 1, 1]];
   start(body: StrokeBody): void {
@@ -114,13 +127,27 @@ class Grab extends Stroke {
       return [x[3 * i] - q[0], x[3 * i + 1] - q[1], x[3 * i + 2] - q[2]];
     });
     this.records = new Float64Array(6 * this.picked.indices.length);
-    this.update(body);
+    this.anchors = new AnchorPath(p, this.s.radius);
+    this.set(body, p);
   }
   /** The cursor moved: `point` is its point on the grab plane (null keeps the last one). */
   move(point: Vec3 | null): void { if (point) this.point = point; }
-  update(body: StrokeBody): void {
+  /** The anchors head for the cursor over this tick (`anchorpath.ts`); set where they are now. */
+  update(body: StrokeBody, dt: number, step = dt): void {
+    this.anchors.aim(this.point ?? this.s.point, dt, step);
+    this.set(body, this.anchors.point);
+  }
+  get path(): StrokePath {
+    const a = this.anchors;
+    return {
+      aim: (body, h) => this.set(body, a.next(h)),
+      took: (h) => a.took(h),
+      stepped: (_pieces, newton, split) => a.stepped(newton, split),
+    };
+  }
+  /** The target springs with the grab point at `cursor`. */
+  private set(body: StrokeBody, cursor: Vec3): void {
     const m = body.view.masses, r = this.records;
-    const cursor = this.point ?? this.s.point;
     // Each image of the cursor pulls the vertices taken through that image (mirrored drags).
     const images = this.images.map((sg) => reflect(cursor, sg, this.centre));
     this.picked.indices.forEach((i, k) => {

@@ -1,0 +1,161 @@
+// Implicit steps in adaptive substeps and the grab's anchors along the cursor's path
+// (src/worker/pace.ts, src/worker/anchorpath.ts), on model worlds whose Newton counts follow
+// what was measured natively on the page's stiff-rubber sphere (BENCHMARKS.md): a step of h
+// takes more Newton iterations the larger (h / dt)², and an anchor jump beyond what one step can
+// take does not converge. Then the document's substeps on the real engine.
+import { beforeAll, describe, expect, it } from 'vitest';
+import { AnchorPath, TRAVEL_MAX } from '../src/worker/anchorpath';
+import { GRAB_PIECES, LOW_FRAMES, MAX_PIECES, Pace, stepPaced, type Anchors } from '../src/worker/pace';
+import { loadEngine } from './setup';
+import { Document } from '../src/worker/document';
+import type { Vec3 } from '../src/protocol';
+
+const DT = 1 / 60;
+const unconverged = () => Object.assign(new Error('not converged'), { kind: 'step', fields: { converged: false } });
+
+/**
+ * A model world: a step of h takes `base + stiff (h/DT)²` Newton iterations (the mass term
+ * m / h² against the skin's non-convexity: 4× smaller per halving), and does not converge if
+ * that is over 100 or if the anchors moved more than `jump` (m) in it. Tracks simulated time.
+ */
+function world(stiff: number, base = 2, jump = Infinity) {
+  const w = { time: 0, steps: [] as number[], anchor: 0, moved: 0, fails: 0 };
+  const step = (h: number) => {
+    const n = Math.round(base + stiff * (h / DT) ** 2);
+    if (n > 100 || w.moved > jump) { w.fails++; w.moved = 0; throw unconverged(); }
+    w.time += h;
+    w.steps.push(h);
+    w.moved = 0;
+    return n;
+  };
+  return { w, step };
+}
+
+/** The grab's path on a line (x only), wired to a model world's anchor. */
+function along(path: AnchorPath, w: { anchor: number; moved: number }): Anchors {
+  return {
+    aim: (h) => { const x = path.next(h)[0]; w.moved += Math.abs(x - w.anchor); w.anchor = x; },
+    took: (h) => path.took(h),
+    stepped: (_p, newton, split) => path.stepped(newton, split),
+  };
+}
+
+describe('substeps', () => {
+  it('a soft body is stepped one step per frame', () => {
+    const pace = new Pace(), { w, step } = world(3);
+    for (let i = 0; i < 100; i++) stepPaced(pace, null, step, DT, 1);
+    expect(pace.pieces).toBe(1);
+    expect(w.steps.every((h) => h === DT)).toBe(true);
+  });
+
+  it('a stiff body is stepped in the substeps that converge quickly, and covers the same time', () => {
+    // 62 Newton iterations a step at dt, 17 at dt/2: halves, then no further.
+    const pace = new Pace(), { w, step } = world(60);
+    for (let i = 0; i < 60; i++) stepPaced(pace, null, step, DT, 1);
+    expect(pace.pieces).toBe(2);
+    expect(w.fails).toBe(0);
+    // 60 frames of 1/60 s: one second, to the rounding of 119 additions.
+    expect(w.time).toBeCloseTo(1, 12);
+  });
+
+  it('a step that does not converge is split, and the next steps start in halves', () => {
+    // 152 Newton iterations at dt (refused), 40 at dt/2 (then quarters: 11.5).
+    const pace = new Pace(), { w, step } = world(150);
+    expect(stepPaced(pace, null, step, DT, 1)).toBe(1);
+    expect(pace.pieces).toBe(2);
+    for (let i = 0; i < 10; i++) stepPaced(pace, null, step, DT, 1);
+    expect(pace.pieces).toBe(4);
+    expect(w.fails).toBe(1);
+    expect(w.time).toBeCloseTo(11 * DT, 12);
+  });
+
+  it('goes back to one step per frame once the steps are quick for a while', () => {
+    const pace = new Pace();
+    pace.pieces = MAX_PIECES;
+    const { step } = world(3, 1);
+    for (let i = 0; i < LOW_FRAMES - 1; i++) stepPaced(pace, null, step, DT, 1);
+    expect(pace.pieces).toBe(MAX_PIECES);
+    for (let i = 0; i < 3 * LOW_FRAMES + 1; i++) stepPaced(pace, null, step, DT, 1);
+    expect(pace.pieces).toBe(1);
+  });
+
+  it('a grab starts in halves', () => {
+    const pace = new Pace();
+    pace.brace();
+    expect(pace.pieces).toBe(GRAB_PIECES);
+  });
+});
+
+describe('the grab’s anchors', () => {
+  const R = 0.35;
+
+  it('travel at most `travel` a step towards the cursor and arrive on it', () => {
+    // A model world where no step converges with the anchors moved more than 5 cm in it and
+    // 30 Newton iterations a step at dt (so the substeps double once).
+    const pace = new Pace(), { w, step } = world(28, 2, 0.05);
+    const path = new AnchorPath([0, 0, 0], R);
+    const cursor: Vec3 = [0.56, 0, 0];
+    let last = 0, over = 0;
+    for (let i = 0; i < 40; i++) {
+      const most = path.travel;
+      path.aim(cursor, DT, DT);
+      stepPaced(pace, along(path, w), step, DT, 1);
+      if (path.point[0] - last > most + 1e-12) over++;
+      last = path.point[0];
+    }
+    expect(over).toBe(0);
+    expect(path.point[0]).toBeCloseTo(0.56, 12);
+    // The travel grows while the steps are quick and halves when one is refused: at most a few
+    // refusals on the way, where the whole 56 cm in one step is refused at every split level
+    // down to dt/8 (7 cm a substep).
+    expect(w.fails).toBeLessThanOrEqual(3);
+    const jump = world(28, 2, 0.05);
+    expect(() => stepPaced(new Pace(), { aim: () => { jump.w.moved = 0.56; }, took: () => {}, stepped: () => {} }, jump.step, DT, 1)).toThrow('not converged');
+  });
+
+  it('on a soft body soon follow the cursor within the step', () => {
+    const pace = new Pace(), { w, step } = world(2, 1);
+    const path = new AnchorPath([0, 0, 0], R);
+    let x = 0, lagged = 0;
+    for (let i = 0; i < 60; i++) {
+      x += 0.1; // 6 m/s: 10 cm a frame, more than the first travel (4.4 cm)
+      path.aim([x, 0, 0], DT, DT);
+      stepPaced(pace, along(path, w), step, DT, 1);
+      if (path.point[0] < x - 1e-12) lagged++;
+    }
+    // The travel doubles every step that held the anchors back (4.4, 8.8, 17.5 cm): two frames
+    // of lag, then none.
+    expect(path.travel).toBeGreaterThanOrEqual(0.1);
+    expect(path.travel).toBeLessThanOrEqual(TRAVEL_MAX * R);
+    expect(lagged).toBeLessThanOrEqual(3);
+  });
+
+  it('a split step moves them half as far in each half', () => {
+    const pace = new Pace(), { w, step } = world(150, 2); // dt refused, dt/2 converges
+    const path = new AnchorPath([0, 0, 0], R);
+    const seen: number[] = [];
+    path.aim([0.02, 0, 0], DT, DT);
+    stepPaced(pace, { ...along(path, w), aim: (h) => { seen.push(path.next(h)[0]); along(path, w).aim(h); } }, step, DT, 1);
+    expect(seen).toEqual([0.02, 0.01, 0.02]);
+    expect(path.point[0]).toBeCloseTo(0.02, 15);
+  });
+});
+
+describe('the document’s substeps (real engine)', () => {
+  beforeAll(loadEngine);
+
+  it('a step in substeps covers dt and leaves the world’s dt as set', () => {
+    const doc = new Document({ message: () => {}, progress: () => {}, changed: () => {}, ui: () => {}, ask: () => {} });
+    doc.open(null);
+    const dt = doc.settings.dt;
+    expect(doc.world.params(0).integrator).toBe('implicit');
+    doc.world.sync();
+    const t0 = doc.world.body(0).stats.time;
+    doc.pace.pieces = 4;
+    expect(doc.advance(dt, 3)).toBe(true);
+    doc.world.sync();
+    // 12 substeps of dt/4: three steps of dt, to the rounding of the clock's additions.
+    expect(doc.world.body(0).stats.time - t0).toBeCloseTo(3 * dt, 12);
+    expect(doc.world.params(0).dt).toBe(dt);
+  });
+});
