@@ -5,7 +5,7 @@
 // take does not converge. Then the document's substeps on the real engine.
 import { beforeAll, describe, expect, it } from 'vitest';
 import { AnchorPath, TRAVEL_MAX } from '../src/worker/anchorpath';
-import { GRAB_PIECES, LOW_FRAMES, MAX_PIECES, Pace, stepPaced, type Anchors } from '../src/worker/pace';
+import { BRACE_STEPS, GRAB_PIECES, LOW_STEPS, MAX_PIECES, Pace, stepPaced, type Anchors } from '../src/worker/pace';
 import { loadEngine } from './setup';
 import { Document } from '../src/worker/document';
 import type { Vec3 } from '../src/protocol';
@@ -36,7 +36,7 @@ function along(path: AnchorPath, w: { anchor: number; moved: number }): Anchors 
   return {
     aim: (h) => { const x = path.next(h)[0]; w.moved += Math.abs(x - w.anchor); w.anchor = x; },
     took: (h) => path.took(h),
-    stepped: (_p, newton, split) => path.stepped(newton, split),
+    stepped: (newton, split) => path.stepped(newton, split),
   };
 }
 
@@ -59,7 +59,7 @@ describe('substeps', () => {
   });
 
   it('a step that does not converge is split, and the next steps start in halves', () => {
-    // 152 Newton iterations at dt (refused), 40 at dt/2 (then quarters: 11.5).
+    // 152 Newton iterations at dt (refused), 40 at dt/2 (then quarters: 11).
     const pace = new Pace(), { w, step } = world(150);
     expect(stepPaced(pace, null, step, DT, 1)).toBe(1);
     expect(pace.pieces).toBe(2);
@@ -73,16 +73,32 @@ describe('substeps', () => {
     const pace = new Pace();
     pace.pieces = MAX_PIECES;
     const { step } = world(3, 1);
-    for (let i = 0; i < LOW_FRAMES - 1; i++) stepPaced(pace, null, step, DT, 1);
+    for (let i = 0; i < LOW_STEPS - 1; i++) stepPaced(pace, null, step, DT, 1);
     expect(pace.pieces).toBe(MAX_PIECES);
-    for (let i = 0; i < 3 * LOW_FRAMES + 1; i++) stepPaced(pace, null, step, DT, 1);
+    for (let i = 0; i < 3 * LOW_STEPS + 1; i++) stepPaced(pace, null, step, DT, 1);
     expect(pace.pieces).toBe(1);
   });
 
-  it('a grab starts in halves', () => {
-    const pace = new Pace();
+  it('a grab starts braced in substeps, and a soft body goes back to one step per frame after the brace', () => {
+    // 12 Newton iterations a step at dt, 9 at dt/2: neither asks for substeps nor is quick
+    // enough to halve them; the brace alone sets GRAB_PIECES, for BRACE_STEPS steps.
+    const pace = new Pace(), { step } = world(4, 8);
     pace.brace();
     expect(pace.pieces).toBe(GRAB_PIECES);
+    for (let i = 0; i < BRACE_STEPS - 1; i++) stepPaced(pace, null, step, DT, 1);
+    expect(pace.pieces).toBe(GRAB_PIECES);
+    stepPaced(pace, null, step, DT, 1);
+    expect(pace.pieces).toBe(1);
+    // The steps never asked for substeps: nothing to tell the user.
+    expect(pace.raised).toBe(false);
+  });
+
+  it('a braced grab on a stiff body keeps the substeps its steps ask for', () => {
+    const pace = new Pace(), { step } = world(150); // dt/2: 40 Newton iterations, dt/4: 11
+    pace.brace();
+    for (let i = 0; i < 3 * BRACE_STEPS; i++) stepPaced(pace, null, step, DT, 1);
+    expect(pace.pieces).toBe(4);
+    expect(pace.raised).toBe(true);
   });
 });
 
@@ -144,18 +160,51 @@ describe('the grab’s anchors', () => {
 describe('the document’s substeps (real engine)', () => {
   beforeAll(loadEngine);
 
-  it('a step in substeps covers dt and leaves the world’s dt as set', () => {
-    const doc = new Document({ message: () => {}, progress: () => {}, changed: () => {}, ui: () => {}, ask: () => {} });
+  const opened = () => {
+    const messages: string[] = [];
+    const doc = new Document({ message: (t) => messages.push(t), progress: () => {}, changed: () => {}, ui: () => {}, ask: () => {} });
     doc.open(null);
-    const dt = doc.settings.dt;
-    expect(doc.world.params(0).integrator).toBe('implicit');
-    doc.world.sync();
-    const t0 = doc.world.body(0).stats.time;
+    return { doc, messages };
+  };
+
+  it('a step in substeps is that many engine steps of dt/pieces, covering dt; the world’s dt stays as set', () => {
+    const { doc } = opened();
+    const dt = doc.settings.dt, w = doc.world;
+    expect(w.params(0).integrator).toBe('implicit');
+    const steps: number[] = [];
+    const engineStep = w.step.bind(w);
+    w.step = (n = 1) => { for (let i = 0; i < n; i++) steps.push(w.params(0).dt as number); engineStep(n); };
+    w.sync();
+    const t0 = w.body(0).stats.time;
     doc.pace.pieces = 4;
     expect(doc.advance(dt, 3)).toBe(true);
-    doc.world.sync();
+    w.sync();
+    expect(steps.length).toBe(12);
+    for (const h of steps) expect(h).toBeCloseTo(dt / 4, 15);
     // 12 substeps of dt/4: three steps of dt, to the rounding of the clock's additions.
-    expect(doc.world.body(0).stats.time - t0).toBeCloseTo(3 * dt, 12);
-    expect(doc.world.params(0).dt).toBe(dt);
+    expect(w.body(0).stats.time - t0).toBeCloseTo(3 * dt, 12);
+    expect(w.params(0).dt).toBe(dt);
+  });
+
+  it('a grab on the default model follows the cursor and leaves one step per frame, unannounced', () => {
+    const { doc, messages } = opened();
+    const dt = doc.settings.dt;
+    for (let i = 0; i < 30; i++) doc.advance(dt, 1);
+    const x = doc.world.body(0).positions;
+    let top = 0;
+    for (let i = 0; i < x.length / 3; i++) if (x[3 * i + 1] > x[3 * top + 1]) top = i;
+    const p: Vec3 = [x[3 * top], x[3 * top + 1], x[3 * top + 2]];
+    doc.strokeStart({ tool: 'grab', point: p, radius: 0.35, strength: 600, inverted: false });
+    expect(doc.pace.pieces).toBe(GRAB_PIECES);
+    doc.strokeMove([p[0], p[1] + 0.4, p[2]], false);
+    const ys: number[] = [];
+    for (let i = 0; i < 60; i++) { doc.updateStroke(dt); doc.advance(dt, 1); ys.push(doc.world.body(0).positions[3 * top + 1]); }
+    doc.strokeEnd();
+    // The first step's travel is 1/8 of the brush (4.4 cm): the top cannot have gone further.
+    expect(ys[0] - p[1]).toBeLessThan(0.35 / 8 + 1e-3);
+    // Then it follows: within 2 cm of the 0.4 m lift (the target spring's sag under the body).
+    expect(Math.abs(ys[59] - (p[1] + 0.4))).toBeLessThan(0.02);
+    expect(doc.pace.pieces).toBe(1);
+    expect(messages.filter((m) => /substeps/.test(m))).toEqual([]);
   });
 });

@@ -1,38 +1,36 @@
 // The grab's anchors follow the cursor at a travel per step that adapts to how hard the steps
 // are (load stepping, as automatic load incrementation does in nonlinear statics).
 //
-// Why: the grab's target springs (ω = 600 1/s by default: dt² k_t / m = 100 at 1/60 s) put each
-// grabbed vertex where its anchor is by the end of the step, so an anchor that jumps by J in one
-// step asks one backward-Euler step for the body's response to a displacement J of its grabbed
-// patch. Newton converges from the step's start when J is small against the brush; on a stiff
-// body it does not for large J. Measured natively (BENCHMARKS.md "Stiff rubber grabbed in the
-// page": the 10,242-vertex sphere at rest, stiff rubber, brush 0.35 m, one step of 1/60 s): a
-// jump of 5 cm takes 50 Newton iterations, 14 cm 207 (6.5 s), 28 and 56 cm do not converge
-// (3 × 100 iterations, 8 s; the page then split the step). The same 56 cm in 8 steps of 7 cm
-// (dt/8 each): 96 Newton iterations, 0.9 s. And in the page a slow step made the next jump larger
-// (the cursor moved on meanwhile): the grab stalled for good ("waiting for a step: 11 s").
+// Why (measured: BENCHMARKS.md, "The grab on stiff rubber"): the grab's target springs
+// (ω = 600 1/s: dt² k_t / m = 100 at 1/60 s) put each grabbed vertex where its anchor is by the
+// end of the step, so an anchor that jumps by J asks one backward-Euler step for the body's whole
+// response to it; on stiff rubber a jump of 28 cm or more in one step was refused, one of 14 cm
+// took 207 Newton iterations, the same jumps in 4–8 substeps with the anchors moved in equal
+// parts 72–96. And in the page a slow step let the cursor run further ahead, so the next jump
+// was larger: the grab stalled for good.
 //
 // So the anchors move towards the cursor by at most `travel` (m) per step: each tick of the
 // stepper takes them from where they are towards the cursor, linearly in simulated time over
 // the tick's steps and substeps (`pace.ts`; a substep split in halves moves them half as far in
-// each), by at most `travel` per step; the rest follows over the next ticks (as the body lags
-// the cursor in slow motion). `travel` starts at TRAVEL_START brush radii and adapts, like
-// automatic load incrementation in nonlinear statics, on the steps where it held the anchors
-// back (they moved at least half of it): doubled after one whose substeps took at most
-// NEWTON_GROW Newton iterations each, halved after one that took more than NEWTON_SHRINK in a
-// substep or had to be split; within [TRAVEL_MIN, TRAVEL_MAX] brush radii. Once the substeps
-// are short enough to converge quickly the travel hardly matters (the page's stiff rubber at
-// dt/4: 130–190 Newton iterations for 4 steps whether the anchors travel 1.5 or 24 cm a step),
-// so it grows whenever they do; a soft body soon steps with the anchors at the cursor.
+// each); what the travel held back follows over the next ticks (as the body lags the cursor in
+// slow motion). `travel` starts at TRAVEL_START brush radii and adapts on the ticks it held the
+// anchors back: doubled after a step whose substeps took at most NEWTON_GROW Newton iterations
+// each (once the substeps converge quickly the travel hardly matters: stiff rubber at dt/4 took
+// 133–194 Newton iterations for 4 steps whether the anchors travelled 1.5 or 24 cm a step),
+// halved after one with a substep over NEWTON_SHRINK or a split; within [TRAVEL_MIN, TRAVEL_MAX]
+// brush radii. A soft body soon steps with the anchors at the cursor.
 
 import type { Vec3 } from '../protocol';
 
-/** The first travel per step, in brush radii (the rubber sphere: 5 cm steps converge in ~50 Newton iterations, 14 cm in 207). */
+/** The first travel per step, in brush radii (stiff rubber from rest: 5 cm in one step took 50 Newton iterations, 14 cm 207). */
 export const TRAVEL_START = 1 / 8;
 /** Bounds of the travel per step, in brush radii. */
 export const TRAVEL_MIN = 1 / 64;
 export const TRAVEL_MAX = 4;
-/** Newton iterations of a substep (of a step that held the anchors back) above which the travel halves, at or below which it doubles. */
+/**
+ * Newton iterations of a step's hardest substep (the maximum, where `pace.ts` uses the average)
+ * above which the travel halves, and at or below which it doubles, on a tick it held the anchors back.
+ */
 export const NEWTON_SHRINK = 48;
 export const NEWTON_GROW = 24;
 
@@ -43,6 +41,8 @@ export class AnchorPath {
   /** Simulated seconds of the tick, and how much of it the steps have covered. */
   private span = 0;
   private done = 0;
+  /** Whether this tick's travel held the anchors back (they would have gone further). */
+  private limited = false;
   /** Most travel of the anchors in one step (m). */
   travel: number;
 
@@ -66,35 +66,36 @@ export class AnchorPath {
 
   /**
    * A tick of `span` simulated seconds in steps of `dt` begins, the cursor at `cursor`: the path
-   * goes from the current point towards it, at most `travel` per step (none while paused).
+   * goes from the current point towards it, at most `travel` per step. `span` = 0 (paused, or
+   * a tick that steps nothing) keeps the anchors where they are.
    */
   aim(cursor: Vec3, span: number, dt: number): void {
     const now = this.point;
     const d = [0, 1, 2].map((k) => cursor[k] - now[k]);
     const len = Math.hypot(d[0], d[1], d[2]);
     const most = span > 0 && dt > 0 ? this.travel * Math.max(1, Math.round(span / dt)) : 0;
-    const s = len > most ? most / len : 1;
+    this.limited = len > most;
+    const s = this.limited ? most / len : 1;
     this.from = now;
     this.goal = [0, 1, 2].map((k) => now[k] + s * d[k]) as Vec3;
     this.span = span;
     this.done = 0;
   }
 
-  /** Travel of the anchors in the current step so far (m). */
-  private moved = 0;
-
-  /** A substep of `h` s was taken: the anchors are at `next(h)`. */
-  took(h: number): void {
-    const a = this.point, b = this.next(h);
-    this.moved += Math.hypot(b[0] - a[0], b[1] - a[1], b[2] - a[2]);
-    this.done += h;
+  /** The body was put back (a rewind after a failed step): the anchors start again from `point`. */
+  rebase(point: Vec3): void {
+    this.from = [...point];
+    this.goal = [...point];
+    this.span = 0;
+    this.done = 0;
   }
 
-  /** A step was taken (`pace.ts`), `newton` Newton iterations at most in a substep; `split`: one had to be split. */
+  /** A substep of `h` s was taken: the anchors are at `next(h)`. */
+  took(h: number): void { this.done += h; }
+
+  /** A step was taken, `newton` Newton iterations in its hardest substep; `split`: one had to be split. */
   stepped(newton: number, split: boolean): void {
-    const held = this.moved >= 0.5 * this.travel;
-    this.moved = 0;
-    if (!held) return;
+    if (!this.limited) return;
     if (split || newton > NEWTON_SHRINK) this.travel = Math.max(TRAVEL_MIN * this.radius, 0.5 * this.travel);
     else if (newton <= NEWTON_GROW) this.travel = Math.min(TRAVEL_MAX * this.radius, 2 * this.travel);
   }

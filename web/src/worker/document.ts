@@ -331,6 +331,7 @@ export class Document {
     if (ok && id === 'dt') this.settings.dt = value as number;
     // Another integrator gets a step it is stable at: 1/60 s implicit, else the explicit limit.
     if (ok && id === 'integrator') {
+      this.pace.reset();
       this.setDt(dtFor(this.world, 0, value as string));
       this.settings.substeps = Math.max(1, Math.round(1 / 60 / this.settings.dt));
       this.hooks.message(`${value}: dt = ${fmt(this.settings.dt)} s`);
@@ -522,7 +523,7 @@ export class Document {
     // A brush keeps what it painted and the state of those vertices; a drag moves everything.
     this.strokeScope = s.tool === 'grab' || s.tool === 'press' ? 'all' : 'touched';
     this.stroke.start(this.strokeBody());
-    if (this.stroke.path && this.world.params(0).integrator === 'implicit') this.pace.brace();
+    if (this.stroke.path(this.strokeBody()) && this.implicit) this.pace.brace();
     if (this.stroke.paintsBodyData) this.bodyVersion++;
   }
   strokeMove(point: Vec3 | null, inverted: boolean, pressure?: number): void {
@@ -569,14 +570,20 @@ export class Document {
     try {
       if (dt !== this.settings.dt) this.setDt(dt);
       if (this.rewind.size === 0) this.offerRewind();
-      const path = this.stroke?.path ?? null;
-      const anchors = path && { aim: (h: number) => path.aim(this.strokeBody(), h), took: (h: number) => path.took(h), stepped: path.stepped };
-      // Implicit steps and grabs in adaptive substeps (`pace.ts`); explicit ones in batches.
-      const splits = path || this.world.params(0).integrator === 'implicit'
-        ? stepPaced(this.pace, anchors, (h) => { this.stepAt(h, 1); return this.newtonIterations(); }, dt, n)
-        : stepSplitting((h, k) => this.stepAt(h, k), dt, n);
+      const anchors = this.stroke?.path(this.strokeBody()) ?? null;
+      let splits = 0;
+      if (this.implicit) {
+        // Implicit steps in adaptive substeps (`pace.ts`), a grab's anchors moved across them.
+        splits = stepPaced(this.pace, anchors, (h) => { this.stepAt(h, 1); return this.newtonIterations(); }, dt, n);
+      } else {
+        // Explicit steps in batches, a grab's anchors moved once for the batch.
+        anchors?.aim(dt * n);
+        splits = stepSplitting((h, k) => this.stepAt(h, k), dt, n);
+        anchors?.took(dt * n);
+        anchors?.stepped(0, false);
+      }
       if (splits > 0) this.splitFrame(splits);
-      if (this.pace.pieces > 1 && !this.paceSaid) {
+      if (this.pace.raised && !this.paceSaid) {
         this.paceSaid = true;
         this.hooks.message(`steps of ${fmt(this.settings.dt)} s took many Newton iterations on this body: taking them as ${this.pace.pieces} substeps (fewer again once they are quick)`, 'info');
       }
@@ -589,6 +596,7 @@ export class Document {
       // The engine put the world back to the start of the failing call, which may be collapsing
       // already: back further, to the last state known good (worker/rewind.ts).
       const rewoundTo = this.rewindToGood();
+      this.stroke?.rebase(this.strokeBody());
       const integrator = String(this.world.params(0).integrator);
       this.hooks.message(explainStop(e, {
         integrator, dt: this.settings.dt, changes: this.changes, groundUnderBody: this.groundUnderBody,
@@ -628,6 +636,8 @@ export class Document {
   /** Substeps per implicit step (`pace.ts`), per model; whether the user was told they are above 1. */
   readonly pace = new Pace();
   private paceSaid = false;
+  /** Whether body 0 steps with the implicit integrator. */
+  private get implicit(): boolean { return this.world.params(0).integrator === 'implicit'; }
   /** Newton iterations of the last step, the most over the bodies. */
   private newtonIterations(): number {
     return Math.max(0, ...this.everyBody.map((b) => this.world.newtonIterations(b)));

@@ -100,7 +100,7 @@ export class Service {
       case 'remesh': return doc.remesh();
       case 'undo': return doc.undo();
       case 'redo': return doc.redo();
-      case 'step': this.stepper.run(doc, doc.settings.dt, doc.settings.substeps); this.recorder.sample(doc); return;
+      case 'step': doc.updateStroke(doc.settings.dt * doc.settings.substeps); this.stepper.run(doc, doc.settings.dt, doc.settings.substeps); this.recorder.sample(doc); return;
       case 'setParam': if (!doc.setParam(cmd.name, cmd.value)) this.frames.resendParams(); return;
       case 'setMass': return doc.setMass(cmd.total);
       case 'preset': return doc.materialPreset(cmd.name);

@@ -14,6 +14,7 @@ import type { BodyView } from '../engine/world';
 import { inflateFactor, targetSpring, vertexNormals, verticesAround, type Weighted } from '../tools/brush';
 import { reflect, reflections, type Symmetry } from '../tools/symmetry';
 import { AnchorPath } from './anchorpath';
+import type { Anchors } from './pace';
 
 /** Pen pressure as a strength scale: (0, 1], 1 when not given (a mouse). */
 function clampPressure(p: number | undefined): number {
@@ -89,19 +90,13 @@ export abstract class Stroke {
   move(point: Vec3 | null, inverted: boolean, _body: StrokeBody): void { this.point = point; this.inverted = inverted; }
   /** Every tick before the steps (dt: simulated seconds this tick, 0 when paused; step: the world's dt). */
   update(_body: StrokeBody, _dt: number, _step?: number): void {}
-  /** Anchors that move along a path within the tick (the grab), stepped by the document in substeps (`pace.ts`). */
-  get path(): StrokePath | null { return null; }
+  /** Anchors that move along a path within the tick (the grab), as the document steps them (`pace.ts`). */
+  path(_body: StrokeBody): Anchors | null { return null; }
+  /** The body was put back (a rewind after a failed step): start again from where it is. */
+  rebase(_body: StrokeBody): void {}
   abstract end(body: StrokeBody): void;
   /** Whether it changes masses or pins (which the page then needs again). */
   get paintsBodyData(): boolean { return false; }
-}
-
-/** A stroke's anchors in time within a tick (worker/anchorpath.ts), as the document steps them (worker/pace.ts). */
-export interface StrokePath {
-  /** Before a substep of `h` s: the anchors where the path is at its end. */
-  aim(body: StrokeBody, h: number): void;
-  took(h: number): void;
-  stepped(pieces: number, newton: number, split: boolean): void;
 }
 
 class Grab extends Stroke {
@@ -137,13 +132,22 @@ class Grab extends Stroke {
     this.anchors.aim(this.point ?? this.s.point, dt, step);
     this.set(body, this.anchors.point);
   }
-  get path(): StrokePath {
+  path(body: StrokeBody): Anchors {
     const a = this.anchors;
-    return {
-      aim: (body, h) => this.set(body, a.next(h)),
-      took: (h) => a.took(h),
-      stepped: (_pieces, newton, split) => a.stepped(newton, split),
-    };
+    return { aim: (h) => this.set(body, a.next(h)), took: (h) => a.took(h), stepped: (newton, split) => a.stepped(newton, split) };
+  }
+  /** The grab point where the grabbed vertices are (those taken without a reflection: x − offset). */
+  rebase(body: StrokeBody): void {
+    const x = body.view.positions, c = [0, 0, 0];
+    let n = 0;
+    this.picked.indices.forEach((i, k) => {
+      if (this.picked.image[k] !== 0) return;
+      for (let d = 0; d < 3; d++) c[d] += x[3 * i + d] - this.offsets[3 * k + d];
+      n++;
+    });
+    if (n === 0) return;
+    this.anchors.rebase([c[0] / n, c[1] / n, c[2] / n]);
+    this.set(body, this.anchors.point);
   }
   /** The target springs with the grab point at `cursor`. */
   private set(body: StrokeBody, cursor: Vec3): void {
