@@ -9,6 +9,7 @@ import { BRACE_STEPS, GRAB_PIECES, LOW_STEPS, MAX_PIECES, Pace, stepPaced, type 
 import { loadEngine } from './setup';
 import { Document } from '../src/worker/document';
 import type { Vec3 } from '../src/protocol';
+import { makeStroke, type StrokeBody } from '../src/worker/strokes';
 
 const DT = 1 / 60;
 const unconverged = () => Object.assign(new Error('not converged'), { kind: 'step', fields: { converged: false } });
@@ -154,6 +155,29 @@ describe('the grab’s anchors', () => {
     stepPaced(pace, { ...along(path, w), aim: (h) => { seen.push(path.next(h)[0]); along(path, w).aim(h); } }, step, DT, 1);
     expect(seen).toEqual([0.02, 0.01, 0.02]);
     expect(path.point[0]).toBeCloseTo(0.02, 15);
+  });
+});
+
+describe('a grab after a rewind', () => {
+  it('starts again from where its vertices were put back, their offsets kept', () => {
+    const positions = new Float64Array([0, 0, 0, 0.1, 0, 0, 5, 0, 0]);
+    let targets = new Float64Array(0);
+    const body = { view: { positions, masses: new Float64Array([1, 1, 1]) }, setTargets: (r: Float64Array) => { targets = r.slice(); } } as unknown as StrokeBody;
+    const grab = makeStroke({ tool: 'grab', point: [0, 0, 0], radius: 0.5, strength: 600, inverted: false });
+    grab.start(body);
+    grab.move([1, 0, 0], false, body);
+    grab.update(body, DT, DT);
+    // A step along the path (the anchors 1/8 of the brush on), then the world is put back
+    // elsewhere: its grabbed vertices 0.3 m along z.
+    grab.path(body)!.aim(DT);
+    positions[2] += 0.3;
+    positions[5] += 0.3;
+    grab.rebase(body);
+    expect(targets.length).toBe(12); // vertices 0 and 1 under the brush, not 2
+    for (let k = 0; k < 2; k++) {
+      const i = targets[6 * k];
+      for (let d = 0; d < 3; d++) expect(targets[6 * k + 1 + d]).toBeCloseTo(positions[3 * i + d], 15);
+    }
   });
 });
 

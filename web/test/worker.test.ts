@@ -130,6 +130,30 @@ describe('worker service', () => {
     expect(h.service.doc.history.sizes).toEqual([0, 1]);
   });
 
+  it('grab while paused: the Step button moves the grabbed vertices towards the cursor', async () => {
+    const h = await started();
+    const doc = h.service.doc;
+    const x = h.tick()!.positions;
+    let top = 0;
+    for (let i = 0; i < x.length / 3; i++) if (x[3 * i + 1] > x[3 * top + 1]) top = i;
+    const p: [number, number, number] = [x[3 * top], x[3 * top + 1], x[3 * top + 2]];
+    await h.send({ type: 'settings', patch: { playing: false } });
+    h.tick();
+    await h.send({ type: 'strokeStart', tool: 'grab', point: p, radius: 0.3, strength: 600, inverted: false });
+    await h.send({ type: 'strokeMove', point: [p[0], p[1] + 0.3, p[2]], inverted: false });
+    // Paused ticks move nothing (no simulated time: the anchors stay where the stroke began).
+    for (let i = 0; i < 3; i++) h.tick();
+    doc.world.sync();
+    const y0 = doc.world.body(0).positions[3 * top + 1];
+    for (let i = 0; i < 10; i++) await h.send({ type: 'step' });
+    doc.world.sync();
+    // Ten steps, each with the anchors moved towards the cursor by up to their travel (from 1/8
+    // of the brush, 3.75 cm): the top rises by more than one travel (without the stroke's update
+    // before the Step, its anchors stayed put and the top did not rise).
+    expect(doc.world.body(0).positions[3 * top + 1] - y0).toBeGreaterThan(0.0375);
+    await h.send({ type: 'strokeEnd' });
+  });
+
   it('refused commands reply with one message and leave the document as it was', async () => {
     const h = await started();
     const doc = h.service.doc;
