@@ -31,6 +31,23 @@
 //! L = l, P_ref = P). It applies when the gas acts (a closed mesh with nRT > 0); P_ref stays
 //! ≥ 0 (the surroundings are never below vacuum).
 //!
+//! **The gas's share.** The identity above holds for springs and gas alone. Under a load — the
+//! grab's pull, gravity and the ground, a press — the springs also carry the load:
+//! Σ k (l − L) l = 3 (P − P_ref) V + (the load's virial), and a spring stretched by the pull
+//! flows without the gas having anything to do with it. So P_ref follows by the gas's share
+//! only: with S⁺ = Σ k (l − L) l over the stretched springs (the gas stretches the skin;
+//! compressed springs hold something else) and G = 3 (P − P_ref) V the gas's part of it,
+//!   δP_ref = s Σ k l δL / (3 V),   s = min(1, G / S⁺) where G > 0, else 0,
+//! and P_ref never rises past P (the flow can take away the gas's whole push, as a freeze does,
+//! but never turn the gas into a suction). A body held by the gas alone has G = S⁺ at
+//! equilibrium (s = 1, the rule above); a frozen body (P_ref = P: the gas pushes nothing, what
+//! the modeler's material switch leaves) has s = 0 until it is squeezed. Why: with the whole
+//! flow credited to the gas, the modeler's clay mushroom pulled by a mirrored grab (both sides
+//! of its cap) had P_ref run from 8 Pa past P to 2,420 Pa and beyond — each flow's δP_ref grows
+//! as 1/V, so the sucked-in body collapsed to 0.3 % of its volume (then the step failed); with
+//! the share it keeps the pulled shape at 1.78 of 2.46 m³ (an elastic body under the same pull:
+//! 1.53 m³ at least), `tests/plastic.rs`.
+//!
 //! **Energy.** At fixed positions the stage lowers the potential energy by
 //!   D = Σ ½ k [(l − L)² − (l − L')²]  −  δP_ref (V_g − V0)
 //! (the second term: the gas energy −nRT ln(V_g/V0) + P_ref (V_g − V0) with V_g the volume the
@@ -52,14 +69,18 @@ pub struct PlasticState {
 }
 
 /// Flow the rest lengths of `s` (stiffness `k`, N/m) by the fraction `a` of their excess strain
-/// over `y`, at positions `x`. Returns (elastic energy released in J, Σ k l δL in J).
-fn flow(s: &mut Springs, k: f64, y: f64, a: f64, x: &[f64]) -> (f64, f64) {
+/// over `y`, at positions `x`. Returns (elastic energy released in J, Σ k l δL in J, the
+/// stretched springs' virial Σ k (l − L) l before the flow in J).
+fn flow(s: &mut Springs, k: f64, y: f64, a: f64, x: &[f64]) -> (f64, f64, f64) {
     let mut rest = std::mem::take(&mut s.rest);
-    let (mut released, mut virial) = (0.0, 0.0);
+    let (mut released, mut virial, mut tension) = (0.0, 0.0, 0.0);
     s.lengths_into(x, |e, l| {
         let r = rest[e];
         if !(r > 0.0 && l.is_finite()) {
             return;
+        }
+        if l > r {
+            tension += k * (l - r) * l;
         }
         let strain = l / r - 1.0;
         let target = if strain > y {
@@ -75,7 +96,7 @@ fn flow(s: &mut Springs, k: f64, y: f64, a: f64, x: &[f64]) -> (f64, f64) {
         rest[e] = r2;
     });
     s.rest = rest;
-    (released, virial)
+    (released, virial, tension)
 }
 
 impl SoftBody {
@@ -89,19 +110,25 @@ impl SoftBody {
         // 1 − e^(−φ dt), accurate for small φ dt.
         let a = -(-p.flow_rate * dt).exp_m1();
         let x = &self.state.x;
-        let (mut released, mut virial) = flow(&mut self.model.springs, p.stiffness, p.yield_strain, a, x);
+        let (mut released, mut virial, mut tension) = flow(&mut self.model.springs, p.stiffness, p.yield_strain, a, x);
         if p.bending_stiffness > 0.0 {
-            let (r, v) = flow(&mut self.model.bending, p.bending_stiffness, p.yield_strain, a, x);
+            let (r, v, t) = flow(&mut self.model.bending, p.bending_stiffness, p.yield_strain, a, x);
             released += r;
             virial += v;
+            tension += t;
         }
         if virial != 0.0 && self.model.closed && p.nrt() > 0.0 {
             let six_v = self.model.faces.volume6(x);
             if six_v > 0.0 && six_v.is_finite() {
+                let gas_volume = gas::measure(self.model.faces.triangles(), p.volume_mode, six_v, x);
                 let g = &mut self.model.gas;
                 let before = g.ambient_pressure;
-                g.ambient_pressure = (before + virial / (0.5 * six_v)).max(0.0);
-                let gas_volume = gas::measure(self.model.faces.triangles(), p.volume_mode, six_v, x);
+                // The gas's share of the stretched springs' tension, in [0, 1], and P_ref never
+                // past P (module documentation, "The gas's share").
+                let pressure = gas::pressure(p.nrt(), gas_volume);
+                let held = (pressure - before) * 0.5 * six_v;
+                let share = if held > 0.0 && tension > 0.0 { (held / tension).min(1.0) } else { 0.0 };
+                g.ambient_pressure = (before + share * virial / (0.5 * six_v)).min(before.max(pressure)).max(0.0);
                 released -= (g.ambient_pressure - before) * (gas_volume - g.reference_volume);
             }
         }

@@ -30,7 +30,8 @@
 //! - `clay`: a firm skin (k 300 N/m) on 20 J of gas, heavily damped (c 4 1/s, cs 0.5), plastic:
 //!   strain beyond 1 % flows into the rest lengths at 5 1/s (the excess halves every 0.14 s), so
 //!   a hard press leaves a dent (measured on the modeler's sphere on the ground: a 10 N press for
-//!   0.5 s, 52 cm deep, leaves 7.5 cm) while the body still carries its own weight (a yield strain
+//!   0.5 s, 52 cm deep, leaves 7.5 cm — measured before P_ref followed only the gas's share of
+//!   the flow, `body/plastic.rs`) while the body still carries its own weight (a yield strain
 //!   of 0.3 % keeps 10 cm of the same press but slumps on: 2.00 → 1.44 m tall after 5 s, against
 //!   1.63 m); the gas reference follows, so it never creeps under its gas.
 //! - `cloth`: no gas (open meshes), a stiff weave (k 400 N/m), damped (c 1 1/s, cs 0.2): drapes.
