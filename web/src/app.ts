@@ -9,7 +9,7 @@
 import { Box3, Sphere, Vector3, type Camera } from 'three';
 import type { Command, Frame, MessageKind, ParamValue, Reply, Settings, UiState } from './protocol';
 import { SimulationClient } from './client';
-import { paceText } from './view/pace';
+import { paceText, viewText } from './view/pace';
 import { Mirror } from './mirror';
 import { Viewport } from './view/viewport';
 import { Plots } from './view/plots';
@@ -333,12 +333,12 @@ export class App implements ToolContext {
     this.pending = null;
     if (f) this.applyFrame(f);
     const m = this.mirror, s = m.stats;
-    this.hud.tick();
+    this.hud.tick(f !== null);
     if (m.ready) {
       // How fast the simulation goes comes first (the drawing's fps can be high while it crawls).
       const pace = paceText({ playing: m.settings.playing, busy: this.busyLabel !== null, slowMotion: m.slowMotion, realTimeFraction: m.realTimeFraction, sinceFrameMs: performance.now() - this.frameArrived });
       this.hud.show([
-        `simulation: ${pace}   ${m.simMs.toFixed(1)} ms of steps/frame   view ${this.hud.fps.toFixed(0)} fps` +
+        `simulation: ${pace}   ${m.simMs.toFixed(1)} ms of steps/frame   ${viewText(this.hud.fps, this.hud.shapesPerSecond, m.slowMotion)}` +
           (m.recording ? `   ● REC ${m.recording.frames} frames, ${m.recording.seconds.toFixed(1)} s` : ''),
         `${m.vertexCount} vertices   ${m.springCount} springs   ${m.faceCount} faces   tool: ${this.tools.tool.label}`,
         `t ${s.time.toFixed(2)} s   V ${sig3(s.volume)} m³   P ${sig3(s.pressure)} Pa   max speed ${sig3(s.maxSpeed)} m/s`,

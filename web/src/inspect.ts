@@ -40,6 +40,8 @@ export function inspector(app: App) {
     history: () => [...m.history] as [number, number],
     lastMessage: () => app.lastMessageText,
     fps: () => app.hud.fps,
+    /** New shapes from the worker drawn per second (the view redraws between them). */
+    shapesPerSecond: () => app.hud.shapesPerSecond,
     slowMotion: () => m.slowMotion,
     simMs: () => m.simMs,
     /** The long operation the simulation is busy with ("subdividing"…), or null. */

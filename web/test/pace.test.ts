@@ -1,7 +1,7 @@
 // The HUD's pace line (view/pace.ts): it says when the page waits for a step that takes seconds
 // instead of repeating the last frame's "real time".
 import { describe, expect, it } from 'vitest';
-import { paceText, STALL_MS } from '../src/view/pace';
+import { paceText, STALL_MS, viewText } from '../src/view/pace';
 
 const base = { playing: true, busy: false, slowMotion: false, realTimeFraction: 1, sinceFrameMs: 16 };
 
@@ -17,5 +17,10 @@ describe('the HUD pace', () => {
   it('says paused when paused, and leaves a long operation to its progress line', () => {
     expect(paceText({ ...base, playing: false, sinceFrameMs: 60000 })).toBe('paused');
     expect(paceText({ ...base, busy: true, sinceFrameMs: 60000 })).toBe('real time');
+  });
+  it('says, in slow motion, how often the shape changes, not only how often the view redraws it', () => {
+    expect(viewText(44.2, 43.9, false)).toBe('view 44 fps');
+    expect(viewText(44.2, 2.04, true)).toBe('view 44 fps, new shape 2.0/s');
+    expect(viewText(30, 12.4, true)).toBe('view 30 fps, new shape 12/s');
   });
 });

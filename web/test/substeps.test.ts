@@ -229,6 +229,6 @@ describe('the document’s substeps (real engine)', () => {
     // Then it follows: within 2 cm of the 0.4 m lift (the target spring's sag under the body).
     expect(Math.abs(ys[59] - (p[1] + 0.4))).toBeLessThan(0.02);
     expect(doc.pace.pieces).toBe(1);
-    expect(messages.filter((m) => /substeps/.test(m))).toEqual([]);
+    expect(messages.filter((m) => /shorter steps/.test(m))).toEqual([]);
   });
 });

@@ -11,8 +11,11 @@ export class Hud {
   private readonly state: HTMLElement;
   private readonly hint: HTMLElement;
   private frames = 0;
+  private shapes = 0;
   private lastFps = performance.now();
   fps = 0;
+  /** New shapes from the worker drawn per second (`tick`'s `fresh`). */
+  shapesPerSecond = 0;
 
   constructor(root: HTMLElement, helpText: string) {
     this.readout = el(root, 'div', 'readout');
@@ -53,12 +56,16 @@ export class Hud {
     for (const m of Array.from(this.messages.children) as HTMLElement[]) if (!m.classList.contains('error') && now - Number(m.dataset.at ?? 0) > 500) m.remove();
   }
 
-  tick(): void {
+  /** One drawn frame; `fresh`: it shows a new shape from the worker. */
+  tick(fresh = false): void {
     this.frames++;
+    if (fresh) this.shapes++;
     const now = performance.now();
     if (now - this.lastFps >= 500) {
       this.fps = (this.frames * 1000) / (now - this.lastFps);
+      this.shapesPerSecond = (this.shapes * 1000) / (now - this.lastFps);
       this.frames = 0;
+      this.shapes = 0;
       this.lastFps = now;
     }
   }

@@ -25,3 +25,13 @@ export function paceText(p: PaceInput): string {
   if (!p.busy && p.sinceFrameMs >= STALL_MS) return `waiting for a step: ${(p.sinceFrameMs / 1000).toFixed(1)} s so far`;
   return p.slowMotion ? `${(p.realTimeFraction * 100).toFixed(0)}% of real time (slow motion)` : 'real time';
 }
+
+/**
+ * The drawing's rate as the HUD shows it: the view's frames per second, and in slow motion how
+ * often the shape itself changes (the view redraws the same shape many times between the
+ * worker's frames: "view 44 fps" alone read as smooth while the model moved twice a second).
+ */
+export function viewText(fps: number, shapesPerSecond: number, slowMotion: boolean): string {
+  const view = `view ${fps.toFixed(0)} fps`;
+  return slowMotion ? `${view}, new shape ${shapesPerSecond.toFixed(shapesPerSecond < 10 ? 1 : 0)}/s` : view;
+}

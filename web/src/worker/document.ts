@@ -585,7 +585,7 @@ export class Document {
       if (splits > 0) this.splitFrame(splits);
       if (this.pace.raised && !this.paceSaid) {
         this.paceSaid = true;
-        this.hooks.message(`steps of ${fmt(this.settings.dt)} s took many Newton iterations on this body: taking them as ${this.pace.pieces} substeps (fewer again once they are quick)`, 'info');
+        this.hooks.message(`this body needs shorter steps just now: each ${fmt(this.settings.dt)} s frame is taken in ${this.pace.pieces} steps (back to one when it calms down)`, 'info');
       }
       this.sinceRewind += dt * n;
       if (this.sinceRewind >= this.rewind.every - 1e-9) this.offerRewind();

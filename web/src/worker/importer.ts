@@ -107,8 +107,10 @@ export class Importer {
     this.made.set(this.doc.settings.opened ?? -1, { p, a });
     // The newest few (each holds its file's pieces).
     for (const k of this.made.keys()) if (this.made.size > 4) this.made.delete(k);
-    this.doc.ui = { ...this.doc.ui, brush: { radius: BRUSH_RADIUS * size } };
-    this.doc.hooksUi({ brush: { radius: BRUSH_RADIUS * size } });
+    // Three significant digits: the panel shows the number as it is (0.485, not 0.4849744…).
+    const radius = Number((BRUSH_RADIUS * size).toPrecision(3));
+    this.doc.ui = { ...this.doc.ui, brush: { radius } };
+    this.doc.hooksUi({ brush: { radius } });
     const q = p.question, n = chosen.length;
     const v = chosen.reduce((s, k) => s + q.pieces[k].vertices, 0), f = chosen.reduce((s, k) => s + q.pieces[k].faces, 0);
     const dims = q.size.map((x) => x.toPrecision(3)).join(' × ');
