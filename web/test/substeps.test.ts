@@ -6,8 +6,7 @@
 import { beforeAll, describe, expect, it } from 'vitest';
 import { AnchorPath, TRAVEL_MAX } from '../src/worker/anchorpath';
 import { BRACE_STEPS, GRAB_PIECES, LOW_STEPS, MAX_PIECES, Pace, stepPaced, type Anchors } from '../src/worker/pace';
-import { loadEngine } from './setup';
-import { Document } from '../src/worker/document';
+import { loadEngine, openedDocument } from './setup';
 import type { Vec3 } from '../src/protocol';
 import { makeStroke, type StrokeBody } from '../src/worker/strokes';
 
@@ -184,12 +183,7 @@ describe('a grab after a rewind', () => {
 describe('the document’s substeps (real engine)', () => {
   beforeAll(loadEngine);
 
-  const opened = () => {
-    const messages: string[] = [];
-    const doc = new Document({ message: (t) => messages.push(t), progress: () => {}, changed: () => {}, ui: () => {}, ask: () => {} });
-    doc.open(null);
-    return { doc, messages };
-  };
+  const opened = openedDocument;
 
   it('a step in substeps is that many engine steps of dt/pieces, covering dt; the world’s dt stays as set', () => {
     const { doc } = opened();

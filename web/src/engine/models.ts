@@ -68,7 +68,7 @@ export function useDefaults(world: World, b: number): number {
 
 /** The step an integrator gets when chosen: 1/60 s implicit, else the stable explicit step. */
 export function dtFor(world: World, b: number, integrator: string): number {
-  return integrator === 'implicit' ? FRAME_DT : stableDt(world, b);
+  return integrator === 'implicit' ? FRAME_DT : stableDt(world, b, integrator);
 }
 
 function minMass(world: World, b: number): number {
@@ -76,18 +76,30 @@ function minMass(world: World, b: number): number {
 }
 
 /**
- * The largest stable time step for body `b` (explicit methods need dt ≲ 2/ω with ω² ≈ 12 k / m,
- * and dt ≲ 2 m / (12 cs) for the spring damping), with a safety factor of 0.3, at most 1 ms, a
- * round number.
+ * Forward Euler's share of that step. Its amplification on an undamped mode of frequency ω is
+ * √(1 + ω² dt²) > 1 at any dt: it is stable only where damping outweighs that, dt ≲ 2 γ / ω²
+ * for a mode damped at rate γ — and the skin's transverse (wrinkling) modes get no spring
+ * damping (it acts along the springs), only the viscous c. Measured: the modeler's resting
+ * mushroom switched to Euler at the symplectic step (5e-4 s) grew a mode ~8× a second from 6 s
+ * on (6.5e-5 J at 10 s; a new-user trial saw 3 m/s and 0.2 J), while at 2e-4 and 1e-4 s it
+ * stayed at rest (test/explicit.test.ts); natively, from the unsettled mushroom, 5e-4 s still
+ * moved at 0.09 m/s after 4 s, 2.5e-4 s settled. A quarter leaves a margin of two over that.
  */
-export function stableDt(world: World, b: number): number {
+const EULER_SHARE = 0.25;
+
+/**
+ * The largest stable time step for body `b` (explicit methods need dt ≲ 2/ω with ω² ≈ 12 k / m,
+ * and dt ≲ 2 m / (12 cs) for the spring damping), with a safety factor of 0.3 (and
+ * [`EULER_SHARE`] of that for forward Euler), at most 1 ms, a round number.
+ */
+export function stableDt(world: World, b: number, integrator = 'symplectic'): number {
   const p = world.params(b);
   const m = minMass(world, b);
   const k = (p.stiffness as number) + (p.bending as number), cs = 2 * (p.spring_damping as number);
   const omega = Math.sqrt((12 * k) / m);
   const limits = [1e-3, 0.3 * (2 / omega)];
   if (cs > 0) limits.push((0.3 * 2 * m) / (12 * cs));
-  const dt = Math.min(...limits);
+  const dt = Math.min(...limits) * (integrator === 'euler' ? EULER_SHARE : 1);
   const ten = Math.pow(10, Math.floor(Math.log10(dt)));
   return [5, 2, 1].map((f) => f * ten).find((v) => v <= dt) ?? ten;
 }

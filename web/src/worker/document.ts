@@ -336,6 +336,14 @@ export class Document {
       this.settings.substeps = Math.max(1, Math.round(1 / 60 / this.settings.dt));
       this.hooks.message(`${value}: dt = ${fmt(this.settings.dt)} s`);
     }
+    // After a stop, another integrator or dt is the remedy the stop's message names: play again
+    // (if it was not, the next step stops and says so again). A new-user trial switched back to
+    // implicit after an explicit blow-up and found the page still paused, its grab doing nothing.
+    if (ok && this.pausedByError && (id === 'integrator' || id === 'dt')) {
+      this.pausedByError = false;
+      this.settings.playing = true;
+      this.hooks.message(`playing again with ${id === 'dt' ? `dt = ${fmt(this.settings.dt)} s` : `the ${value} integrator`}`);
+    }
     return ok;
   }
 
@@ -505,7 +513,8 @@ export class Document {
       if (dropped > 0) this.hooks.message(`${dropped} pending scene events of the bodies no longer fit their meshes and were dropped`, 'warn');
       // Implicit steps keep dt (the parameters do not depend on the resolution); an explicit
       // integrator needs the finer mesh's stable step.
-      if (this.world.params(0).integrator !== 'implicit') this.setDt(Math.min(this.settings.dt, ...this.everyBody.map((b) => stableDt(this.world, b))));
+      const integrator = String(this.world.params(0).integrator);
+      if (integrator !== 'implicit') this.setDt(Math.min(this.settings.dt, ...this.everyBody.map((b) => stableDt(this.world, b, integrator))));
       this.settings.substeps = Math.max(1, Math.round(1 / 60 / this.settings.dt));
     });
   }
@@ -600,7 +609,7 @@ export class Document {
       const integrator = String(this.world.params(0).integrator);
       this.hooks.message(explainStop(e, {
         integrator, dt: this.settings.dt, changes: this.changes, groundUnderBody: this.groundUnderBody,
-        stableDt: integrator === 'implicit' ? undefined : stableDt(this.world, 0), rewoundTo,
+        stableDt: integrator === 'implicit' ? undefined : stableDt(this.world, 0, integrator), rewoundTo,
       }), 'error');
       return false;
     }
