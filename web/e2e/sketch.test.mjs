@@ -47,6 +47,10 @@ test('a star drawn with the sketch tool becomes a closed inflated balloon, undoa
   // A bow tie crosses itself: one clear message, the model unchanged.
   await stroke(page, [{ x: 250, y: 250 }, { x: 450, y: 450 }, { x: 450, y: 250 }, { x: 250, y: 450 }, { x: 250, y: 260 }]);
   await page.waitForFunction(() => /crosses itself/.test(window.softsculpt.lastMessage()), null, { timeout: 20000 });
+  // In the user's terms: what to draw, not the crossing edges' numbers and coordinates (the CLI's).
+  const said = await inspect(page, () => window.softsculpt.lastMessage());
+  assert.match(said, /draw it without crossing/);
+  assert.doesNotMatch(said, /edge \d|\(-?\d/, said);
   assert.equal(await inspect(page, () => window.softsculpt.vertexCount()), before);
   assert.deepEqual(errors, []);
   await page.context().close();

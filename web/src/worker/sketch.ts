@@ -25,3 +25,19 @@ export function sketchBalloon(cmd: SketchCommand): { positions: Float64Array; tr
     scratch.free();
   }
 }
+
+/**
+ * Whether a drawn outline was left open: its ends farther apart than a quarter of its size (the
+ * larger side of its bounding box). The core closes any outline with a straight edge, which is
+ * what a user who stopped short means, but one who drew an open curve (an S) gets a flat balloon
+ * and should hear why. `points`: x, y pairs (m) in the sketch plane.
+ */
+export function sketchOpen(points: ArrayLike<number>): boolean {
+  const n = points.length / 2;
+  if (n < 2) return false;
+  const lo = [Infinity, Infinity], hi = [-Infinity, -Infinity];
+  for (let i = 0; i < n; i++) for (let d = 0; d < 2; d++) { lo[d] = Math.min(lo[d], points[2 * i + d]); hi[d] = Math.max(hi[d], points[2 * i + d]); }
+  const size = Math.max(hi[0] - lo[0], hi[1] - lo[1]);
+  const gap = Math.hypot(points[2 * n - 2] - points[0], points[2 * n - 1] - points[1]);
+  return size > 0 && gap > 0.25 * size;
+}
