@@ -1,8 +1,7 @@
 // The sketch tool's words (worker/sketch.ts, worker/document.ts): an outline left open is said
 // to have been closed; a crossing is explained as what to draw.
 import { describe, expect, it } from 'vitest';
-import { sketchOpen } from '../src/worker/sketch';
-import { sketchWhy } from '../src/worker/document';
+import { sketchOpen, sketchWhy } from '../src/worker/sketch';
 
 const circle = (n: number, r: number, turns = 1) => Array.from({ length: n }, (_, i) => [r * Math.cos((2 * Math.PI * turns * i) / n), r * Math.sin((2 * Math.PI * turns * i) / n)]).flat();
 

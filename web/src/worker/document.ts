@@ -24,7 +24,7 @@ import { Importer } from './importer';
 import type { MessageKind, SceneInfo, Settings, Stats, Topology, UiState, Vec3 } from '../protocol';
 import { makeStroke, type Stroke, type StrokeBody, type StrokeStart } from './strokes';
 import { explainStop, type Change } from './explain';
-import { sketchBalloon, sketchOpen, type SketchCommand } from './sketch';
+import { sketchBalloon, sketchOpen, sketchWhy, type SketchCommand } from './sketch';
 import { Rewind } from './rewind';
 
 export const HISTORY_STEPS = 200;
@@ -805,13 +805,4 @@ const pct = (x: number) => `${(100 * x).toFixed(x < 0.01 ? 1 : 0)} %`;
 
 export function errorText(e: unknown): string {
   return e instanceof Error ? e.message : String(e);
-}
-
-/**
- * The core's reason a sketch was refused, in the page's words: the core names a crossing by its
- * edges' numbers and coordinates (what a CLI user, whose outline is a file of points, needs);
- * on the page the user drew it, so the advice is what to draw.
- */
-export function sketchWhy(why: string): string {
-  return /crosses itself/.test(why) ? 'the outline crosses itself; draw it without crossing' : why;
 }

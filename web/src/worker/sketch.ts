@@ -41,3 +41,12 @@ export function sketchOpen(points: ArrayLike<number>): boolean {
   const gap = Math.hypot(points[2 * n - 2] - points[0], points[2 * n - 1] - points[1]);
   return size > 0 && gap > 0.25 * size;
 }
+
+/**
+ * The core's reason a sketch was refused, in the page's words: the core names a crossing by its
+ * edges' numbers and coordinates (what a CLI user, whose outline is a file of points, needs);
+ * on the page the user drew it, so the advice is what to draw.
+ */
+export function sketchWhy(why: string): string {
+  return /crosses itself/.test(why) ? 'the outline crosses itself; draw it without crossing' : why;
+}
