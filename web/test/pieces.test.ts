@@ -81,6 +81,17 @@ describe('a model of several pieces', () => {
     expect(doc.settings.opened).toBe(first);
   });
 
+  it('an imported model’s fitted brush radius is shown to three digits, not as a long fraction', async () => {
+    const { doc } = opened();
+    doc.importFile('box.obj', bytes(boxObj([-0.37, 0, -0.11], [0.41, 0.93, 0.29])));
+    await flush();
+    const r = doc.ui.brush!.radius;
+    // The radius follows the model's size (the mushroom's 0.35 m scaled); a panel shows the number
+    // as it is, so it is rounded: three significant digits (a new-user trial saw 0.4849744…).
+    expect(r).toBeGreaterThan(0);
+    expect(Number(r.toPrecision(3))).toBe(r);
+  });
+
   it('a reload keeps the load serial, so undoing into the kept history is the same model', async () => {
     const { doc } = opened();
     doc.importFile('cube.obj', bytes(boxObj([-0.5, 0, -0.5], [0.5, 1, 0.5])));
