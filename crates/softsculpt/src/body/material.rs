@@ -60,6 +60,12 @@ pub struct Material {
     /// and so resist folding across it; 0 (the default) leaves the surface free to fold, as in
     /// the original model. They use the same damping cs.
     pub bending_stiffness: f64,
+    /// Flexural rigidity B (J = N·m) of the hinges (`hinges.rs`): the bending energy
+    /// Σ_edges ½ B (3 |ē|² / Ā) (θ − θ̄)², θ the dihedral angle at an edge, θ̄ its value in the
+    /// frozen shape, |ē| and Ā the edge's length and its two faces' area there — the discrete
+    /// form of ½ B ∫ (κ₁ + κ₂ − rest)² dA, which does not depend on the mesh resolution (unlike
+    /// the bending springs'). 0 (the default): none.
+    pub rigidity: f64,
     /// Viscous damping rate c (1/s): force −c mi vi, velocities decay as e^(−c t).
     pub damping: f64,
     /// Amount of gas n (mol).
@@ -86,6 +92,7 @@ impl Default for Material {
             stiffness: table::STIFFNESS.number(),
             spring_damping: table::SPRING_DAMPING.number(),
             bending_stiffness: table::BENDING.number(),
+            rigidity: table::RIGIDITY.number(),
             damping: table::DAMPING.number(),
             gas_amount: table::GAS_AMOUNT.number(),
             temperature: table::TEMPERATURE.number(),
@@ -141,6 +148,7 @@ impl Material {
         check_non_negative("stiffness", self.stiffness)?;
         check_non_negative("spring-damping", self.spring_damping)?;
         check_non_negative("bending", self.bending_stiffness)?;
+        check_non_negative("rigidity", self.rigidity)?;
         check_non_negative("damping", self.damping)?;
         check_non_negative("gas", self.gas_amount)?;
         check_positive("temperature", self.temperature)?;

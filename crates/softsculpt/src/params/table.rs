@@ -43,6 +43,14 @@ pub const BENDING: Param = Param {
     range: NON_NEGATIVE,
     help: "stiffness of the bending springs across every edge; 0 = none",
 };
+pub const RIGIDITY: Param = Param {
+    id: "rigidity",
+    scope: Scope::Body,
+    unit: "J",
+    default: Value::Number(0.0),
+    range: NON_NEGATIVE,
+    help: "flexural rigidity B of the surface (N·m): bending energy ½ B ∫ (κ₁ + κ₂ − rest)² dA from the dihedral angle at every edge, the same at any mesh resolution; 0 = none",
+};
 pub const DAMPING: Param = Param {
     id: "damping",
     scope: Scope::Body,
@@ -248,6 +256,7 @@ pub const TABLE: &[Param] = &[
     STIFFNESS,
     SPRING_DAMPING,
     BENDING,
+    RIGIDITY,
     DAMPING,
     GAS_AMOUNT,
     TEMPERATURE,
