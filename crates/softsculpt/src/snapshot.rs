@@ -635,10 +635,12 @@ fn body_from_v1(b: BodyV1) -> Result<SoftBody, String> {
     }
     let counts = topology::count_edges(&b.triangles);
     let external: Vec<f64> = b.user_force.iter().zip(&b.prestress).map(|(u, p)| u + p).collect();
+    let hinges = crate::body::hinges::Hinges::new(&b.triangles);
     let model = Model {
         faces: Faces::new(b.triangles, n),
         springs,
         bending,
+        hinges,
         closed: counts.boundary == 0 && counts.non_manifold == 0,
         mass: b.mass,
         inv_mass,
@@ -654,7 +656,10 @@ fn body_from_v1(b: BodyV1) -> Result<SoftBody, String> {
         plastic_dissipation: 0.0,
     };
     let frozen = Frozen { x: b.frozen_x, rest: b.frozen_rest, bending_rest: b.frozen_bending_rest, gas: gas(b.frozen_gas)?, prestress: b.frozen_prestress };
-    Ok(SoftBody { material, model, state: State { x: b.x, v: b.v, warm: Vec::new(), warm_dt: 0.0 }, work: Work::new(3 * n), frozen })
+    let mut body = SoftBody { material, model, state: State { x: b.x, v: b.v, warm: Vec::new(), warm_dt: 0.0 }, work: Work::new(3 * n), frozen };
+    // The hinges' rest angles are the frozen shape's, recomputed as the springs are.
+    body.hinges_to_frozen();
+    Ok(body)
 }
 
 /// Indices of `list` checked against `limit`.

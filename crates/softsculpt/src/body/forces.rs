@@ -75,7 +75,7 @@ pub(crate) fn evaluate(
         scale = (gas::pressure(nrt, volume) - m.gas.ambient_pressure) / 6.0;
     }
 
-    // Stage external: wind, user face pressures and target springs, rarely active.
+    // Stage external: wind, user face pressures, target springs and hinges, rarely active.
     let mut has_rare = false;
     if w.wind_drag > 0.0 && w.wind != [0.0; 3] {
         external::wind(m.faces.triangles(), x, v, w.wind, w.wind_drag, rare);
@@ -87,6 +87,11 @@ pub(crate) fn evaluate(
     }
     if m.targets.active() {
         m.targets.accumulate(x, v, 1.0, rare);
+        has_rare = true;
+    }
+    // Stage hinges (`hinges.rs`): bending by the dihedral angles, when the rigidity is set.
+    if p.rigidity > 0.0 && !m.hinges.is_empty() {
+        m.hinges.add_forces(p.rigidity, x, rare);
         has_rare = true;
     }
 

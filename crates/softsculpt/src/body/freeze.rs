@@ -175,6 +175,7 @@ impl SoftBody {
         }
         self.update_external();
         self.frozen = Frozen { x: self.state.x.clone(), rest: self.model.springs.rest.clone(), bending_rest: self.model.bending.rest.clone(), gas: self.model.gas, prestress: self.model.prestress.clone() };
+        self.hinges_to_frozen();
     }
 
     /// Per vertex: pinned, or resting on a support.

@@ -60,11 +60,11 @@ pub struct Material {
     /// and so resist folding across it; 0 (the default) leaves the surface free to fold, as in
     /// the original model. They use the same damping cs.
     pub bending_stiffness: f64,
-    /// Flexural rigidity B (J = N·m) of the hinges (`hinges.rs`): the bending energy
-    /// Σ_edges ½ B (3 |ē|² / Ā) (θ − θ̄)², θ the dihedral angle at an edge, θ̄ its value in the
-    /// frozen shape, |ē| and Ā the edge's length and its two faces' area there — the discrete
-    /// form of ½ B ∫ (κ₁ + κ₂ − rest)² dA, which does not depend on the mesh resolution (unlike
-    /// the bending springs'). 0 (the default): none.
+    /// Flexural rigidity D (J = N·m) of the hinges (`hinges.rs`): the bending energy
+    /// Σ_edges ½ D (|ē|² / Ā) (θ − θ̄)², θ the dihedral angle at an edge, θ̄ its value in the
+    /// frozen shape, |ē| and Ā the edge's length and its two faces' area there. A plate rolled
+    /// into a cylinder of radius R stores ½ D A / R², a thin plate's, at any mesh resolution
+    /// (unlike the bending springs'). 0 (the default): none.
     pub rigidity: f64,
     /// Viscous damping rate c (1/s): force −c mi vi, velocities decay as e^(−c t).
     pub damping: f64,

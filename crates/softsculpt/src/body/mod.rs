@@ -23,6 +23,7 @@ mod faces;
 mod forces;
 mod freeze;
 mod gas;
+pub(crate) mod hinges;
 pub mod implicit;
 mod integrate;
 pub mod material;
@@ -58,6 +59,9 @@ pub(crate) struct Model {
     pub springs: Springs,
     /// Bending springs across every interior edge (stiffness `Material::bending_stiffness`).
     pub bending: Springs,
+    /// Hinges at every interior edge (flexural rigidity `Material::rigidity`; `hinges.rs`),
+    /// their rest angles and weights from the frozen shape.
+    pub hinges: hinges::Hinges,
     /// Every edge shared by exactly two faces.
     pub closed: bool,
     /// Vertex masses mi (kg).
@@ -185,12 +189,14 @@ impl SoftBody {
         let springs = Springs::new(&topology::edges(&mesh.triangles), &x);
         let bending = Springs::new(&topology::bending_pairs(&mesh.triangles), &x);
         let faces = Faces::new(mesh.triangles.clone(), n);
+        let hinges = hinges::Hinges::new(&mesh.triangles);
         let m = total_mass / n as f64;
         let mut body = SoftBody {
             model: Model {
                 faces,
                 springs,
                 bending,
+                hinges,
                 closed,
                 mass: vec![m; n],
                 inv_mass: vec![1.0 / m; n],
@@ -213,7 +219,13 @@ impl SoftBody {
         let v0 = body.volume();
         body.model.gas.reference_volume = if v0 > 0.0 { v0 } else { 1.0 };
         body.frozen = Frozen { x: body.state.x.clone(), rest: body.model.springs.rest.clone(), bending_rest: body.model.bending.rest.clone(), gas: body.model.gas, prestress: body.model.prestress.clone() };
+        body.hinges_to_frozen();
         Ok(body)
+    }
+
+    /// The hinges' rest angles and weights from the frozen shape (after every change of it).
+    pub(crate) fn hinges_to_frozen(&mut self) {
+        self.model.hinges.rest_to(&self.frozen.x);
     }
 
     /// The body's stage of a world step: forces and integration over `dt` seconds with the

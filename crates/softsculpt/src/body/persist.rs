@@ -33,6 +33,7 @@ impl SoftBody {
         }
         check_gas(&gas)?;
         self.frozen = Frozen { x: positions.to_vec(), rest: rest.to_vec(), bending_rest: self.frozen.bending_rest.clone(), gas, prestress: self.frozen.prestress.clone() };
+        self.hinges_to_frozen();
         Ok(())
     }
 

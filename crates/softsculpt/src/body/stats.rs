@@ -14,7 +14,8 @@ pub struct Stats {
     pub pressure: f64,
     /// Σ ½ mi |vi|² (pinned vertices do not move and contribute 0).
     pub kinetic_energy: f64,
-    /// Σ ½ k (l − L)² over edge springs plus the same with k_b over bending springs (minus
+    /// Σ ½ k (l − L)² over edge springs plus the same with k_b over bending springs, plus the
+    /// hinges' Σ ½ B w (θ − θ̄)² (`hinges.rs`) (minus
     /// f_p · (x − x_frozen) after a freeze under load).
     pub elastic_energy: f64,
     /// −nRT ln(V/V0) + P_ref (V − V0), see `gas.rs`.
@@ -63,6 +64,9 @@ impl SoftBody {
         }
         // The kept load of a freeze under load is a constant force f_p: potential −f_p · (x − x_frozen).
         let mut elastic = self.model.springs.energy(self.material.stiffness, x) + self.model.bending.energy(self.material.bending_stiffness, x);
+        if self.material.rigidity > 0.0 {
+            elastic += self.model.hinges.energy(self.material.rigidity, x);
+        }
         if self.model.prestress.iter().any(|&p| p != 0.0) {
             for k in 0..x.len() {
                 elastic -= self.model.prestress[k] * (x[k] - self.frozen.x[k]);

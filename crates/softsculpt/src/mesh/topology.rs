@@ -40,6 +40,24 @@ pub fn bending_pairs(tris: &[[u32; 3]]) -> Vec<[u32; 2]> {
     pairs
 }
 
+/// Hinges: for every edge shared by exactly two faces that traverse it in opposite directions,
+/// `[i, j, k, l]` with face (i, j, k) and face (j, i, l) in their winding (i < j), sorted by
+/// (i, j). Edges of inconsistently oriented or non-manifold neighbourhoods have none.
+pub fn hinges(tris: &[[u32; 3]]) -> Vec<[u32; 4]> {
+    let h = half_edges(tris);
+    let opposite = |f: u32, a: u32, b: u32| tris[f as usize].into_iter().find(|&v| v != a && v != b);
+    groups(&h)
+        .filter(|g| g.len() == 2 && g[0].2 != g[1].2)
+        .filter_map(|g| {
+            let (a, b) = ((g[0].0 >> 32) as u32, g[0].0 as u32);
+            // The face traversing a → b (forward) is face 1.
+            let (f1, f2) = if g[0].2 { (g[0].1, g[1].1) } else { (g[1].1, g[0].1) };
+            let (k, l) = (opposite(f1, a, b)?, opposite(f2, a, b)?);
+            (k != l).then_some([a, b, k, l])
+        })
+        .collect()
+}
+
 /// Counts of the defects that matter for a closed body.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct EdgeCounts {

@@ -49,7 +49,7 @@ pub const RIGIDITY: Param = Param {
     unit: "J",
     default: Value::Number(0.0),
     range: NON_NEGATIVE,
-    help: "flexural rigidity B of the surface (N·m): bending energy ½ B ∫ (κ₁ + κ₂ − rest)² dA from the dihedral angle at every edge, the same at any mesh resolution; 0 = none",
+    help: "flexural rigidity D of the surface (N·m), a thin plate's: bending by the dihedral angle at every edge, the same at any mesh resolution; 0 = none",
 };
 pub const DAMPING: Param = Param {
     id: "damping",

@@ -71,3 +71,34 @@ impl FaceRows {
         FaceRows { start, face }
     }
 }
+
+/// Vertex → the hinges it belongs to (`body/hinges.rs`): each entry is 4 h + s, hinge h with
+/// the vertex in its slot s (0, 1 the edge's ends; 2, 3 the opposite vertices).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct HingeRows {
+    pub start: Vec<u32>,
+    pub entry: Vec<u32>,
+}
+
+impl HingeRows {
+    pub fn new(n: usize, hinges: &[[u32; 4]]) -> Self {
+        let mut start = vec![0u32; n + 1];
+        for h in hinges {
+            for &v in h {
+                start[v as usize + 1] += 1;
+            }
+        }
+        for v in 0..n {
+            start[v + 1] += start[v];
+        }
+        let mut entry = vec![0u32; start[n] as usize];
+        let mut fill = start.clone();
+        for (k, h) in hinges.iter().enumerate() {
+            for (s, &v) in h.iter().enumerate() {
+                entry[fill[v as usize] as usize] = (4 * k + s) as u32;
+                fill[v as usize] += 1;
+            }
+        }
+        HingeRows { start, entry }
+    }
+}

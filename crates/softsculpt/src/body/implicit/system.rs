@@ -21,6 +21,12 @@
 //!   overshoot: then b < 0 for a spring compressed below about half its rest length, but B's
 //!   eigenvalues a, a and a + b = dt² k + dt cs stay positive); it couples i and j as
 //!   [B −B; −B B]. Bending springs are the same with k_b.
+//! - **hinge** (`body/hinges.rs`) f_v = −D w (θ − θ̄) ∇_v θ on its four vertices: the
+//!   Gauss–Newton part dt² D w ∇θ ∇θᵀ (positive semi-definite, rank one) enters the matrix,
+//!   applied as c_h ∇θ (∇θ · p) per hinge, never as a dense 12×12 block; the indefinite
+//!   dt² D w (θ − θ̄) ∇²θ is dropped (it vanishes at the rest angle). Its diagonal 3×3 blocks go
+//!   into the block-Jacobi preconditioner; the multigrid's coarse levels leave hinges out (a
+//!   preconditioner only: the conjugate gradient's product has them).
 //! - **viscous damping** −c m v: D += c m I (exact).
 //! - **gravity**, user forces, the kept load of a freeze under load: constant, nothing.
 //! - **gas** f_i = (P − P_ref) ∇_i V, P = nRT/V: −∂f/∂x = (nRT/V²) ∇V ∇Vᵀ − (P − P_ref) ∇²V. The
@@ -48,7 +54,9 @@
 //! Dropping terms from the matrix only slows Newton's convergence (an inexact Newton method);
 //! the solution it converges to is the backward-Euler step with every force exact.
 
-use super::adjacency::{FaceRows, SpringRows};
+use super::adjacency::{FaceRows, HingeRows, SpringRows};
+use super::super::hinges::{angle_and_gradient, excess, Hinges};
+use std::sync::atomic::{AtomicU64, Ordering};
 use super::ground::GroundSet;
 use super::super::{gas, Model, Springs};
 use super::super::forces::Fault;
@@ -106,6 +114,16 @@ pub(crate) struct System {
     pub bcoef: Vec<[f64; 5]>,
     /// Bending springs take part (k_b > 0), as in the explicit stages.
     pub bending: bool,
+    /// Hinges (`body/hinges.rs`): per vertex the hinges around it; per hinge at (x_t, v⁺) the
+    /// gradient ∇θ at its four vertices (1/m), the force scale −D w (θ − θ̄) (J) and the matrix
+    /// coefficient dt² D w (kg·m²); the product's per-hinge c_h (∇θ · p) (`HingeProducts`).
+    pub hrows: HingeRows,
+    pub hg: Vec<[f64; 12]>,
+    pub hf: Vec<f64>,
+    pub hc: Vec<f64>,
+    hp: HingeProducts,
+    /// Hinges take part (B > 0).
+    pub hinged: bool,
     /// n_f = (x_b − x_a) × (x_c − x_a) per face (m², xyz).
     pub nf: Vec<f64>,
     /// g_i = Σ n_f around vertex i (m²), the gas's gradient direction; used when `gamma` ≠ 0.
@@ -138,6 +156,31 @@ pub(crate) struct Eval {
     pub noise2: f64,
 }
 
+/// One value per hinge that the product's hinge pass writes (each hinge its own) and its row
+/// pass reads after the join: f64 bits in atomics, so that `product` can take `&self`.
+#[derive(Debug, Default)]
+struct HingeProducts(Vec<AtomicU64>);
+
+impl Clone for HingeProducts {
+    fn clone(&self) -> Self {
+        HingeProducts(self.0.iter().map(|a| AtomicU64::new(a.load(Ordering::Relaxed))).collect())
+    }
+}
+
+impl HingeProducts {
+    fn new(n: usize) -> Self {
+        HingeProducts((0..n).map(|_| AtomicU64::new(0)).collect())
+    }
+    #[inline(always)]
+    fn set(&self, h: usize, v: f64) {
+        self.0[h].store(v.to_bits(), Ordering::Relaxed);
+    }
+    #[inline(always)]
+    fn get(&self, h: usize) -> f64 {
+        f64::from_bits(self.0[h].load(Ordering::Relaxed))
+    }
+}
+
 impl System {
     pub fn new(m: &Model) -> Self {
         let n = m.mass.len();
@@ -151,6 +194,12 @@ impl System {
             ecoef: vec![[0.0; 5]; 2 * m.springs.len()],
             bcoef: vec![[0.0; 5]; 2 * m.bending.len()],
             bending: false,
+            hrows: HingeRows::new(n, &m.hinges.v),
+            hg: vec![[0.0; 12]; m.hinges.v.len()],
+            hf: vec![0.0; m.hinges.v.len()],
+            hc: vec![0.0; m.hinges.v.len()],
+            hp: HingeProducts::new(m.hinges.v.len()),
+            hinged: false,
             nf: vec![0.0; 3 * nf],
             g: vec![0.0; 3 * n],
             diag: vec![0.0; n],
@@ -161,14 +210,14 @@ impl System {
             ground: GroundSet::new(n),
             absolute: false,
             vslots: vec![[0.0; 4]; chunks(n, VCHUNK)],
-            eslots: vec![0.0; chunks(m.springs.len().max(m.bending.len()), ECHUNK)],
+            eslots: vec![0.0; chunks(m.springs.len().max(m.bending.len()).max(m.hinges.len()), ECHUNK)],
             fslots: vec![0.0; chunks(nf, ECHUNK)],
         }
     }
 
     /// Fits `m` (same vertex, spring and face counts as when built).
     pub fn fits(&self, m: &Model) -> bool {
-        self.diag.len() == m.mass.len() && self.eb.a.len() == m.springs.len() && self.bb.a.len() == m.bending.len() && 3 * m.faces.len() == self.nf.len()
+        self.diag.len() == m.mass.len() && self.eb.a.len() == m.springs.len() && self.bb.a.len() == m.bending.len() && 3 * m.faces.len() == self.nf.len() && self.hf.len() == m.hinges.v.len()
     }
 
     /// Forces at (x_t, v⁺), the residual r (into `r`), the matrix's coefficients and the
@@ -182,6 +231,10 @@ impl System {
         self.bending = p.bending_stiffness > 0.0;
         if self.bending {
             spring_pass(th, &m.bending, (p.bending_stiffness, p.spring_damping, abs), dt, xt, vp, &mut self.bb, &mut self.eslots);
+        }
+        self.hinged = p.rigidity > 0.0 && !m.hinges.v.is_empty();
+        if self.hinged {
+            hinge_pass(th, &m.hinges, p.rigidity, dt, xt, (&mut self.hg, &mut self.hf, &mut self.hc), &mut self.eslots);
         }
 
         // Faces and gas: n_f per face and 6V (per-chunk sums in chunk order), then P.
@@ -233,6 +286,11 @@ impl System {
             eb: &self.eb,
             bb: &self.bb,
             bending: self.bending,
+            hinged: self.hinged,
+            hrows: &self.hrows,
+            hg: &self.hg,
+            hf: &self.hf,
+            hc: &self.hc,
             nf: &self.nf,
             gamma: self.gamma,
             fext: &self.fext,
@@ -287,6 +345,11 @@ struct Rows<'a> {
     eb: &'a SpringBlocks,
     bb: &'a SpringBlocks,
     bending: bool,
+    hinged: bool,
+    hrows: &'a HingeRows,
+    hg: &'a [[f64; 12]],
+    hf: &'a [f64],
+    hc: &'a [f64],
     nf: &'a [f64],
     gamma: f64,
     fext: &'a [f64],
@@ -352,6 +415,24 @@ impl Rows<'_> {
             gather_springs(&sys.edges, &sys.eb, i, &mut f, &mut blk, &mut abs, ecoef, ebase);
             if sys.bending {
                 gather_springs(&sys.bends, &sys.bb, i, &mut f, &mut blk, &mut abs, bcoef, bbase);
+            }
+            if self.hinged {
+                // Σ over the hinges around i: −D w (θ − θ̄) ∇_i θ, and dt² D w ∇_i θ ∇_i θᵀ.
+                for &e in &sys.hrows.entry[sys.hrows.start[i] as usize..sys.hrows.start[i + 1] as usize] {
+                    let (h, s) = ((e / 4) as usize, 3 * (e % 4) as usize);
+                    let g = &sys.hg[h][s..s + 3];
+                    let (fs, ch) = (sys.hf[h], sys.hc[h]);
+                    f[0] += fs * g[0];
+                    f[1] += fs * g[1];
+                    f[2] += fs * g[2];
+                    abs += fs.abs() * (g[0].abs() + g[1].abs() + g[2].abs());
+                    blk[0] += ch * g[0] * g[0];
+                    blk[1] += ch * g[1] * g[1];
+                    blk[2] += ch * g[2] * g[2];
+                    blk[3] += ch * g[0] * g[1];
+                    blk[4] += ch * g[0] * g[2];
+                    blk[5] += ch * g[1] * g[2];
+                }
             }
             if self.gas {
                 let mut gi = [0.0; 3];
@@ -482,6 +563,36 @@ fn spring_pass(th: &Threads, sp: &Springs, (k, cs, absolute): (f64, f64, bool), 
     });
 }
 
+/// Per hinge at `xt`: ∇θ, the force scale −D w (θ − θ̄) and the matrix coefficient dt² D w
+/// (`b` = D in J); a degenerate hinge (a face without area) gets zeros.
+fn hinge_pass(th: &Threads, hn: &Hinges, b: f64, dt: f64, xt: &[f64], (hg, hf, hc): (&mut [[f64; 12]], &mut [f64], &mut [f64]), slots: &mut [f64]) {
+    let nh = hn.v.len();
+    let nch = chunks(nh, ECHUNK);
+    let (go, fo, co) = (Out::new(hg), Out::new(hf), Out::new(hc));
+    th.each(&mut slots[..nch], |c, _| {
+        let hr = chunk(c, ECHUNK, nh);
+        // SAFETY: chunk c writes hinges hr only.
+        let (hg, hf, hc) = unsafe { (go.range(hr.clone()), fo.range(hr.clone()), co.range(hr.clone())) };
+        for (lh, h) in hr.enumerate() {
+            match angle_and_gradient(xt, &hn.v[h]) {
+                Some((theta, g)) => {
+                    let bw = b * hn.weight[h];
+                    for (q, gq) in g.iter().enumerate() {
+                        hg[lh][3 * q..3 * q + 3].copy_from_slice(gq);
+                    }
+                    hf[lh] = -bw * excess(theta, hn.rest[h]);
+                    hc[lh] = dt * dt * bw;
+                }
+                None => {
+                    hg[lh] = [0.0; 12];
+                    hf[lh] = 0.0;
+                    hc[lh] = 0.0;
+                }
+            }
+        }
+    });
+}
+
 /// Per face n_f into `nf`; returns 6V = Σ x_a · n_f (per-chunk sums added in chunk order).
 fn face_pass(th: &Threads, tris: &[[u32; 3]], x: &[f64], nf: &mut [f64], slots: &mut [f64]) -> f64 {
     let n = tris.len();
@@ -526,6 +637,22 @@ impl System {
     fn rows_pass<const SUB: bool>(&self, th: &Threads, m: &Model, p: &[f64], gg: f64, b: &[f64], out: &mut [f64], slots: &mut [[f64; 4]]) -> f64 {
         let n = m.mass.len();
         assert!(p.len() >= 3 * n && self.diag.len() >= n && self.g.len() >= 3 * n && m.inv_mass.len() >= n);
+        if self.hinged {
+            // Per hinge c_h (∇θ · p), in as many ranges of hinges as there are vertex chunks
+            // (each hinge's value is the same whatever the split).
+            let (nh, nc) = (m.hinges.v.len(), slots.len());
+            th.each(slots, |c, _| {
+                for h in c * nh / nc..(c + 1) * nh / nc {
+                    let (g, hv) = (&self.hg[h], &m.hinges.v[h]);
+                    let mut s = 0.0;
+                    for (q, &v) in hv.iter().enumerate() {
+                        let o = 3 * v as usize;
+                        s += g[3 * q] * p[o] + g[3 * q + 1] * p[o + 1] + g[3 * q + 2] * p[o + 2];
+                    }
+                    self.hp.set(h, self.hc[h] * s);
+                }
+            });
+        }
         let o = Out::new(out);
         th.each(slots, |c, slot| {
             let vr = chunk(c, VCHUNK, n);
@@ -577,6 +704,15 @@ impl System {
             row_product(&self.edges, &self.ecoef, i, p, &pi, &mut q);
             if self.bending {
                 row_product(&self.bends, &self.bcoef, i, p, &pi, &mut q);
+            }
+            if self.hinged {
+                for &e in &self.hrows.entry[self.hrows.start[i] as usize..self.hrows.start[i + 1] as usize] {
+                    let (h, s) = ((e / 4) as usize, 3 * (e % 4) as usize);
+                    let (c, g) = (self.hp.get(h), &self.hg[h]);
+                    q[0] += c * g[s];
+                    q[1] += c * g[s + 1];
+                    q[2] += c * g[s + 2];
+                }
             }
             if gg != 0.0 {
                 for d in 0..3 {
