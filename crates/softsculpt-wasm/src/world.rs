@@ -472,14 +472,14 @@ pub extern "C" fn ss_quality(w: u32, b: u32) -> i32 {
     })
 }
 
-/// Replace body `b` by its Loop subdivision (frozen); result `{"dropped_events": n}` (its
-/// pending scene events no longer fit). Its views change.
+/// Replace body `b` by its Loop subdivision (frozen plainly, its resting vertices kept on their
+/// support: `World::subdivide`); result `{"dropped_events": n}` (its pending scene events no
+/// longer fit). Its views change.
 #[no_mangle]
 pub extern "C" fn ss_subdivide(w: u32, b: u32) -> i32 {
     status(|| {
         with_body(w, b, |h, i| {
-            let finer = h.world.bodies[i].subdivided().map_err(sim_fail)?;
-            let (_, dropped) = h.world.replace_body(i, finer);
+            let (dropped, _) = h.world.subdivide(i, softsculpt::body::FreezeOptions::default()).map_err(sim_fail)?;
             h.views[i] = BodyViews::new(&h.world, i);
             set_result(
                 serde_json::json!({ "dropped_events": dropped })

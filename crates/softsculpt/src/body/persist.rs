@@ -66,6 +66,18 @@ impl SoftBody {
         Ok(self.subdivide_parts()?.0)
     }
 
+    /// [`SoftBody::subdivided`] (or, `keep_tension`, [`SoftBody::subdivided_keeping_tension`])
+    /// and, per vertex of the new body, its one or two parents in this one ([a, a] for a vertex
+    /// that was there, [a, b] for one new on the edge a–b).
+    pub(crate) fn subdivided_with_parents(&self, keep_tension: bool) -> Result<(SoftBody, Vec<[u32; 2]>), SimError> {
+        let (body, parents, old_to_new) = if keep_tension { self.subdivide_keeping_tension_parts()? } else { self.subdivide_parts()? };
+        let mut by_new = vec![[0u32; 2]; parents.len()];
+        for (k, pa) in parents.iter().enumerate() {
+            by_new[old_to_new[k] as usize] = *pa;
+        }
+        Ok((body, by_new))
+    }
+
     /// Loop subdivision carrying the skin's tension: as [`SoftBody::subdivided`], then every
     /// spring's rest length is its length times the stretch ratio L/l carried from the input
     /// (per input vertex the mean L/l of its springs, edge and bending apart; a new vertex takes
@@ -73,6 +85,12 @@ impl SoftBody {
     /// reference. Not at rest: freeze it keeping the tension (`World::subdivide` does), which
     /// corrects these rest lengths to an exact equilibrium close to them.
     pub fn subdivided_keeping_tension(&self) -> Result<SoftBody, SimError> {
+        Ok(self.subdivide_keeping_tension_parts()?.0)
+    }
+
+    /// [`SoftBody::subdivided_keeping_tension`] with the parents and the reordering, as
+    /// `subdivide_parts` gives them.
+    fn subdivide_keeping_tension_parts(&self) -> Result<(SoftBody, Vec<[u32; 2]>, Vec<u32>), SimError> {
         let (mut body, parents, old_to_new) = self.subdivide_parts()?;
         let x = self.state.x.clone();
         let nv = body.vertex_count();
@@ -97,7 +115,7 @@ impl SoftBody {
             new.rest = rest;
         }
         body.model.gas = self.model.gas;
-        Ok(body)
+        Ok((body, parents, old_to_new))
     }
 
     /// The subdivided, plainly frozen body; each new vertex's one or two parents; and where

@@ -13,6 +13,11 @@ impl SoftBody {
     /// heavier per vertex); an old pinned vertex pins the new vertex nearest to it, and a new
     /// vertex whose nearest old vertex is pinned is pinned too (a pinned region stays pinned).
     pub fn remeshed(&self, edge: f64) -> Result<SoftBody, SimError> {
+        Ok(self.remeshed_with_origins(edge)?.0)
+    }
+
+    /// [`SoftBody::remeshed`] and, per vertex of the new body, the old vertex nearest to it.
+    pub(crate) fn remeshed_with_origins(&self, edge: f64) -> Result<(SoftBody, Vec<usize>), SimError> {
         let bad = |e: crate::error::MeshError| SimError::BadParameter { name: "remesh", message: e.to_string() };
         let mesh = remesh(&self.to_mesh(), edge, None).map_err(bad)?;
         let (mesh, _) = crate::mesh::reorder::by_locality(&mesh);
@@ -34,7 +39,7 @@ impl SoftBody {
             }
         }
         body.freeze();
-        Ok(body)
+        Ok((body, old_near_new))
     }
 }
 
