@@ -3,7 +3,12 @@
 //! against the table's range like any other.
 //!
 //! - `modeler`: the world and material the modeler opens a model with — stiff enough bending to
-//!   carry a mushroom's cap, damped to settle within a second or two, 30 J of gas, on the ground,
+//!   carry a mushroom's cap (bending springs k_b = k, and hinges of flexural rigidity
+//!   D = 0.05 J, `body/hinges.rs`, which keep that bending stiffness when the mesh is
+//!   subdivided: measured in the modeler on the mushroom subdivided once, a mirrored pull of its
+//!   cap held 2 s took 5.4 % of its volume and folded an edge 9.6° further with the springs
+//!   alone, 0.7 % and 0.3° with the hinges — as on the unsubdivided mushroom, 0.3 % and 1.1°),
+//!   damped to settle within a second or two, 30 J of gas, on the ground,
 //!   stepped implicitly at one 1/60 s step per frame with a residual tolerance of 1e-3 (measured in
 //!   Chromium: the resting shape is the same to four digits as at 1e-6, at twice the speed; see
 //!   BENCHMARKS.md). Every value is a material or world property, not one of the mesh's: the
@@ -20,7 +25,9 @@
 //!   strain (dimensionless) at a rate (1/s): none sees the edge length;
 //! - bending springs are the one term that does (the flexural rigidity of k_b springs across
 //!   edges of length h goes as k_b h², so it weakens 4× per subdivision): every material preset
-//!   leaves them at 0, and gets its shape from the gas and the membrane instead.
+//!   leaves them at 0, and gets its shape from the gas and the membrane instead — and, where it
+//!   needs to resist folding, from hinges (the flexural rigidity D in J, `body/hinges.rs`, the
+//!   same at any resolution).
 //!
 //! Values, each checked by `tests/presets.rs` on every built-in model and after two
 //! subdivisions with the implicit integrator at 1/60 s:
@@ -35,8 +42,11 @@
 //!   of 0.3 % keeps 10 cm of the same press but slumps on: 2.00 → 1.44 m tall after 5 s, against
 //!   1.63 m); the gas reference follows, so it never creeps under its gas.
 //! - `cloth`: no gas (open meshes), a stiff weave (k 400 N/m), damped (c 1 1/s, cs 0.2): drapes.
-//! - `stiff_rubber`: a stiff skin (k 2000 N/m, cs 0.5) on 30 J of gas, damped (c 1 1/s): hardly
-//!   dents, bounces back at once.
+//! - `stiff_rubber`: a stiff skin (k 2000 N/m, cs 0.5) on 30 J of gas, damped (c 1 1/s), with
+//!   hinges of D = 0.1 J: hardly dents, bounces back at once. Without the hinges a stiff skin
+//!   has snapped-through equilibria (a dented ping-pong ball): measured in the modeler, the
+//!   octopus grabbed at a tentacle kept a 178° fold and lost 2.6 % of its volume for good; with
+//!   them, no fold and no loss.
 
 use super::{find, ParamError, Value};
 use crate::world::World;
@@ -57,6 +67,7 @@ pub const MODELER: Preset = Preset {
         ("stiffness", Value::Number(100.0)),
         ("spring_damping", Value::Number(0.1)),
         ("bending", Value::Number(100.0)),
+        ("rigidity", Value::Number(0.05)),
         ("damping", Value::Number(1.5)),
         ("gravity", Value::Number(9.81)),
         ("ground", Value::Flag(true)),
@@ -71,11 +82,12 @@ pub const MODELER: Preset = Preset {
 };
 
 /// The body parameters every material preset sets, in this order.
-const fn material(k: f64, cs: f64, c: f64, nrt: f64, yield_strain: f64, flow: f64) -> [(&'static str, Value); 7] {
+const fn material(k: f64, cs: f64, d: f64, c: f64, nrt: f64, yield_strain: f64, flow: f64) -> [(&'static str, Value); 8] {
     [
         ("stiffness", Value::Number(k)),
         ("spring_damping", Value::Number(cs)),
         ("bending", Value::Number(0.0)),
+        ("rigidity", Value::Number(d)),
         ("damping", Value::Number(c)),
         ("gas.nrt", Value::Number(nrt)),
         ("yield", Value::Number(yield_strain)),
@@ -83,11 +95,11 @@ const fn material(k: f64, cs: f64, c: f64, nrt: f64, yield_strain: f64, flow: f6
     ]
 }
 
-const BALLOON_VALUES: [(&str, Value); 7] = material(100.0, 0.1, 0.5, 30.0, 0.0, 0.0);
-const JELLY_VALUES: [(&str, Value); 7] = material(60.0, 0.05, 0.3, 20.0, 0.0, 0.0);
-const CLAY_VALUES: [(&str, Value); 7] = material(300.0, 0.5, 4.0, 20.0, 0.01, 5.0);
-const CLOTH_VALUES: [(&str, Value); 7] = material(400.0, 0.2, 1.0, 0.0, 0.0, 0.0);
-const RUBBER_VALUES: [(&str, Value); 7] = material(2000.0, 0.5, 1.0, 30.0, 0.0, 0.0);
+const BALLOON_VALUES: [(&str, Value); 8] = material(100.0, 0.1, 0.0, 0.5, 30.0, 0.0, 0.0);
+const JELLY_VALUES: [(&str, Value); 8] = material(60.0, 0.05, 0.0, 0.3, 20.0, 0.0, 0.0);
+const CLAY_VALUES: [(&str, Value); 8] = material(300.0, 0.5, 0.0, 4.0, 20.0, 0.01, 5.0);
+const CLOTH_VALUES: [(&str, Value); 8] = material(400.0, 0.2, 0.0, 1.0, 0.0, 0.0, 0.0);
+const RUBBER_VALUES: [(&str, Value); 8] = material(2000.0, 0.5, 0.1, 1.0, 30.0, 0.0, 0.0);
 
 pub const BALLOON: Preset = Preset { name: "balloon", help: "material: a soft skin on 30 J of gas, lightly damped; bouncy", values: &BALLOON_VALUES };
 pub const JELLY: Preset = Preset { name: "jelly", help: "material: a softer skin held round by 20 J of gas, little damping; wobbles and springs back", values: &JELLY_VALUES };
