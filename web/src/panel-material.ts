@@ -11,8 +11,14 @@
 
 import type { Params } from './protocol';
 
-/** The parameters a material preset sets (params/presets.rs); gas as n at T. */
-export const MATERIAL_KEYS = ['stiffness', 'spring_damping', 'bending', 'damping', 'yield', 'flow', 'gas.amount', 'gas.temperature'] as const;
+/** The body's material parameters (those a material preset may set, params/presets.rs); gas as n at T. */
+export const MATERIAL_KEYS = ['stiffness', 'spring_damping', 'bending', 'rigidity', 'damping', 'yield', 'flow', 'gas.amount', 'gas.temperature'] as const;
+/**
+ * Material parameters added after browsers began keeping what they learned, with the value every
+ * material had before: at that value (or absent) they are left out of the key, so a material
+ * learned earlier is still named.
+ */
+const LATER_KEYS: Partial<Record<(typeof MATERIAL_KEYS)[number], number>> = { rigidity: 0 };
 /** The modeler's material, which every model is loaded with. */
 export const MODELER = 'modeler';
 export const CUSTOM = 'custom';
@@ -21,7 +27,7 @@ const STORE_MAX = 64;
 
 /** The body's material as a comparable string (relative differences below 1e-9 are the same material). */
 export function materialKey(p: Params): string {
-  return MATERIAL_KEYS.map((k) => {
+  return MATERIAL_KEYS.filter((k) => !(k in LATER_KEYS && (p[k] ?? LATER_KEYS[k]) === LATER_KEYS[k])).map((k) => {
     const v = p[k];
     return typeof v === 'number' ? Number(v.toPrecision(9)) : String(v);
   }).join(',');

@@ -4,7 +4,7 @@
 import { describe, expect, it } from 'vitest';
 import { defaultWindSpeed, windwardArea, WIND_WEIGHT_FRACTION } from '../src/tools/wind';
 import { BrushUnit, lengthUnit, rescaleBrush } from '../src/tools/scale';
-import { CUSTOM, MaterialTracker, MODELER } from '../src/panel-material';
+import { CUSTOM, materialKey, MaterialTracker, MODELER } from '../src/panel-material';
 import { Plots } from '../src/view/plots';
 
 /** A latitude-longitude sphere of radius r (outward triangles). */
@@ -73,7 +73,7 @@ describe('the brush\'s length unit', () => {
 
 describe('the material list', () => {
   const store = () => { const m = new Map<string, string>(); return { getItem: (k: string) => m.get(k) ?? null, setItem: (k: string, v: string) => void m.set(k, v) }; };
-  const modeler = { stiffness: 100, spring_damping: 0.1, bending: 100, damping: 1.5, yield: 0, flow: 0, 'gas.amount': 0.012, 'gas.temperature': 300 };
+  const modeler = { stiffness: 100, spring_damping: 0.1, bending: 100, rigidity: 0, damping: 1.5, yield: 0, flow: 0, 'gas.amount': 0.012, 'gas.temperature': 300 };
   const clay = { ...modeler, stiffness: 300, spring_damping: 0.5, bending: 0, damping: 4, yield: 0.01, flow: 5, 'gas.amount': 0.008 };
 
   it('names the modeler\'s, a chosen preset once its step lands, custom after an edit, and follows undo', () => {
@@ -84,6 +84,7 @@ describe('the material list', () => {
     expect(t.name(modeler, [0, 0], false)).toBe(MODELER);
     expect(t.name(clay, [1, 0], false)).toBe('clay');
     expect(t.name({ ...clay, stiffness: 250 }, [2, 0], false)).toBe(CUSTOM);
+    expect(t.name({ ...clay, rigidity: 0.05 }, [2, 0], false)).toBe(CUSTOM); // the rigidity is part of the material
     expect(t.name(clay, [1, 1], false)).toBe('clay'); // undo the edit
     expect(t.name(modeler, [0, 2], false)).toBe(MODELER); // undo the preset
   });
@@ -95,6 +96,18 @@ describe('the material list', () => {
     a.expect('clay', [0, 0]);
     a.name(clay, [1, 0], false);
     expect(new MaterialTracker(s).name(clay, [0, 0], true)).toBe('clay');
+  });
+
+  it('still names a material learned before the rigidity existed (rigidity 0 is left out of the key)', () => {
+    const s = store();
+    const { rigidity: _, ...before } = clay; // what a page without the rigidity had
+    const old = new MaterialTracker(s);
+    old.name(modeler, [0, 0], true);
+    old.expect('clay', [0, 0]);
+    old.name(before, [1, 0], false);
+    expect(materialKey(before)).toBe(materialKey(clay));
+    expect(new MaterialTracker(s).name(clay, [0, 0], true)).toBe('clay');
+    expect(materialKey({ ...clay, rigidity: 0.05 })).not.toBe(materialKey(clay));
   });
 });
 

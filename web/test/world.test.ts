@@ -5,6 +5,8 @@ import { readFileSync } from 'node:fs';
 import { loadEngine } from './setup';
 import { EngineError, World } from '../src/engine/world';
 import { raw } from '../src/engine/wasm';
+import { MATERIAL_KEYS } from '../src/panel-material';
+import { SHOWN } from '../src/panel-params';
 
 beforeAll(loadEngine);
 
@@ -107,6 +109,27 @@ describe('world binding', () => {
     expect(b.body(0).stats).toEqual(a.body(0).stats);
     expect(b.body(0).pinned[3]).toBe(1);
     a.free(); b.free();
+  });
+
+  it('the rigidity is a body parameter like bending: in the table, the panel and the material keys, kept by a snapshot, checked', () => {
+    const w = World.create();
+    const table = w.paramTable();
+    expect(table.find((p) => p.id === 'rigidity')).toMatchObject({ scope: 'body', unit: 'J', default: 0 });
+    for (const k of MATERIAL_KEYS) {
+      expect(table.find((p) => p.id === k)?.scope, k).toBe('body');
+      expect(SHOWN[k], k).toBeDefined();
+    }
+    const b = w.addBuiltin('sphere', 1);
+    w.setParam(b, 'rigidity', 0.2);
+    expect(w.params(b).rigidity).toBe(0.2);
+    const e = thrown(() => w.setParam(b, 'rigidity', -1));
+    expect(e.kind).toBe('parameter');
+    expect(e.message).toContain('rigidity');
+    expect(w.params(b).rigidity).toBe(0.2);
+    const c = World.create();
+    c.restore(w.snapshot());
+    expect(c.params(0).rigidity).toBe(0.2);
+    w.free(); c.free();
   });
 
   it('a bad snapshot is refused with the core message and the world stays as it was', () => {

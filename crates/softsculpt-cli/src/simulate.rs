@@ -45,6 +45,8 @@ pub struct SimulateArgs {
     pub spring_damping: f64,
     #[arg(long, allow_hyphen_values = true, default_value_t = table::BENDING.number(), value_parser = args::non_negative, value_name = "KB", help = help(&table::BENDING))]
     pub bending: f64,
+    #[arg(long, allow_hyphen_values = true, default_value_t = table::RIGIDITY.number(), value_parser = args::non_negative, value_name = "B", help = help(&table::RIGIDITY))]
+    pub rigidity: f64,
     #[arg(long, allow_hyphen_values = true, default_value_t = table::DAMPING.number(), value_parser = args::non_negative, value_name = "C", help = help(&table::DAMPING))]
     pub damping: f64,
     #[arg(long, allow_hyphen_values = true, default_value_t = table::MASS.number(), value_parser = args::positive, value_name = "M", help = help(&table::MASS))]
@@ -94,6 +96,7 @@ fn preset_flags(a: &SimulateArgs) -> Vec<(&'static str, &'static str, &'static s
         ("stiffness", "--stiffness", "stiffness", Value::Number(a.stiffness)),
         ("spring_damping", "--spring-damping", "spring_damping", Value::Number(a.spring_damping)),
         ("bending", "--bending", "bending", Value::Number(a.bending)),
+        ("rigidity", "--rigidity", "rigidity", Value::Number(a.rigidity)),
         ("damping", "--damping", "damping", Value::Number(a.damping)),
         ("gas", "--gas", "gas.nrt", Value::Number(a.gas)),
         ("volume", "--volume", "gas.volume", Value::Choice(a.volume.name())),
@@ -177,6 +180,7 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         stiffness: a.stiffness,
         spring_damping: a.spring_damping,
         bending_stiffness: a.bending,
+        rigidity: a.rigidity,
         damping: a.damping,
         volume_mode: a.volume,
         yield_strain: a.yield_strain,

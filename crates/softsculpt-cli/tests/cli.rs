@@ -232,6 +232,26 @@ fn bending_springs_change_the_result() {
     assert_clean_error(&o, "--bending");
 }
 
+/// `--rigidity B` is taken like `--bending` (given alone and over a preset); a bad value
+/// (negative, NaN, infinite, not a number) is one clean error naming the flag, as for `--bending`.
+#[test]
+fn rigidity_is_taken_like_bending_and_bad_values_are_refused() {
+    let d = Dir::new();
+    for extra in [&[][..], &["--preset", "clay"][..]] {
+        let out = d.path("r.obj");
+        let mut args = vec!["simulate", "builtin:sphere", "--out", out.to_str().unwrap(), "--steps", "20", "--gas", "5", "--rigidity", "0.05"];
+        args.extend_from_slice(extra);
+        let o = softsculpt(&args);
+        assert!(o.status.success(), "{extra:?}: {}", stderr(&o));
+        assert!(out.exists());
+    }
+    for (bad, flag) in [("-1", "--rigidity"), ("NaN", "--rigidity"), ("inf", "--rigidity"), ("stiff", "--rigidity"), ("-1", "--bending"), ("NaN", "--bending")] {
+        let o = softsculpt(&["simulate", "builtin:sphere", "--out", d.path("bad.obj").to_str().unwrap(), flag, bad]);
+        assert_eq!(o.status.code(), Some(2), "{flag} {bad}");
+        assert_clean_error(&o, flag);
+    }
+}
+
 /// The flags' defaults and help lines are the core's parameter table's (the README's table
 /// documents the same values).
 #[test]
@@ -239,7 +259,7 @@ fn the_help_shows_the_defaults_of_the_parameter_table() {
     let o = softsculpt(&["simulate", "--help"]);
     assert!(o.status.success());
     let help = String::from_utf8_lossy(&o.stdout).split_whitespace().collect::<Vec<_>>().join(" ");
-    for (flag, default) in [("--stiffness", "100"), ("--spring-damping", "0.1"), ("--damping", "0"), ("--mass", "1"), ("--gravity", "9.81"), ("--friction", "0.5"), ("--wind-drag", "1"), ("--integrator", "symplectic"), ("--volume", "exact")] {
+    for (flag, default) in [("--stiffness", "100"), ("--spring-damping", "0.1"), ("--bending", "0"), ("--rigidity", "0"), ("--damping", "0"), ("--mass", "1"), ("--gravity", "9.81"), ("--friction", "0.5"), ("--wind-drag", "1"), ("--integrator", "symplectic"), ("--volume", "exact")] {
         let at = help.find(&format!("{flag} <")).unwrap_or_else(|| panic!("{flag} in the help"));
         let rest = &help[at..];
         let line = &rest[..rest[2..].find(" --").map_or(rest.len(), |e| e + 2)];

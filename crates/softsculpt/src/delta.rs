@@ -2,12 +2,13 @@
 //! changed (SculptGL's rule: undo stores what a stroke touched).
 //!
 //! A delta is computed between two worlds, `before` and `after`, in the snapshot's payload terms
-//! (`crate::snapshot::WorldV4`, so every field a snapshot keeps is covered and nothing else):
+//! (`crate::snapshot::WorldV5`, so every field a snapshot keeps is covered and nothing else):
 //! - if the structure changed (another number of bodies, or a body's triangles differ: a new
 //!   model, a subdivision, an opened scene), the delta is the whole earlier world, as a snapshot;
 //! - otherwise, per body, the values of each per-vertex, per-spring or per-face array that differ
 //!   (compared bit for bit), as index lists with the earlier values; the material, gas references
-//!   and pins when they differ; the world's settings when they differ.
+//!   and pins when they differ (the material's later fields, plasticity and rigidity, with the
+//!   version-3 and version-5 additions); the world's settings when they differ.
 //!
 //! What of the *state* (positions, velocities, the clock, events and loads) it keeps is the
 //! [`StateScope`]: `None` (a parameter change: the body goes on from where it is), `Touched` (a
@@ -21,7 +22,7 @@
 //! payload in postcard (the same serde path as snapshots).
 
 use crate::mesh::topology;
-use crate::snapshot::{self, BodyV1, SnapshotError, WorldV1, WorldV4};
+use crate::snapshot::{self, BodyV1, SnapshotError, WorldV1, WorldV5};
 use crate::world::World;
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -184,6 +185,8 @@ enum Kind {
         /// The version-4 additions (each body's implicit warm start), when they differ; kept
         /// with [`StateScope::All`] only, like the velocities it goes with.
         ext4: Option<snapshot::ExtensionV4>,
+        /// The version-5 additions (each body's flexural rigidity), when they differ.
+        ext5: Option<snapshot::ExtensionV5>,
         timeline: Option<Timeline>,
         bodies: Vec<Option<BodyDelta>>,
         /// Each body's mesh it was made for: vertex count and a hash of the triangles.
@@ -200,8 +203,8 @@ pub struct Delta {
 
 const MAGIC: &[u8; 5] = b"SSDLT";
 /// 2: the version-3 snapshot additions (1 had none; deltas live only in a session's memory);
-/// 3: the version-4 additions.
-const VERSION: u32 = 3;
+/// 3: the version-4 additions; 4: the version-5 additions.
+const VERSION: u32 = 4;
 const HEADER: usize = 5 + 4 + 4;
 
 fn same_bits(a: &[f64], b: &[f64]) -> bool {
@@ -293,21 +296,23 @@ fn timeline(w: &WorldV1) -> Timeline {
     Timeline { steps: w.steps, t_base: w.t_base, since: w.since, clock_dt: w.clock_dt, events: w.events.clone(), next_event: w.next_event, loads: w.loads.clone() }
 }
 
-fn diff(before4: &WorldV4, after4: &WorldV4, scope: StateScope) -> Delta {
+fn diff(before5: &WorldV5, after5: &WorldV5, scope: StateScope) -> Delta {
+    let (before4, after4) = (&before5.v4, &after5.v4);
     let (before2, after2) = (&before4.v3, &after4.v3);
     let (before, after) = (&before2.base, &after2.base);
     let same_structure = before.bodies.len() == after.bodies.len() && before.bodies.iter().zip(&after.bodies).all(|(b, a)| b.triangles == a.triangles);
     if !same_structure {
-        let whole = snapshot::frame(snapshot::VERSION, &encoded(before4));
+        let whole = snapshot::frame(snapshot::VERSION, &encoded(before5));
         return Delta { scope, kind: Kind::Whole(whole) };
     }
     let settings = (encoded(&before.settings) != encoded(&after.settings)).then(|| before.settings.clone());
     let ext = (encoded(&before2.ext) != encoded(&after2.ext)).then(|| before2.ext.clone());
     let ext3 = (encoded(&before2.ext3) != encoded(&after2.ext3)).then(|| before2.ext3.clone());
     let ext4 = (scope == StateScope::All && encoded(&before4.ext4) != encoded(&after4.ext4)).then(|| before4.ext4.clone());
+    let ext5 = (encoded(&before5.ext5) != encoded(&after5.ext5)).then(|| before5.ext5.clone());
     let timeline = (scope == StateScope::All && encoded(&timeline(before)) != encoded(&timeline(after))).then(|| timeline(before));
     let bodies = before.bodies.iter().zip(&after.bodies).map(|(b, a)| body_delta(b, a, scope)).collect();
-    Delta { scope, kind: Kind::Parts { settings, ext, ext3, ext4, timeline, bodies, meshes: meshes(before) } }
+    Delta { scope, kind: Kind::Parts { settings, ext, ext3, ext4, ext5, timeline, bodies, meshes: meshes(before) } }
 }
 
 /// Each body's vertex count and an FNV-1a hash of its triangles: which meshes a delta fits.
@@ -371,7 +376,7 @@ fn carry_over(now: &World, to: &mut World) {
 impl Delta {
     /// What takes `after` back to `before` (see the module documentation for `scope`).
     pub fn between(before: &World, after: &World, scope: StateScope) -> Delta {
-        diff(&snapshot::payload_v4(before), &snapshot::payload_v4(after), scope)
+        diff(&snapshot::payload_v5(before), &snapshot::payload_v5(after), scope)
     }
 
     /// Take `world` back; returns the inverse (what takes it forward again). On error the world
@@ -385,26 +390,29 @@ impl Delta {
                 *world = earlier;
                 Ok(inverse)
             }
-            Kind::Parts { settings, ext, ext3, ext4, timeline, bodies, meshes: made_for } => {
-                let now = snapshot::payload_v4(world);
-                let here = meshes(&now.v3.base);
+            Kind::Parts { settings, ext, ext3, ext4, ext5, timeline, bodies, meshes: made_for } => {
+                let now = snapshot::payload_v5(world);
+                let here = meshes(&now.v4.v3.base);
                 if made_for.len() == here.len() && made_for != &here {
                     let k = (0..here.len()).find(|&k| made_for[k] != here[k]).unwrap_or(0);
                     return Err(DeltaError::DoesNotFit(format!("body {k} has another mesh ({} vertices) than it was made for ({})", here[k].0, made_for[k].0)));
                 }
                 let mut earlier = now.clone();
-                patch(&mut earlier.v3.base, settings, timeline, bodies)?;
+                patch(&mut earlier.v4.v3.base, settings, timeline, bodies)?;
                 if let Some(e) = ext {
-                    earlier.v3.ext = e.clone();
+                    earlier.v4.v3.ext = e.clone();
                 }
                 if let Some(e) = ext3 {
-                    earlier.v3.ext3 = e.clone();
+                    earlier.v4.v3.ext3 = e.clone();
                 }
                 if let Some(e) = ext4 {
-                    earlier.ext4 = e.clone();
+                    earlier.v4.ext4 = e.clone();
+                }
+                if let Some(e) = ext5 {
+                    earlier.ext5 = e.clone();
                 }
                 let inverse = diff(&now, &earlier, self.scope);
-                let mut earlier = snapshot::world_from_v4(earlier).map_err(DeltaError::Invalid)?;
+                let mut earlier = snapshot::world_from_v5(earlier).map_err(DeltaError::Invalid)?;
                 carry_over(world, &mut earlier);
                 *world = earlier;
                 Ok(inverse)
@@ -426,7 +434,9 @@ impl Delta {
     pub fn is_empty(&self) -> bool {
         match &self.kind {
             Kind::Whole(_) => false,
-            Kind::Parts { settings, ext, ext3, timeline, bodies, .. } => settings.is_none() && ext.is_none() && ext3.is_none() && timeline.is_none() && bodies.iter().all(Option::is_none),
+            Kind::Parts { settings, ext, ext3, ext5, timeline, bodies, .. } => {
+                settings.is_none() && ext.is_none() && ext3.is_none() && ext5.is_none() && timeline.is_none() && bodies.iter().all(Option::is_none)
+            }
         }
     }
 

@@ -26,6 +26,7 @@ pub mod sketch;
 pub mod snapshot;
 pub mod snapshot_v3;
 pub mod snapshot_v4;
+pub mod snapshot_v5;
 pub mod vec3;
 pub mod workload;
 pub mod world;

@@ -9,7 +9,7 @@
 //! | 4 | format version (u32), [`VERSION`] |
 //! | 8 | payload length in bytes (u64) |
 //! | 4 | CRC-32 (IEEE) of the payload (u32) |
-//! | … | payload: [`WorldV4`] encoded with postcard (serde); version 3: [`WorldV3`]; version 2: [`WorldV2`]; version 1: [`WorldV1`] |
+//! | … | payload: [`WorldV5`] encoded with postcard (serde); version 4: [`WorldV4`]; version 3: [`WorldV3`]; version 2: [`WorldV2`]; version 1: [`WorldV1`] |
 //!
 //! The payload holds everything that carries over from one step to the next: every body's mesh
 //! (triangles), state, rest and bending rest lengths, masses, pins, prestress, user forces and
@@ -34,6 +34,9 @@
 //! `ExtensionV4` (`crate::snapshot_v4`). Versions 1 to 3 read without it (the next implicit step
 //! starts cold).
 //!
+//! Version 5 (the hinges' flexural rigidity) is the version-4 payload followed by `ExtensionV5`
+//! (`crate::snapshot_v5`): each body's `Material::rigidity`. Versions 1 to 4 read with rigidity 0.
+//!
 //! Version policy: any change to the payload's types is a new version; this build reads the
 //! versions up to [`VERSION`] (a newer one is refused with a message saying so), and keeps the
 //! types of every older version it reads here, each with its conversion.
@@ -48,17 +51,21 @@ pub use crate::snapshot_v3::{BodyV3, ExtensionV3, WorldV3};
 pub(crate) use crate::snapshot_v3::payload_v3;
 pub use crate::snapshot_v4::{ExtensionV4, WarmV4, WorldV4};
 pub(crate) use crate::snapshot_v4::{payload_v4, world_from_v4};
+pub use crate::snapshot_v5::{BodyV5, ExtensionV5, WorldV5};
+pub(crate) use crate::snapshot_v5::{payload_v5, world_from_v5};
 
 /// The first bytes of every snapshot.
 pub const MAGIC: &[u8; 5] = b"SSNAP";
 /// The format version this build writes (and the newest it reads).
-pub const VERSION: u32 = 4;
+pub const VERSION: u32 = 5;
 /// The first version, still read.
 pub const V1: u32 = 1;
 /// The second version (the implicit integrator), still read.
 pub const V2: u32 = 2;
 /// The third version (plasticity), still read.
 pub const V3: u32 = 3;
+/// The fourth version (the implicit warm start), still read.
+pub const V4: u32 = 4;
 /// Magic, version, payload length, checksum.
 pub const HEADER_LEN: usize = 5 + 4 + 8 + 4;
 
@@ -404,7 +411,7 @@ fn load_v1(l: &Load) -> LoadV1 {
 /// The snapshot of `w`: header and payload (see the module documentation).
 pub fn write(w: &World) -> Vec<u8> {
     // Plain numbers, vectors and enums: postcard cannot fail on them.
-    frame(VERSION, &postcard::to_stdvec(&payload_v4(w)).unwrap_or_default())
+    frame(VERSION, &postcard::to_stdvec(&payload_v5(w)).unwrap_or_default())
 }
 
 /// The version-1 part of `w`'s snapshot (also what `crate::delta` compares).
@@ -479,26 +486,32 @@ fn open(bytes: &[u8]) -> Result<(u32, &[u8]), SnapshotError> {
 pub fn read(bytes: &[u8]) -> Result<World, SnapshotError> {
     let (version, payload) = open(bytes)?;
     let undecodable = |e: postcard::Error| corrupted(format!("the payload does not decode ({e})"));
-    let (v4, rest): (WorldV4, &[u8]) = match version {
+    // Versions 1 to 4 take the later extensions' defaults (`ExtensionV5::default()`: rigidity 0).
+    let v5 = |v4: WorldV4| WorldV5 { v4, ext5: ExtensionV5::default() };
+    let (v5, rest): (WorldV5, &[u8]) = match version {
         V1 => {
             let (base, rest) = postcard::take_from_bytes(payload).map_err(undecodable)?;
             let ext = ExtensionV2 { implicit: false, tolerance: crate::params::TOLERANCE.number(), newton_iterations: crate::params::NEWTON_ITERATIONS.number() as u32, targets: Vec::new() };
-            (WorldV4 { v3: WorldV3 { base, ext, ext3: ExtensionV3::default() }, ext4: ExtensionV4::default() }, rest)
+            (v5(WorldV4 { v3: WorldV3 { base, ext, ext3: ExtensionV3::default() }, ext4: ExtensionV4::default() }), rest)
         }
         V2 => {
             let (v2, rest): (WorldV2, &[u8]) = postcard::take_from_bytes(payload).map_err(undecodable)?;
-            (WorldV4 { v3: WorldV3 { base: v2.base, ext: v2.ext, ext3: ExtensionV3::default() }, ext4: ExtensionV4::default() }, rest)
+            (v5(WorldV4 { v3: WorldV3 { base: v2.base, ext: v2.ext, ext3: ExtensionV3::default() }, ext4: ExtensionV4::default() }), rest)
         }
         V3 => {
             let (v3, rest) = postcard::take_from_bytes(payload).map_err(undecodable)?;
-            (WorldV4 { v3, ext4: ExtensionV4::default() }, rest)
+            (v5(WorldV4 { v3, ext4: ExtensionV4::default() }), rest)
+        }
+        V4 => {
+            let (v4, rest) = postcard::take_from_bytes(payload).map_err(undecodable)?;
+            (v5(v4), rest)
         }
         _ => postcard::take_from_bytes(payload).map_err(undecodable)?,
     };
     if !rest.is_empty() {
         return Err(corrupted(format!("{} unread bytes at the end of the payload", rest.len())));
     }
-    world_from_v4(v4).map_err(corrupted)
+    world_from_v5(v5).map_err(corrupted)
 }
 
 /// A world from a whole payload (an empty target list means none on any body, an empty

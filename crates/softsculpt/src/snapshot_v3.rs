@@ -119,6 +119,7 @@ mod tests {
             let mut old = read(&bytes).unwrap();
             assert_eq!(old.bodies[0].material.flow_rate, 0.0);
             assert_eq!(old.bodies[0].plastic_dissipation(), 0.0);
+            assert_eq!(old.bodies[0].material.rigidity, 0.0);
             old.step_n(100).unwrap();
             assert_eq!(old.bodies[0].positions(), w.bodies[0].positions());
         }

@@ -107,6 +107,7 @@ mod tests {
         let v3 = frame(V3, &postcard::to_stdvec(&payload_v3(&w)).unwrap());
         let mut old = read(&v3).unwrap();
         assert!(old.bodies[0].state.warm.is_empty());
+        assert_eq!(old.bodies[0].material.rigidity, 0.0);
         w.step_n(5).unwrap();
         old.step_n(5).unwrap();
         let gap = old.bodies[0].positions().iter().zip(w.bodies[0].positions()).fold(0.0f64, |g, (a, b)| g.max((a - b).abs()));

@@ -31,6 +31,7 @@ enum Op {
     Reset,
     Gas(f64),
     Stiffness(f64),
+    Rigidity(f64),
     Gravity(f64),
     Integrator(&'static str),
     Target { vertex: usize, k: f64 },
@@ -48,6 +49,7 @@ fn op() -> impl Strategy<Value = Op> {
         Just(Op::Reset),
         (0.0f64..20.0).prop_map(Op::Gas),
         (50.0f64..500.0).prop_map(Op::Stiffness),
+        (0.0f64..0.5).prop_map(Op::Rigidity),
         (0.0f64..12.0).prop_map(Op::Gravity),
         prop::sample::select(vec!["implicit", "symplectic", "rk4"]).prop_map(Op::Integrator),
         (0usize..42, 10.0f64..1000.0).prop_map(|(vertex, k)| Op::Target { vertex, k }),
@@ -89,6 +91,7 @@ fn run(w: &mut World, op: &Op) {
             b.set_gas(nrt / (softsculpt::GAS_CONSTANT * t), t).unwrap();
         }
         Op::Stiffness(k) => w.set_param(0, "stiffness", softsculpt::params::Value::Number(k)).unwrap(),
+        Op::Rigidity(b) => w.set_param(0, "rigidity", softsculpt::params::Value::Number(b)).unwrap(),
         Op::Gravity(g) => w.set_param(0, "gravity", softsculpt::params::Value::Number(g)).unwrap(),
         Op::Integrator(name) => w.set_param(0, "integrator", softsculpt::params::choice("integrator", name).unwrap()).unwrap(),
         Op::Target { vertex, k } => {
@@ -218,6 +221,24 @@ fn undoing_a_subdivision_brings_the_coarse_mesh_back() {
 fn a_delta_of_nothing_is_empty() {
     let w = balloon(1);
     assert!(Delta::between(&w, &w, StateScope::All).is_empty());
+}
+
+/// A parameter change of the rigidity (a material field outside the version-1 material) is in
+/// the delta even with scope `None`: undo brings the earlier value back, redo the new one.
+#[test]
+fn undoing_a_rigidity_change_brings_the_earlier_value_back() {
+    let mut w = balloon(1);
+    w.set_param(0, "rigidity", softsculpt::params::Value::Number(0.1)).unwrap();
+    let before = w.clone();
+    w.set_param(0, "rigidity", softsculpt::params::Value::Number(0.3)).unwrap();
+    let undo = Delta::between(&before, &w, StateScope::None);
+    assert!(!undo.is_empty() && !undo.is_whole());
+    let undo = Delta::from_bytes(&undo.to_bytes()).unwrap();
+    let redo = undo.apply(&mut w).unwrap();
+    assert_eq!(w.bodies[0].material.rigidity, 0.1);
+    assert!(w.snapshot() == before.snapshot());
+    redo.apply(&mut w).unwrap();
+    assert_eq!(w.bodies[0].material.rigidity, 0.3);
 }
 
 /// Bad bytes and deltas of another model are refused, naming why, and the world is untouched.

@@ -60,6 +60,7 @@ fn materials_worlds_and_scene_files_default_to_the_table() {
         (b.stiffness, &params::STIFFNESS),
         (b.spring_damping, &params::SPRING_DAMPING),
         (b.bending, &params::BENDING),
+        (b.rigidity, &params::RIGIDITY),
         (b.damping, &params::DAMPING),
         (w.dt, &params::DT),
         (w.duration, &params::DURATION),

@@ -232,6 +232,7 @@ fn a_saved_scene_opens_as_the_same_bodies_at_rest() {
         let b = &mut s.world.bodies[0];
         b.set_pinned(3, true).unwrap();
         b.material.self_collision = true;
+        b.material.rigidity = 0.02;
     }
     let b = &s.world.bodies[0];
     let spec = softsculpt::scene::save::scene_of(&s.world.settings, &[("octopus", b)], 0.5, None);
@@ -253,6 +254,8 @@ fn a_saved_scene_opens_as_the_same_bodies_at_rest() {
     assert_eq!((0..c.vertex_count()).filter(|&i| c.is_pinned(i)).count(), 1);
     assert!(c.material.self_collision);
     assert_eq!(c.material.stiffness, b.material.stiffness);
+    assert!(toml_text.contains("rigidity = 0.02"), "the rigidity is saved");
+    assert_eq!(c.material.rigidity, 0.02);
     assert!((c.pressure() - b.pressure()).abs() < 1e-9 * b.pressure());
     for _ in 0..200 {
         again.step().unwrap();

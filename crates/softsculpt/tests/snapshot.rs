@@ -130,6 +130,7 @@ enum Op {
     FreezeUnderLoad { body: usize },
     Pin { body: usize, vertex: usize, on: bool },
     SetGas { body: usize, nrt: f64 },
+    SetRigidity { body: usize, rigidity: f64 },
     UserForce { body: usize, vertex: usize, force: f64 },
     Reset { body: usize },
     Subdivide { body: usize },
@@ -144,6 +145,7 @@ fn op() -> impl Strategy<Value = Op> {
         1 => (0usize..2).prop_map(|body| Op::FreezeUnderLoad { body }),
         1 => (0usize..2, 0usize..42, any::<bool>()).prop_map(|(body, vertex, on)| Op::Pin { body, vertex, on }),
         1 => (0usize..2, 0.0f64..20.0).prop_map(|(body, nrt)| Op::SetGas { body, nrt }),
+        1 => (0usize..2, 0.0f64..0.5).prop_map(|(body, rigidity)| Op::SetRigidity { body, rigidity }),
         1 => (0usize..2, 0usize..42, -2.0f64..2.0).prop_map(|(body, vertex, force)| Op::UserForce { body, vertex, force }),
         1 => (0usize..2).prop_map(|body| Op::Reset { body }),
         1 => (0usize..2).prop_map(|body| Op::Subdivide { body }),
@@ -171,6 +173,7 @@ fn apply(w: &mut World, op: &Op) -> String {
             let t = w.bodies[b(body)].material.temperature;
             w.bodies[b(body)].set_gas(nrt / (softsculpt::GAS_CONSTANT * t), t).unwrap();
         }
+        Op::SetRigidity { body, rigidity } => w.bodies[b(body)].material.rigidity = rigidity,
         Op::UserForce { body, vertex, force } => {
             let mut f = vec![0.0; 3 * w.bodies[b(body)].vertex_count()];
             f[3 * vertex + 1] = force;
@@ -324,4 +327,47 @@ fn a_restarted_scene_replays_exactly() {
     w.step_n(150).unwrap();
     assert_eq!(bits(&w), first.0);
     assert_eq!(w.snapshot(), first.1);
+}
+
+/// Version 5 adds each body's flexural rigidity (J) after the version-4 payload. Bodies with a
+/// rigidity keep it through a snapshot; a version-4 snapshot (the version-5 payload without its
+/// extension, framed as version 4: the bytes version 4 wrote) still reads, with rigidity 0, and
+/// continues with the same bits as the world it was taken of (0.15 s, every event fired).
+#[test]
+fn the_rigidity_round_trips_and_a_version_4_snapshot_still_reads() {
+    assert_eq!(VERSION, 5);
+    let mut w = world("symplectic");
+    w.step_n(35).unwrap();
+    w.bodies[0].material.rigidity = 0.125;
+    w.bodies[1].material.rigidity = 0.5;
+    let bytes = w.snapshot();
+    assert_eq!(bytes[5..9], 5u32.to_le_bytes());
+    let r = World::restore(&bytes).unwrap();
+    assert_eq!([r.bodies[0].material.rigidity, r.bodies[1].material.rigidity], [0.125, 0.5]);
+    assert_eq!(r.snapshot(), bytes);
+
+    for b in &mut w.bodies {
+        b.material.rigidity = 0.0;
+    }
+    let v5 = w.snapshot();
+    // The extension in postcard: the list's length (2, one byte), then each body's f64 (8 bytes).
+    let ext5 = 1 + 2 * 8;
+    let mut tail = vec![0u8; ext5];
+    tail[0] = 2;
+    assert_eq!(v5[v5.len() - ext5..], tail[..], "version 5 ends with its extension");
+    let v4 = snapshot::frame(4, &v5[HEADER_LEN..v5.len() - ext5]);
+    let mut old = World::restore(&v4).unwrap();
+    assert!(old.bodies.iter().all(|b| b.material.rigidity == 0.0));
+    assert_eq!(old.snapshot(), v5, "read as version 4, written as version 5");
+    // Version 4 with a rigidity in the world it came from: still 0 (version 4 had no place for it).
+    w.bodies[1].material.rigidity = 0.5;
+    let set = w.snapshot();
+    let v4_of_set = snapshot::frame(4, &set[HEADER_LEN..set.len() - ext5]);
+    assert_eq!(World::restore(&v4_of_set).unwrap().bodies[1].material.rigidity, 0.0);
+    w.bodies[1].material.rigidity = 0.0;
+    w.step_n(115).unwrap();
+    old.step_n(115).unwrap();
+    assert_eq!(old.pending_events(), 0);
+    assert_eq!(bits(&old), bits(&w));
+    assert_eq!(old.snapshot(), w.snapshot());
 }

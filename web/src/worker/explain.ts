@@ -28,7 +28,7 @@ export const CAUSE_WINDOW = 3;
 
 const LABELS: Record<string, string> = {
   ground: 'the ground', gravity: 'gravity', 'gas.amount': 'the gas amount', 'gas.temperature': 'the temperature',
-  stiffness: 'the stiffness', bending: 'the bending stiffness', damping: 'the damping', spring_damping: 'the spring damping',
+  stiffness: 'the stiffness', bending: 'the bending stiffness', rigidity: 'the flexural rigidity', damping: 'the damping', spring_damping: 'the spring damping',
   wind: 'the wind', mass: 'the mass', dt: 'the time step', integrator: 'the integrator', self_collision: 'self-collision',
 };
 

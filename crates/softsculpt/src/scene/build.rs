@@ -254,6 +254,7 @@ fn body(cx: &Ctx, b: &BodySpec, ground: Option<Ground>, index: usize, resolve: R
     material.stiffness = cx.non_negative("stiffness", b.stiffness)?;
     material.spring_damping = cx.non_negative("spring_damping", b.spring_damping)?;
     material.bending_stiffness = cx.non_negative("bending", b.bending)?;
+    material.rigidity = cx.non_negative("rigidity", b.rigidity)?;
     material.damping = cx.non_negative("damping", b.damping)?;
     material.yield_strain = cx.non_negative("yield", b.yield_strain)?;
     material.flow_rate = cx.non_negative("flow", b.flow)?;

@@ -70,6 +70,7 @@ fn body_spec(name: &str, b: &SoftBody) -> BodySpec {
         stiffness: p.stiffness,
         spring_damping: p.spring_damping,
         bending: p.bending_stiffness,
+        rigidity: p.rigidity,
         damping: p.damping,
         yield_strain: p.yield_strain,
         flow: p.flow_rate,

@@ -124,6 +124,8 @@ pub struct BodySpec {
     pub spring_damping: f64,
     /// Bending spring stiffness (N/m).
     pub bending: f64,
+    /// Flexural rigidity B of the hinges (J = N·m).
+    pub rigidity: f64,
     /// Viscous damping c (1/s).
     pub damping: f64,
     /// Plasticity: yield strain (dimensionless; `crate::body::plastic`).
@@ -165,6 +167,7 @@ impl Default for BodySpec {
             stiffness: table::STIFFNESS.number(),
             spring_damping: table::SPRING_DAMPING.number(),
             bending: table::BENDING.number(),
+            rigidity: table::RIGIDITY.number(),
             damping: table::DAMPING.number(),
             yield_strain: table::YIELD.number(),
             flow: table::FLOW.number(),
