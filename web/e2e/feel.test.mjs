@@ -383,3 +383,53 @@ test('clay keeps the shape a mirrored grab pulls and the gas in it: the body doe
   assert.deepEqual(errors, []);
   await page.context().close();
 });
+
+test('a subdivided model keeps its shape: the octopus keeps standing, the mushroom\'s cap keeps its volume under a grab', async () => {
+  const { page, errors } = await openModeler(suite.browser, suite.server.url);
+  const height = () => inspect(page, () => { const y = window.softsculpt.positions().filter((_, k) => k % 3 === 1); return Math.max(...y) - Math.min(...y); });
+  await load(page, 'octopus');
+  await page.waitForTimeout(1500);
+  const h0 = await height();
+  await page.keyboard.press('u');
+  await page.waitForFunction(() => window.softsculpt.positions().length > 3000 && !window.softsculpt.busy(), null, { timeout: 60000 });
+  await page.waitForTimeout(3000);
+  const h1 = await height();
+  await shot(page, '47-octopus-subdivided-standing');
+  // Loop subdivision lifted the tentacle tips off the ground (6.4 mm), so the freeze under load
+  // found no support and the octopus sagged 1.76 → 1.33 m within a second, its tentacles
+  // splayed; Loop's smoothing itself changes the height by a centimetre.
+  assert.ok(h1 > 0.97 * h0, `the subdivided octopus: height ${h0} → ${h1} m`);
+  // The mushroom subdivided once, its cap pulled 150 px out (mirror X: both sides) and held: with
+  // bending springs alone, 4× weaker in flexure per subdivision, it took 5.4 % of the volume and
+  // creased the cap (the unsubdivided one 0.3 %); the hinges' rigidity does not depend on the mesh.
+  await load(page, 'mushroom');
+  await page.keyboard.press('u');
+  await page.waitForFunction(() => window.softsculpt.positions().length > 3000 && !window.softsculpt.busy(), null, { timeout: 60000 });
+  await page.waitForTimeout(2000);
+  const v0 = (await inspect(page, () => window.softsculpt.stats())).volume;
+  const front = await inspect(page, () => {
+    const S = window.softsculpt, x = S.positions(), cam = S.view().position;
+    let lo = Infinity, hi = -Infinity;
+    for (let i = 1; i < x.length; i += 3) { lo = Math.min(lo, x[i]); hi = Math.max(hi, x[i]); }
+    let best = -1, bd = Infinity;
+    for (let i = 0; i < x.length / 3; i++) {
+      if (Math.abs(x[3 * i + 1] - (lo + 0.6 * (hi - lo))) > 0.08 * (hi - lo)) continue;
+      const d = Math.hypot(x[3 * i] - cam[0], x[3 * i + 1] - cam[1], x[3 * i + 2] - cam[2]);
+      if (d < bd) { bd = d; best = i; }
+    }
+    return S.screenOf(best);
+  });
+  await page.keyboard.press('g');
+  await drag(page, front, { x: front.x + 106, y: front.y - 106 }, 15, 2000);
+  const held = (await inspect(page, () => window.softsculpt.stats())).volume;
+  await shot(page, '48-subdivided-mushroom-grabbed');
+  await page.mouse.up();
+  await page.waitForTimeout(3000);
+  const after = (await inspect(page, () => window.softsculpt.stats())).volume;
+  // Measured with the real engine in Node: 0.7 % lost while held (5.4 % without hinges) and
+  // all of it back after; a browser's drag differs in its path, so 2 % and 1 %.
+  assert.ok(held > 0.98 * v0, `the subdivided mushroom's volume under the grab: ${v0} → ${held} m³`);
+  assert.ok(Math.abs(after / v0 - 1) < 0.01, `after letting go: ${v0} → ${after} m³`);
+  assert.deepEqual(errors, []);
+  await page.context().close();
+});

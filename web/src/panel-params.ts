@@ -23,7 +23,7 @@ export const SHOWN: Record<string, Shown> = {
   stiffness: { folder: 'sim', label: 'stiffness k', slider: [0, 5000], power: 2 },
   spring_damping: { folder: 'sim', label: 'spring damping', slider: [0, 5], power: 2.5 },
   bending: { folder: 'sim', label: 'bending k_b', slider: [0, 5000], power: 2 },
-  rigidity: { folder: 'sim', label: 'rigidity B', slider: [0, 0.5], power: 4 },
+  rigidity: { folder: 'sim', label: 'rigidity D', slider: [0, 0.5], power: 4 },
   damping: { folder: 'sim', label: 'damping c', slider: [0, 20], power: -0.5 },
   self_collision: { folder: 'sim', label: 'self-collision' },
   yield: { folder: 'sim', label: 'yield strain (clay)', slider: [0, 0.1, 0.001] },

@@ -120,6 +120,7 @@ describe('a collapse', () => {
     // negative): no collapse to rewind from.
     doc.setParam('stiffness', 1);
     doc.setParam('bending', 0);
+    doc.setParam('rigidity', 0);
     doc.setParam('gas.amount', 1e-6);
     doc.setParam('ground.restitution', 0.01);
     doc.world.sync();

@@ -45,7 +45,7 @@ pub struct SimulateArgs {
     pub spring_damping: f64,
     #[arg(long, allow_hyphen_values = true, default_value_t = table::BENDING.number(), value_parser = args::non_negative, value_name = "KB", help = help(&table::BENDING))]
     pub bending: f64,
-    #[arg(long, allow_hyphen_values = true, default_value_t = table::RIGIDITY.number(), value_parser = args::non_negative, value_name = "B", help = help(&table::RIGIDITY))]
+    #[arg(long, allow_hyphen_values = true, default_value_t = table::RIGIDITY.number(), value_parser = args::non_negative, value_name = "D", help = help(&table::RIGIDITY))]
     pub rigidity: f64,
     #[arg(long, allow_hyphen_values = true, default_value_t = table::DAMPING.number(), value_parser = args::non_negative, value_name = "C", help = help(&table::DAMPING))]
     pub damping: f64,

@@ -232,7 +232,7 @@ fn bending_springs_change_the_result() {
     assert_clean_error(&o, "--bending");
 }
 
-/// `--rigidity B` is taken like `--bending` (given alone and over a preset); a bad value
+/// `--rigidity D` is taken like `--bending` (given alone and over a preset); a bad value
 /// (negative, NaN, infinite, not a number) is one clean error naming the flag, as for `--bending`.
 #[test]
 fn rigidity_is_taken_like_bending_and_bad_values_are_refused() {

@@ -1,7 +1,7 @@
 //! Snapshot format version 5 (`crate::snapshot` holds the header, versions 1 and 2 and the
 //! policy; `crate::snapshot_v3` version 3, `crate::snapshot_v4` version 4): the version-4
-//! payload followed by [`ExtensionV5`], each body's flexural rigidity B (J, `Material::rigidity`,
-//! the hinges' bending energy). Versions 1 to 4 read with B = 0 (no hinge energy: what those
+//! payload followed by [`ExtensionV5`], each body's flexural rigidity D (J, `Material::rigidity`,
+//! the hinges' bending energy). Versions 1 to 4 read with D = 0 (no hinge energy: what those
 //! versions' bodies had).
 //!
 //! Undo deltas (`crate::delta`, format 4) compare it with the material.
@@ -26,7 +26,7 @@ pub struct ExtensionV5 {
 /// One body's version-5 additions.
 #[derive(Clone, Serialize, Deserialize)]
 pub struct BodyV5 {
-    /// Flexural rigidity B (J = N·m), `Material::rigidity`.
+    /// Flexural rigidity D (J = N·m), `Material::rigidity`.
     pub rigidity: f64,
 }
 

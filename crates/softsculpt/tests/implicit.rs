@@ -49,7 +49,7 @@ fn dense_forces(body: &SoftBody, p: &Material, g: f64, x: &[f64], v: &[f64]) -> 
     }
     let pressure = p.nrt() / vol;
     if p.rigidity > 0.0 {
-        for (k, fk) in dense_hinge_forces(body, p.rigidity, x).into_iter().enumerate() {
+        for (k, fk) in dense_hinge_forces(body, p, x, v).into_iter().enumerate() {
             f[k] += fk;
         }
     }
@@ -66,8 +66,10 @@ fn dense_forces(body: &SoftBody, p: &Material, g: f64, x: &[f64], v: &[f64]) -> 
 /// The hinges' forces written out independently of the engine: every edge with two faces, its
 /// energy ½ D (|ē|² / Ā) (θ − θ̄)² with θ the angle between the faces' unit normals (signed by
 /// the edge's direction; rest values from the frozen shape), differentiated by central
-/// differences (h = 1e-6 m: truncation D θ‴ h² ≈ 1e-13, rounding ε E / h ≈ 1e-13 N here).
-fn dense_hinge_forces(body: &SoftBody, d: f64, x: &[f64]) -> Vec<f64> {
+/// differences (h = 1e-6 m: truncation D θ‴ h² ≈ 1e-13, rounding ε E / h ≈ 1e-13 N here); the
+/// damping −D w τ θ̇ ∇θ with τ = c_s / k and θ̇ by central differences along v (the same errors).
+fn dense_hinge_forces(body: &SoftBody, p: &Material, x: &[f64], v: &[f64]) -> Vec<f64> {
+    let (d, tau) = (p.rigidity, p.spring_damping / p.stiffness);
     let tris = body.triangles();
     let mut by_edge: std::collections::BTreeMap<(u32, u32), Vec<(usize, bool)>> = Default::default();
     for (fi, t) in tris.iter().enumerate() {
@@ -101,7 +103,13 @@ fn dense_hinge_forces(body: &SoftBody, d: f64, x: &[f64]) -> Vec<f64> {
         let rest = angle(x0, i, j, f1, f2);
         let e0: f64 = (0..3).map(|c| (x0[3 * j as usize + c] - x0[3 * i as usize + c]).powi(2)).sum();
         let w = e0 / (unit_normal(x0, tris[f1]).1 + unit_normal(x0, tris[f2]).1);
-        let energy = |x: &[f64]| 0.5 * d * w * (angle(x, i, j, f1, f2) - rest).powi(2);
+        // θ̇ along v: the energy's gradient is D w (θ − θ̄) ∇θ, the damping adds D w τ θ̇ ∇θ, so the
+        // force is the gradient of ½ D w (θ − (θ̄ − τ θ̇))² at fixed θ̇.
+        let eps = 1e-6;
+        let xp: Vec<f64> = x.iter().zip(v).map(|(a, b)| a + eps * b).collect();
+        let xm: Vec<f64> = x.iter().zip(v).map(|(a, b)| a - eps * b).collect();
+        let rate = (angle(&xp, i, j, f1, f2) - angle(&xm, i, j, f1, f2)) / (2.0 * eps);
+        let energy = |x: &[f64]| 0.5 * d * w * (angle(x, i, j, f1, f2) - rest + tau * rate).powi(2);
         let mut verts: Vec<u32> = tris[f1].iter().chain(&tris[f2]).copied().collect();
         verts.sort_unstable();
         verts.dedup();

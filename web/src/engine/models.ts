@@ -54,8 +54,8 @@ export const FRAME_DT = 1 / 60;
  * - viscous damping c (1/s) and gravity act per unit mass; the mass (1 kg) is spread over the
  *   vertices, so density per area is fixed; the gas amount is set by a pressure;
  * - bending springs k_b = k: their in-plane share is resolution-independent like the edges';
- *   their resistance to folding falls with the edge length (a measured limit: the subdivided
- *   mushroom keeps its height, see the browser test), which the gas pressure makes up for;
+ *   their resistance to folding falls with the edge length, which hinges of flexural rigidity
+ *   D (J) make up for: D does not depend on the resolution (crates/softsculpt/src/body/hinges.rs);
  * - the implicit tolerance 1e-3 was measured in the browser at 1e-3, 1e-4 and 1e-6
  *   (BENCHMARKS.md, "The modeler on implicit steps").
  */
@@ -88,6 +88,21 @@ function minMass(world: World, b: number): number {
 const EULER_SHARE = 0.25;
 
 /**
+ * The hinges' share of the stiffness in `stableDt` (N/m, as if springs): their Gauss–Newton
+ * matrix D w ∇θ ∇θᵀ (crates/softsculpt/src/body/hinges.rs) bounded by Gershgorin on a vertex of
+ * a near-equilateral mesh of shortest edge h: |∇θ| ≤ 2/(√3 h) at each of a hinge's four
+ * vertices, w = 2/√3, 12 hinges around a vertex: ω² ≤ 12 · D (2/√3)(2/(√3 h))(4 · 2/(√3 h)) / m
+ * = 74 D / (h² m), against 12 k / m for springs: k_h = 6.2 D / h² (it grows 4× per
+ * subdivision: bending limits explicit steps as h², where the implicit step does not care).
+ */
+function hingeStiffness(world: World, b: number): number {
+  const d = (world.params(b).rigidity as number | undefined) ?? 0;
+  if (!(d > 0)) return 0;
+  const h = world.body(b).rest.reduce((a, l) => (l > 0 ? Math.min(a, l) : a), Infinity);
+  return Number.isFinite(h) ? (6.2 * d) / (h * h) : 0;
+}
+
+/**
  * The largest stable time step for body `b` (explicit methods need dt ≲ 2/ω with ω² ≈ 12 k / m,
  * and dt ≲ 2 m / (12 cs) for the spring damping), with a safety factor of 0.3 (and
  * [`EULER_SHARE`] of that for forward Euler), at most 1 ms, a round number.
@@ -95,10 +110,21 @@ const EULER_SHARE = 0.25;
 export function stableDt(world: World, b: number, integrator = 'symplectic'): number {
   const p = world.params(b);
   const m = minMass(world, b);
-  const k = (p.stiffness as number) + (p.bending as number), cs = 2 * (p.spring_damping as number);
+  const k = (p.stiffness as number) + (p.bending as number) + hingeStiffness(world, b), cs = 2 * (p.spring_damping as number);
   const omega = Math.sqrt((12 * k) / m);
   const limits = [1e-3, 0.3 * (2 / omega)];
   if (cs > 0) limits.push((0.3 * 2 * m) / (12 * cs));
+  // The hinges' damping D w τ θ̇ (τ = c_s / k, core: body/hinges.rs) like the springs' c_s: a
+  // mode of ω_h² = 12 k_h / m damped at τ ω_h² / 2 needs dt ≲ 2 / (τ ω_h²). Forward Euler on
+  // such a mode (amplification √((1 − γ dt)² + ω² dt²), γ = (c + τ ω²) / 2) is stable for
+  // dt ≤ 2γ / (ω² + γ²) ≈ τ / (1 + τ² ω² / 4) where τ ω² dominates, else only while
+  // dt ≤ c / ω_h² (the viscous c alone; [`EULER_SHARE`] leaves a margin of four on both).
+  const kh = hingeStiffness(world, b);
+  if (kh > 0) {
+    const w2 = (12 * kh) / m, tau = (p.stiffness as number) > 0 ? (p.spring_damping as number) / (p.stiffness as number) : 0;
+    if (tau > 0) limits.push((0.3 * 2) / (tau * w2));
+    if (integrator === 'euler') limits.push(Math.max(tau / (1 + (tau * tau * w2) / 4), (p.damping as number) / w2));
+  }
   const dt = Math.min(...limits) * (integrator === 'euler' ? EULER_SHARE : 1);
   const ten = Math.pow(10, Math.floor(Math.log10(dt)));
   return [5, 2, 1].map((f) => f * ten).find((v) => v <= dt) ?? ten;

@@ -91,7 +91,7 @@ pub(crate) fn evaluate(
     }
     // Stage hinges (`hinges.rs`): bending by the dihedral angles, when the rigidity is set.
     if p.rigidity > 0.0 && !m.hinges.is_empty() {
-        m.hinges.add_forces(p.rigidity, x, rare);
+        m.hinges.add_forces(p.rigidity, p.retardation_time(), x, v, rare);
         has_rare = true;
     }
 

@@ -37,8 +37,14 @@
 //!
 //!   ∇_i θ = −(1 − t_k) ∇_k θ − (1 − t_l) ∇_l θ,    ∇_j θ = −t_k ∇_k θ − t_l ∇_l θ.
 //!
-//! **Force** f_v = −D w (θ − θ̄) ∇_v θ on the hinge's four vertices: it sums to zero and has no
-//! moment, so it conserves momentum and angular momentum. θ − θ̄ is taken in (−π, π].
+//! **Force** f_v = −D w (θ − θ̄ + τ θ̇) ∇_v θ on the hinge's four vertices, θ̇ = Σ_u ∇_u θ · v_u:
+//! it sums to zero and has no moment, so it conserves momentum and angular momentum. θ − θ̄ is
+//! taken in (−π, π]. τ = c_s / k (s) is the material's retardation time, the same as its edges'
+//! (a spring's damping c_s against its stiffness k): a Kelvin–Voigt solid, whose bending moment
+//! D (κ + τ κ̇) relaxes with the membrane's time. Without it a fold's modes are damped only by
+//! the viscous c, and forward Euler, whose amplification on an undamped mode of frequency ω is
+//! √(1 + ω² dt²), had no usable step on the modeler's mushroom (1e-6 s); with it a mode is
+//! damped at τ ω² / 2, and forward Euler is stable for dt ≲ τ. No τ where k = 0.
 //!
 //! The implicit integrator's matrix takes the Gauss–Newton part D w ∇θ ∇θᵀ of the Hessian
 //! (positive semi-definite, rank one per hinge, `implicit/system.rs`) and drops
@@ -81,6 +87,16 @@ pub fn angle_and_gradient(x: &[f64], h: &[u32; 4]) -> Option<(f64, [V3; 4])> {
     let gi = [-(1.0 - tk) * gk[0] - (1.0 - tl) * gl[0], -(1.0 - tk) * gk[1] - (1.0 - tl) * gl[1], -(1.0 - tk) * gk[2] - (1.0 - tl) * gl[2]];
     let gj = [-tk * gk[0] - tl * gl[0], -tk * gk[1] - tl * gl[1], -tk * gk[2] - tl * gl[2]];
     Some((theta, [gi, gj, gk, gl]))
+}
+
+/// θ̇ = Σ_u ∇_u θ · v_u (rad/s) from the gradient `g` and the velocities `v` (flat xyz).
+#[inline(always)]
+pub fn rate(g: &[V3; 4], h: &[u32; 4], v: &[f64]) -> f64 {
+    let mut r = 0.0;
+    for (q, &u) in h.iter().enumerate() {
+        r += dot(g[q], get(v, u as usize));
+    }
+    r
 }
 
 /// θ − θ̄ in (−π, π] (rad).
@@ -134,11 +150,12 @@ impl Hinges {
         0.5 * b * sum
     }
 
-    /// Stage "hinges": add f_v = −D w (θ − θ̄) ∇_v θ (N) to `f` (flat xyz), hinge by hinge.
-    pub fn add_forces(&self, b: f64, x: &[f64], f: &mut [f64]) {
+    /// Stage "hinges": add f_v = −D w (θ − θ̄ + τ θ̇) ∇_v θ (N) to `f` (flat xyz), hinge by
+    /// hinge; D in J, τ in s.
+    pub fn add_forces(&self, b: f64, tau: f64, x: &[f64], v: &[f64], f: &mut [f64]) {
         for (h, hv) in self.v.iter().enumerate() {
             if let Some((t, g)) = angle_and_gradient(x, hv) {
-                let s = -b * self.weight[h] * excess(t, self.rest[h]);
+                let s = -b * self.weight[h] * (excess(t, self.rest[h]) + tau * rate(&g, hv, v));
                 for (q, &v) in hv.iter().enumerate() {
                     for d in 0..3 {
                         f[3 * v as usize + d] += s * g[q][d];
@@ -192,7 +209,8 @@ mod tests {
         let x = hinge_x();
         let hn = Hinges { v: vec![[0, 1, 2, 3]], rest: vec![0.3], weight: vec![1.7] };
         let mut f = vec![0.0; 12];
-        hn.add_forces(2.0, &x, &mut f);
+        let v: Vec<f64> = (0..12).map(|k| 0.1 * (k as f64).sin()).collect();
+        hn.add_forces(2.0, 0.01, &x, &v, &mut f);
         let (mut sum, mut moment) = ([0.0; 3], [0.0; 3]);
         for v in 0..4 {
             let (xv, fv) = (get(&x, v), get(&f, v));

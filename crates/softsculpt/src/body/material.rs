@@ -128,6 +128,16 @@ pub fn check_positive(name: &'static str, value: f64) -> Result<(), SimError> {
 }
 
 impl Material {
+    /// The retardation time τ = c_s / k (s) the hinges' damping uses (`hinges.rs`): the same
+    /// relaxation time as the edges'; 0 without edge stiffness.
+    pub fn retardation_time(&self) -> f64 {
+        if self.stiffness > 0.0 {
+            self.spring_damping / self.stiffness
+        } else {
+            0.0
+        }
+    }
+
     /// Whether the plastic stage runs (a flow rate above 0).
     pub fn is_plastic(&self) -> bool {
         self.flow_rate > 0.0

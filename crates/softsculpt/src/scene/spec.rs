@@ -124,7 +124,7 @@ pub struct BodySpec {
     pub spring_damping: f64,
     /// Bending spring stiffness (N/m).
     pub bending: f64,
-    /// Flexural rigidity B of the hinges (J = N·m).
+    /// Flexural rigidity D of the hinges (J = N·m).
     pub rigidity: f64,
     /// Viscous damping c (1/s).
     pub damping: f64,

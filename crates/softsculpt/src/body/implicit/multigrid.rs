@@ -30,7 +30,8 @@
 //! with P_iᵀ B P_j = a P_iᵀ P_j + b w_i w_jᵀ, w_i = (d, r_i × d) and
 //! P_iᵀ P_j = [[I, −[r_j]×], [[r_i]×, (r_i·r_j) I − r_j r_iᵀ]]. Left out of the coarse
 //! matrices and of the cycle's own products: the gas's rank-one term γ g gᵀ (the conjugate
-//! gradient, whose product has it, takes care of that one direction). Pinned vertices are no
+//! gradient, whose product has it, takes care of that one direction). A hinge's rank-one
+//! c ∇θ ∇θᵀ adds c w_q w_rᵀ, w_q = P_qᵀ ∇_q θ, to the blocks of its four vertices' nodes. Pinned vertices are no
 //! part of the system: their springs count on the free end's diagonal only. Vertices the
 //! ground holds have no y unknown (`ground.rs`): the fine matrix is F A F (F zeroes their y rows
 //! and columns: the fine product zeroes the rows, and every vector it is given is 0 there), and a spring block touching one is F_i B F_j, added
@@ -313,6 +314,9 @@ struct Level {
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Multigrid {
     levels: Vec<Level>,
+    /// Per hinge, the level-1 block of each of its 16 vertex pairs (q, r) (`NONE`: a pinned
+    /// vertex's, or none), found on the first assembly with hinges.
+    hpos: Vec<[u32; 16]>,
     chol: Vec<f64>,
     drop: Vec<bool>,
     t: Vec<f64>,
@@ -340,14 +344,20 @@ impl Multigrid {
             }
         }
         let nc = levels.last().map_or(0, |l| 6 * l.s.n);
-        Multigrid { levels, chol: vec![0.0; nc * nc], drop: vec![false; nc], t: vec![0.0; 3 * n] }
+        Multigrid { levels, hpos: Vec::new(), chol: vec![0.0; nc * nc], drop: vec![false; nc], t: vec![0.0; 3 * n] }
     }
 
     /// Coarse matrices from the system's current coefficients (after `System::eval`) and the
     /// positions `x` (flat xyz) they were taken at.
     pub fn assemble(&mut self, sys: &System, m: &Model, x: &[f64]) {
-        let Some((first, rest)) = self.levels.split_first_mut() else { return };
         let free = |i: usize| m.inv_mass[i] != 0.0;
+        if sys.hinged && self.hpos.len() != m.hinges.v.len() {
+            if let Some(first) = self.levels.first() {
+                self.hpos = hinge_blocks(&first.s, sys, m);
+            }
+        }
+        let Multigrid { levels, hpos, .. } = self;
+        let Some((first, rest)) = levels.split_first_mut() else { return };
         // The ground's held vertices have no y unknown (`ground.rs`): the cycle's fine level is
         // F A F (F zeroes their y rows and columns), and so are the coarse ones.
         let held = |i: usize| sys.ground.active() && sys.ground.held[i];
@@ -391,6 +401,41 @@ impl Multigrid {
                 }
                 let sum = without_y(sum, held(i), held(i));
                 add_sandwich(&mut first.a[dpos], &sum, &ri);
+            }
+        }
+        // The hinges' rank-one blocks c ∇θ ∇θᵀ (`system.rs`): with w_q = P_qᵀ ∇_q θ = (g_q, r_q × g_q)
+        // (g_q's y zeroed where the ground holds the vertex; a pinned vertex is no unknown),
+        // c w_q w_rᵀ goes to block (node of q, node of r). Every pair of a hinge's vertices is
+        // an edge or its bending pair, so the level's sparsity has the block already. Without
+        // them the coarse levels did not see bending: at 10,242 vertices with the modeler's
+        // D = 0.05 J the conjugate gradient took 6× the iterations (BENCHMARKS.md).
+        if sys.hinged {
+            for (h, at) in hpos.iter().enumerate() {
+                let c = sys.hc[h];
+                if c == 0.0 {
+                    continue;
+                }
+                let (g, hv) = (&sys.hg[h], &m.hinges.v[h]);
+                let mut w = [[0.0; 6]; 4];
+                for q in 0..4 {
+                    let v = hv[q] as usize;
+                    let gq = [c.sqrt() * g[3 * q], if held(v) { 0.0 } else { c.sqrt() * g[3 * q + 1] }, c.sqrt() * g[3 * q + 2]];
+                    let rg = cross(&first.off[v], &gq);
+                    w[q] = [gq[0], gq[1], gq[2], rg[0], rg[1], rg[2]];
+                }
+                for q in 0..4 {
+                    for r in 0..4 {
+                        if at[4 * q + r] == super::aggregate::NONE {
+                            continue;
+                        }
+                        let blk = &mut first.a[at[4 * q + r] as usize];
+                        for p in 0..6 {
+                            for t in 0..6 {
+                                blk[6 * p + t] += w[q][p] * w[r][t];
+                            }
+                        }
+                    }
+                }
             }
         }
         // Level l + 1 from level l.
@@ -576,7 +621,7 @@ impl Multigrid {
         if self.levels.is_empty() {
             return jacobi(th, sys, n, 1.0, res, None, z, slots);
         }
-        let Multigrid { levels, chol, drop, t } = self;
+        let Multigrid { levels, chol, drop, t, .. } = self;
         // Pre-smoothing from 0: z = ω P res; then t = res − A z, restricted: (Σ t_i, Σ r_i × t_i).
         jacobi(th, sys, n, OMEGA, res, None, z, slots);
         sys.residual(th, m, z, res, t, slots);
@@ -620,6 +665,35 @@ impl Multigrid {
         sys.residual(th, m, z, res, t, slots);
         jacobi(th, sys, n, OMEGA, t, Some(res), z, slots)
     }
+}
+
+/// Per hinge of `m`, the level-1 block (`s`) of each of its vertex pairs (q, r) as 4 q + r: the
+/// node's diagonal block for q = r, else the block of the edge or bending pair (q, r) from row
+/// q; `NONE` where either vertex is pinned (no unknown).
+fn hinge_blocks(s: &Shape, sys: &System, m: &Model) -> Vec<[u32; 16]> {
+    use super::aggregate::NONE;
+    let entry = |rows: &super::adjacency::SpringRows, i: usize, j: usize| (rows.start[i] as usize..rows.start[i + 1] as usize).find(|&k| rows.other[k] as usize == j);
+    let free = |i: usize| m.inv_mass[i] != 0.0;
+    m.hinges
+        .v
+        .iter()
+        .map(|hv| {
+            std::array::from_fn(|qr| {
+                let (vq, vr) = (hv[qr / 4] as usize, hv[qr % 4] as usize);
+                if !free(vq) || !free(vr) {
+                    NONE
+                } else if vq == vr {
+                    s.start[s.parent[vq] as usize]
+                } else if let Some(k) = entry(&sys.edges, vq, vr) {
+                    s.pos[0][k]
+                } else if let Some(k) = entry(&sys.bends, vq, vr) {
+                    s.pos[1][k]
+                } else {
+                    NONE
+                }
+            })
+        })
+        .collect()
 }
 
 /// Each node's centre (the mean of its members' positions `pos`) into `c`, and each member's

@@ -21,8 +21,9 @@
 //!   overshoot: then b < 0 for a spring compressed below about half its rest length, but B's
 //!   eigenvalues a, a and a + b = dt² k + dt cs stay positive); it couples i and j as
 //!   [B −B; −B B]. Bending springs are the same with k_b.
-//! - **hinge** (`body/hinges.rs`) f_v = −D w (θ − θ̄) ∇_v θ on its four vertices: the
-//!   Gauss–Newton part dt² D w ∇θ ∇θᵀ (positive semi-definite, rank one) enters the matrix,
+//! - **hinge** (`body/hinges.rs`) f_v = −D w (θ − θ̄ + τ θ̇) ∇_v θ on its four vertices: the
+//!   Gauss–Newton part dt² D w ∇θ ∇θᵀ (positive semi-definite, rank one) and the damping's
+//!   dt τ D w ∇θ ∇θᵀ (exact but for ∇θ's dependence on x, dropped) enter the matrix,
 //!   applied as c_h ∇θ (∇θ · p) per hinge, never as a dense 12×12 block; the indefinite
 //!   dt² D w (θ − θ̄) ∇²θ is dropped (it vanishes at the rest angle). Its diagonal 3×3 blocks go
 //!   into the block-Jacobi preconditioner; the multigrid's coarse levels leave hinges out (a
@@ -55,7 +56,7 @@
 //! the solution it converges to is the backward-Euler step with every force exact.
 
 use super::adjacency::{FaceRows, HingeRows, SpringRows};
-use super::super::hinges::{angle_and_gradient, excess, Hinges};
+use super::super::hinges::{angle_and_gradient, excess, rate, Hinges};
 use std::sync::atomic::{AtomicU64, Ordering};
 use super::ground::GroundSet;
 use super::super::{gas, Model, Springs};
@@ -115,8 +116,8 @@ pub(crate) struct System {
     /// Bending springs take part (k_b > 0), as in the explicit stages.
     pub bending: bool,
     /// Hinges (`body/hinges.rs`): per vertex the hinges around it; per hinge at (x_t, v⁺) the
-    /// gradient ∇θ at its four vertices (1/m), the force scale −D w (θ − θ̄) (J) and the matrix
-    /// coefficient dt² D w (kg·m²); the product's per-hinge c_h (∇θ · p) (`HingeProducts`).
+    /// gradient ∇θ at its four vertices (1/m), the force scale −D w (θ − θ̄ + τ θ̇) (J) and the matrix
+    /// coefficient (dt² + dt τ) D w (kg·m²); the product's per-hinge c_h (∇θ · p) (`HingeProducts`).
     pub hrows: HingeRows,
     pub hg: Vec<[f64; 12]>,
     pub hf: Vec<f64>,
@@ -234,7 +235,7 @@ impl System {
         }
         self.hinged = p.rigidity > 0.0 && !m.hinges.v.is_empty();
         if self.hinged {
-            hinge_pass(th, &m.hinges, p.rigidity, dt, xt, (&mut self.hg, &mut self.hf, &mut self.hc), &mut self.eslots);
+            hinge_pass(th, &m.hinges, (p.rigidity, p.retardation_time()), dt, (xt, vp), (&mut self.hg, &mut self.hf, &mut self.hc), &mut self.eslots);
         }
 
         // Faces and gas: n_f per face and 6V (per-chunk sums in chunk order), then P.
@@ -563,9 +564,10 @@ fn spring_pass(th: &Threads, sp: &Springs, (k, cs, absolute): (f64, f64, bool), 
     });
 }
 
-/// Per hinge at `xt`: ∇θ, the force scale −D w (θ − θ̄) and the matrix coefficient dt² D w
-/// (`b` = D in J); a degenerate hinge (a face without area) gets zeros.
-fn hinge_pass(th: &Threads, hn: &Hinges, b: f64, dt: f64, xt: &[f64], (hg, hf, hc): (&mut [[f64; 12]], &mut [f64], &mut [f64]), slots: &mut [f64]) {
+/// Per hinge at (x_t, v⁺): ∇θ, the force scale −D w (θ − θ̄ + τ θ̇) and the matrix coefficient
+/// (dt² + dt τ) D w (`(b, tau)` = D in J, τ in s); a degenerate hinge (a face without area) gets
+/// zeros. The damping's dependence on x through ∇θ is dropped, as the springs' is.
+fn hinge_pass(th: &Threads, hn: &Hinges, (b, tau): (f64, f64), dt: f64, (xt, vp): (&[f64], &[f64]), (hg, hf, hc): (&mut [[f64; 12]], &mut [f64], &mut [f64]), slots: &mut [f64]) {
     let nh = hn.v.len();
     let nch = chunks(nh, ECHUNK);
     let (go, fo, co) = (Out::new(hg), Out::new(hf), Out::new(hc));
@@ -580,8 +582,8 @@ fn hinge_pass(th: &Threads, hn: &Hinges, b: f64, dt: f64, xt: &[f64], (hg, hf, h
                     for (q, gq) in g.iter().enumerate() {
                         hg[lh][3 * q..3 * q + 3].copy_from_slice(gq);
                     }
-                    hf[lh] = -bw * excess(theta, hn.rest[h]);
-                    hc[lh] = dt * dt * bw;
+                    hf[lh] = -bw * (excess(theta, hn.rest[h]) + tau * rate(&g, &hn.v[h], vp));
+                    hc[lh] = (dt * dt + dt * tau) * bw;
                 }
                 None => {
                     hg[lh] = [0.0; 12];
