@@ -123,7 +123,9 @@ export function stableDt(world: World, b: number, integrator = 'symplectic'): nu
   if (kh > 0) {
     const w2 = (12 * kh) / m, tau = (p.stiffness as number) > 0 ? (p.spring_damping as number) / (p.stiffness as number) : 0;
     if (tau > 0) limits.push((0.3 * 2) / (tau * w2));
-    if (integrator === 'euler') limits.push(Math.max(tau / (1 + (tau * tau * w2) / 4), (p.damping as number) / w2));
+    // (Neither τ nor c: forward Euler has no stable step on these modes; the others' limit stands.)
+    const euler = Math.max(tau / (1 + (tau * tau * w2) / 4), (p.damping as number) / w2);
+    if (integrator === 'euler' && euler > 0) limits.push(euler);
   }
   const dt = Math.min(...limits) * (integrator === 'euler' ? EULER_SHARE : 1);
   const ten = Math.pow(10, Math.floor(Math.log10(dt)));

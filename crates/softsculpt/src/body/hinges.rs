@@ -26,7 +26,8 @@
 //!   E = ½ D A / R²,
 //!
 //! Kirchhoff's thin plate in cylindrical bending (D = Y t³ / 12 (1 − ν²) for Young's modulus Y,
-//! thickness t). Measured (`tests/hinges.rs`): that, and the same plate meshed across the axis,
+//! thickness t). (On doubly curved shapes the mesh's sum has a Gaussian-curvature part with an
+//! effective Poisson ratio of its own, not a chosen one.) Measured (`tests/hinges.rs`): that, and the same plate meshed across the axis,
 //! at three resolutions each, to within the edges on the plate's ends (which have no hinge).
 //!
 //! **Gradient** of θ (m⁻¹): rotating face 1 about ê by φ moves x_k by φ h₁ n̂₁ (h₁ = |n₁| / |e|,
@@ -44,7 +45,8 @@
 //! D (κ + τ κ̇) relaxes with the membrane's time. Without it a fold's modes are damped only by
 //! the viscous c, and forward Euler, whose amplification on an undamped mode of frequency ω is
 //! √(1 + ω² dt²), had no usable step on the modeler's mushroom (1e-6 s); with it a mode is
-//! damped at τ ω² / 2, and forward Euler is stable for dt ≲ τ. No τ where k = 0.
+//! damped at γ = τ ω² / 2, and forward Euler is stable for dt ≤ 2γ / (ω² + γ²), about τ where
+//! τ ω ≲ 2 (the page's `stableDt` takes the bound). No τ where k = 0.
 //!
 //! The implicit integrator's matrix takes the Gauss–Newton part D w ∇θ ∇θᵀ of the Hessian
 //! (positive semi-definite, rank one per hinge, `implicit/system.rs`) and drops
@@ -222,5 +224,25 @@ mod tests {
         }
         assert!(sum.iter().chain(&moment).all(|c| c.abs() < 1e-12), "{sum:?} {moment:?}");
         assert!(f.iter().any(|c| c.abs() > 0.1), "a bent hinge pushes");
+    }
+
+    /// A hinge frozen with a face of no area gets a finite weight and rest angle (0 if both
+    /// faces have none), and one whose face has no area at a step pushes nothing: nothing
+    /// becomes NaN.
+    #[test]
+    fn a_degenerate_hinge_is_harmless() {
+        // Face (i, j, k) with k on the edge: no area.
+        let x = vec![0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.5, -1.0, 0.3];
+        let mut hn = Hinges { v: vec![[0, 1, 2, 3]], rest: vec![0.0], weight: vec![0.0] };
+        hn.rest_to(&x);
+        assert!(hn.weight[0].is_finite() && hn.rest[0].is_finite());
+        let mut f = vec![0.0; 12];
+        hn.add_forces(1.0, 0.01, &hinge_x(), &[0.1; 12], &mut f);
+        assert!(f.iter().all(|c| c.is_finite()));
+        let (mut f, v) = (vec![0.0; 12], vec![0.1; 12]);
+        let healthy = Hinges { v: vec![[0, 1, 2, 3]], rest: vec![0.2], weight: vec![1.0] };
+        healthy.add_forces(1.0, 0.01, &x, &v, &mut f);
+        assert_eq!(f, vec![0.0; 12], "a hinge without area now pushes nothing");
+        assert_eq!(healthy.energy(1.0, &x), 0.0);
     }
 }

@@ -15,7 +15,7 @@ pub struct Stats {
     /// Σ ½ mi |vi|² (pinned vertices do not move and contribute 0).
     pub kinetic_energy: f64,
     /// Σ ½ k (l − L)² over edge springs plus the same with k_b over bending springs, plus the
-    /// hinges' Σ ½ B w (θ − θ̄)² (`hinges.rs`) (minus
+    /// hinges' Σ ½ D w (θ − θ̄)² (`hinges.rs`) (minus
     /// f_p · (x − x_frozen) after a freeze under load).
     pub elastic_energy: f64,
     /// −nRT ln(V/V0) + P_ref (V − V0), see `gas.rs`.

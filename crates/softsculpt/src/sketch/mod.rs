@@ -84,6 +84,10 @@ pub fn sketch(outline: &Outline, edge: Option<f64>, nrt: Option<f64>) -> Result<
     world.apply_preset(0, "modeler").map_err(|e| bad(e.to_string()))?;
     world.set_param(0, "gravity", crate::params::Value::Number(0.0)).map_err(|e| bad(e.to_string()))?;
     world.set_param(0, "ground", crate::params::Value::Flag(false)).map_err(|e| bad(e.to_string()))?;
+    // The flat pillow is a construction, not a rest shape to bend back to: hinges at rest in it
+    // would hold its creased rim against the gas. The balloon gets them at its own shape when
+    // the modeler loads it (its frozen shape).
+    world.set_param(0, "rigidity", crate::params::Value::Number(0.0)).map_err(|e| bad(e.to_string()))?;
     let nrt = match nrt {
         Some(v) if v.is_finite() && v > 0.0 => v,
         Some(v) => return Err(bad(format!("gas nRT must be a positive number of joules, got {v}"))),

@@ -10,10 +10,11 @@ use crate::error::SimError;
 /// ~1e-16 m at unit scale); a gap of 1 µm counts those and nothing that hovers visibly.
 pub const SUPPORT_GAP: f64 = 1e-6;
 
-/// The farthest (m) a new mesh's vertex is moved back onto the support its origin rested on
-/// (`World::put_on_supports`): Loop subdivision lifted the octopus's tentacle tips 6.4 mm; a
-/// few centimetres cover a coarse model's edge without letting a vertex jump across a gap.
-pub const SUPPORT_LIFT: f64 = 0.05;
+/// The farthest a new mesh's vertex is moved back onto the support its origin rested on, as a
+/// fraction of the new mesh's mean edge length (`World::put_on_supports`; a fraction, so that a
+/// model of any size is treated alike): Loop subdivision lifted the octopus's tentacle tips by
+/// 0.1 of an edge; a quarter covers that without flattening what stood higher.
+pub const SUPPORT_LIFT: f64 = 0.25;
 
 impl World {
     /// Freeze body `body` as `how` says (see `SoftBody::freeze_with`), under this world's gravity
@@ -67,16 +68,19 @@ impl World {
     }
 
     /// Put back on its support every vertex of `b` (a new mesh of a body of this world) for
-    /// which `rested(i)` says its origin rested there: the ground or the nearest obstacle under
-    /// it, moved along the surface's normal by its distance (only vertices above the surface,
-    /// by at most `SUPPORT_LIFT`: the slack of one mesh's edge, not a leap). Why: Loop
-    /// subdivision and remeshing smooth the mesh, which lifts the vertices that stood on the
-    /// ground (the octopus's tentacle tips by 6.4 mm after one subdivision). Nothing would then
-    /// rest within [`SUPPORT_GAP`], so a freeze under load found no support and carried none
-    /// of the weight, and the subdivided octopus sagged from 1.76 m to 1.33 m within a second
-    /// as if frozen plainly. With `refreeze`, a body that moved is frozen plainly again at the
-    /// new shape (its springs at rest there).
+    /// which `rested(i)` says its origin rested there: the ground or the obstacle nearest to it,
+    /// moved along the surface's normal by its distance, from above or from below (the remesher
+    /// left 48 of the settled sphere's bottom vertices 1.4 mm under the ground), by at most
+    /// [`SUPPORT_LIFT`] of the new mesh's mean edge length (a smoothing's lift, not a leap).
+    /// Why: Loop subdivision and remeshing smooth the mesh, which lifts the vertices that stood
+    /// on the ground (the octopus's tentacle tips by 6.4 mm, 0.1 of its edges after one
+    /// subdivision). Nothing would then rest within [`SUPPORT_GAP`], so a freeze under load
+    /// found no support and carried none of the weight, and the subdivided octopus sagged from
+    /// 1.76 m to 1.33 m within a second as if frozen plainly. With `refreeze`, a body that moved
+    /// is frozen plainly again at the new shape (its springs at rest there).
     fn put_on_supports(&self, b: &mut crate::SoftBody, rested: impl Fn(usize) -> bool, refreeze: bool) {
+        let rest = b.rest_lengths();
+        let lift = SUPPORT_LIFT * rest.iter().sum::<f64>() / rest.len().max(1) as f64;
         let mut x = b.positions().to_vec();
         let mut moved = false;
         for (i, p) in x.chunks_exact_mut(3).enumerate() {
@@ -84,15 +88,10 @@ impl World {
                 continue;
             }
             let q = [p[0], p[1], p[2]];
-            let mut best: Option<(f64, [f64; 3])> = self.settings.ground.map(|g| (q[1] - g.height, [0.0, 1.0, 0.0]));
-            for o in &self.settings.obstacles {
-                let (d, n) = o.shape.distance(q);
-                if best.is_none_or(|(bd, _)| d < bd) {
-                    best = Some((d, n));
-                }
-            }
-            if let Some((d, n)) = best {
-                if d > SUPPORT_GAP && d <= SUPPORT_LIFT {
+            let ground = self.settings.ground.map(|g| (q[1] - g.height, [0.0, 1.0, 0.0])).filter(|(d, _)| d.abs() <= lift);
+            let nearest = self.settings.obstacles.iter().filter_map(|o| o.shape.distance_within(q, lift)).chain(ground).min_by(|a, b| a.0.total_cmp(&b.0));
+            if let Some((d, n)) = nearest {
+                if d.abs() > SUPPORT_GAP {
                     for k in 0..3 {
                         p[k] -= d * n[k];
                     }

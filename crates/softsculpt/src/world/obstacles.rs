@@ -140,6 +140,15 @@ impl Shape {
         }
     }
 
+    /// The signed distance (m) and outward normal at `p` if the surface is within `reach` (m) of
+    /// it: exact for every shape (a mesh's `distance` says only "that far" beyond its reach).
+    pub(crate) fn distance_within(&self, p: V3, reach: f64) -> Option<(f64, V3)> {
+        match self {
+            Shape::Mesh(m) => m.closest(p, reach),
+            _ => Some(self.distance(p)).filter(|(d, _)| d.abs() <= reach),
+        }
+    }
+
     /// Where the segment p0 → p1 (p0 outside) first touches the surface, as a fraction t of the
     /// way; found by bisection on the signed distance after a conservative march, which is exact
     /// to 1e-12 of the segment for these convex shapes.

@@ -314,8 +314,8 @@ struct Level {
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Multigrid {
     levels: Vec<Level>,
-    /// Per hinge, the level-1 block of each of its 16 vertex pairs (q, r) (`NONE`: a pinned
-    /// vertex's, or none), found on the first assembly with hinges.
+    /// Per hinge, the level-1 block of each of its 16 vertex pairs (q, r) (`NONE`: none), found
+    /// on the first assembly with hinges (from the mesh alone).
     hpos: Vec<[u32; 16]>,
     chol: Vec<f64>,
     drop: Vec<bool>,
@@ -419,6 +419,9 @@ impl Multigrid {
                 let mut w = [[0.0; 6]; 4];
                 for q in 0..4 {
                     let v = hv[q] as usize;
+                    if !free(v) {
+                        continue; // a pinned vertex is no unknown: w_q = 0
+                    }
                     let gq = [c.sqrt() * g[3 * q], if held(v) { 0.0 } else { c.sqrt() * g[3 * q + 1] }, c.sqrt() * g[3 * q + 2]];
                     let rg = cross(&first.off[v], &gq);
                     w[q] = [gq[0], gq[1], gq[2], rg[0], rg[1], rg[2]];
@@ -669,20 +672,18 @@ impl Multigrid {
 
 /// Per hinge of `m`, the level-1 block (`s`) of each of its vertex pairs (q, r) as 4 q + r: the
 /// node's diagonal block for q = r, else the block of the edge or bending pair (q, r) from row
-/// q; `NONE` where either vertex is pinned (no unknown).
+/// q (`NONE` if there is none). Pins are not looked at (they change between assemblies; the
+/// assembly leaves a pinned vertex out), so this depends on the mesh alone.
 fn hinge_blocks(s: &Shape, sys: &System, m: &Model) -> Vec<[u32; 16]> {
     use super::aggregate::NONE;
     let entry = |rows: &super::adjacency::SpringRows, i: usize, j: usize| (rows.start[i] as usize..rows.start[i + 1] as usize).find(|&k| rows.other[k] as usize == j);
-    let free = |i: usize| m.inv_mass[i] != 0.0;
     m.hinges
         .v
         .iter()
         .map(|hv| {
             std::array::from_fn(|qr| {
                 let (vq, vr) = (hv[qr / 4] as usize, hv[qr % 4] as usize);
-                if !free(vq) || !free(vr) {
-                    NONE
-                } else if vq == vr {
+                if vq == vr {
                     s.start[s.parent[vq] as usize]
                 } else if let Some(k) = entry(&sys.edges, vq, vr) {
                     s.pos[0][k]
@@ -809,14 +810,14 @@ mod tests {
     /// coarse vector x₁ (six unknowns per node of level 1), A₁ x₁ = Pᵀ F A F P x₁, F zeroing
     /// the ground-held vertices' y components (the fine product's rows and the cycle's vectors
     /// are 0 there, `ground.rs`). On a jittered sphere (compressed and stretched springs,
-    /// bending springs, damping, one pinned vertex) whose bottom rests on the ground. Both sides
+    /// bending springs, bent hinges, damping, one pinned vertex) whose bottom rests on the ground. Both sides
     /// sum the same products of the same coefficients in other orders: they agree to rounding,
     /// ~1e-15 of the largest term per entry times the ~100 terms an entry sums; 1e-11 of
     /// max |A₁ x₁| leaves room for that. A coarse matrix that counts the held vertices' y
     /// stiffness misses by O(1) of it on the bottom's nodes.
     #[test]
     fn the_coarse_matrix_is_the_galerkin_product_of_the_fine_one_with_the_ground_holding_vertices() {
-        let mut p = Material { stiffness: 300.0, spring_damping: 0.5, bending_stiffness: 50.0, ..Material::default() };
+        let mut p = Material { stiffness: 300.0, spring_damping: 0.5, bending_stiffness: 50.0, rigidity: 0.05, ..Material::default() };
         p.set_nrt(2.0);
         let mut body = SoftBody::new(&icosphere(3, 1.0), 1.0, p.clone()).unwrap();
         let n = body.model.mass.len();

@@ -26,8 +26,8 @@
 //!   dt τ D w ∇θ ∇θᵀ (exact but for ∇θ's dependence on x, dropped) enter the matrix,
 //!   applied as c_h ∇θ (∇θ · p) per hinge, never as a dense 12×12 block; the indefinite
 //!   dt² D w (θ − θ̄) ∇²θ is dropped (it vanishes at the rest angle). Its diagonal 3×3 blocks go
-//!   into the block-Jacobi preconditioner; the multigrid's coarse levels leave hinges out (a
-//!   preconditioner only: the conjugate gradient's product has them).
+//!   into the block-Jacobi preconditioner and its rank-one blocks into the multigrid's coarse
+//!   levels (`multigrid.rs`).
 //! - **viscous damping** −c m v: D += c m I (exact).
 //! - **gravity**, user forces, the kept load of a freeze under load: constant, nothing.
 //! - **gas** f_i = (P − P_ref) ∇_i V, P = nRT/V: −∂f/∂x = (nRT/V²) ∇V ∇Vᵀ − (P − P_ref) ∇²V. The
@@ -418,7 +418,7 @@ impl Rows<'_> {
                 gather_springs(&sys.bends, &sys.bb, i, &mut f, &mut blk, &mut abs, bcoef, bbase);
             }
             if self.hinged {
-                // Σ over the hinges around i: −D w (θ − θ̄) ∇_i θ, and dt² D w ∇_i θ ∇_i θᵀ.
+                // Σ over the hinges around i: −D w (θ − θ̄ + τ θ̇) ∇_i θ, and c_h ∇_i θ ∇_i θᵀ.
                 for &e in &sys.hrows.entry[sys.hrows.start[i] as usize..sys.hrows.start[i + 1] as usize] {
                     let (h, s) = ((e / 4) as usize, 3 * (e % 4) as usize);
                     let g = &sys.hg[h][s..s + 3];
