@@ -89,7 +89,8 @@ impl World {
             }
             let q = [p[0], p[1], p[2]];
             let ground = self.settings.ground.map(|g| (q[1] - g.height, [0.0, 1.0, 0.0])).filter(|(d, _)| d.abs() <= lift);
-            let nearest = self.settings.obstacles.iter().filter_map(|o| o.shape.distance_within(q, lift)).chain(ground).min_by(|a, b| a.0.total_cmp(&b.0));
+            let obstacles = self.settings.obstacles.iter().filter_map(|o| o.shape.distance_within(q, lift)).filter(|(d, _)| d.abs() <= lift);
+            let nearest = obstacles.chain(ground).min_by(|a, b| a.0.total_cmp(&b.0));
             if let Some((d, n)) = nearest {
                 if d.abs() > SUPPORT_GAP {
                     for k in 0..3 {
