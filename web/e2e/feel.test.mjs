@@ -20,6 +20,19 @@ const view = (page) => inspect(page, () => window.softsculpt.view());
 /** The camera's azimuth about the vertical through its target (degrees). */
 const azimuth = (v) => (Math.atan2(v.position[2] - v.target[2], v.position[0] - v.target[0]) * 180) / Math.PI;
 const range = (v) => Math.hypot(...v.position.map((p, i) => p - v.target[i]));
+/** On screen: the vertex nearest the camera at 60 % of the model's height (the mushroom's cap front). */
+const capFront = (page) => inspect(page, () => {
+  const S = window.softsculpt, x = S.positions(), cam = S.view().position;
+  let lo = Infinity, hi = -Infinity;
+  for (let i = 1; i < x.length; i += 3) { lo = Math.min(lo, x[i]); hi = Math.max(hi, x[i]); }
+  let best = -1, bd = Infinity;
+  for (let i = 0; i < x.length / 3; i++) {
+    if (Math.abs(x[3 * i + 1] - (lo + 0.6 * (hi - lo))) > 0.08 * (hi - lo)) continue;
+    const d = Math.hypot(x[3 * i] - cam[0], x[3 * i + 1] - cam[1], x[3 * i + 2] - cam[2]);
+    if (d < bd) { bd = d; best = i; }
+  }
+  return S.screenOf(best);
+});
 
 test('shortcuts work after clicking the panel, and letter keys never change the model list', async () => {
   const { page, errors } = await openModeler(suite.browser, suite.server.url);
@@ -358,18 +371,7 @@ test('clay keeps the shape a mirrored grab pulls and the gas in it: the body doe
   const v0 = (await inspect(page, () => window.softsculpt.stats())).volume;
   // The front of the cap at 60 % of the height (mirror X is on for the mushroom: its image on
   // the other side is pulled too), dragged 150 px up and out, held 2 s, let go.
-  const front = await inspect(page, () => {
-    const S = window.softsculpt, x = S.positions(), cam = S.view().position;
-    let lo = Infinity, hi = -Infinity;
-    for (let i = 1; i < x.length; i += 3) { lo = Math.min(lo, x[i]); hi = Math.max(hi, x[i]); }
-    let best = -1, bd = Infinity;
-    for (let i = 0; i < x.length / 3; i++) {
-      if (Math.abs(x[3 * i + 1] - (lo + 0.6 * (hi - lo))) > 0.08 * (hi - lo)) continue;
-      const d = Math.hypot(x[3 * i] - cam[0], x[3 * i + 1] - cam[1], x[3 * i + 2] - cam[2]);
-      if (d < bd) { bd = d; best = i; }
-    }
-    return S.screenOf(best);
-  });
+  const front = await capFront(page);
   await page.keyboard.press('g');
   await drag(page, front, { x: front.x + 106, y: front.y - 106 }, 15, 2000);
   await page.mouse.up();
@@ -407,18 +409,7 @@ test('a subdivided model keeps its shape: the octopus keeps standing, the mushro
   await page.waitForFunction(() => window.softsculpt.positions().length > 3000 && !window.softsculpt.busy(), null, { timeout: 60000 });
   await page.waitForTimeout(2000);
   const v0 = (await inspect(page, () => window.softsculpt.stats())).volume;
-  const front = await inspect(page, () => {
-    const S = window.softsculpt, x = S.positions(), cam = S.view().position;
-    let lo = Infinity, hi = -Infinity;
-    for (let i = 1; i < x.length; i += 3) { lo = Math.min(lo, x[i]); hi = Math.max(hi, x[i]); }
-    let best = -1, bd = Infinity;
-    for (let i = 0; i < x.length / 3; i++) {
-      if (Math.abs(x[3 * i + 1] - (lo + 0.6 * (hi - lo))) > 0.08 * (hi - lo)) continue;
-      const d = Math.hypot(x[3 * i] - cam[0], x[3 * i + 1] - cam[1], x[3 * i + 2] - cam[2]);
-      if (d < bd) { bd = d; best = i; }
-    }
-    return S.screenOf(best);
-  });
+  const front = await capFront(page);
   await page.keyboard.press('g');
   await drag(page, front, { x: front.x + 106, y: front.y - 106 }, 15, 2000);
   const held = (await inspect(page, () => window.softsculpt.stats())).volume;
