@@ -199,21 +199,29 @@ fn a_tight_implicit_step_matches_a_dense_newton_solution_of_backward_euler() {
     p.set_nrt(3.0);
     let mut body = SoftBody::new(&icosphere(1, 1.0), 0.5, p.clone()).unwrap();
     swirl(&mut body, 1.0);
-    let dt = 0.02; // ω dt = sqrt(12 · 200 / (0.5/42)) · 0.02 ≈ 9: far outside explicit stability
-    let g = 9.81;
-    let reference = dense_backward_euler(&body, &p, g, dt);
+    let w = step_against_dense(body, &p);
+    assert!(w.stats(0).solver_iterations.newton >= 2, "a nonlinear step takes Newton iterations");
+}
+
+/// One implicit step of `body` (dt = 0.02 s, g = 9.81 m/s², tolerance 1e-13) against the dense
+/// backward-Euler solution: the velocities agree to 1e-8 relative. Returns the stepped world.
+/// ω dt = sqrt(12 · 200 / (0.5/42)) · 0.02 ≈ 9 for the tests' k = 200 N/m, 0.5 kg: far outside
+/// explicit stability. Tolerance: both solve the same equations. The dense solve's
+/// finite-difference Jacobian (h = 1e-6) only slows its Newton iterations, which run until
+/// ‖r‖ < 1e-15; the engine stops at ‖r‖ ≤ 1e-13 ‖r_0‖ (mass-weighted), and since A ⪰ M the
+/// velocity error is at most ‖r‖_{M⁻¹} / sqrt(m_min) ≈ 1e-13 · ‖r_0‖ / 0.1 — about 1e-11 of
+/// the velocities here (the dense hinge forces' finite differences add ~1e-13 N). We ask for
+/// 1e-8 relative, as the issue does.
+fn step_against_dense(body: SoftBody, p: &Material) -> World {
+    let (dt, g) = (0.02, 9.81);
+    let reference = dense_backward_euler(&body, p, g, dt);
     let mut w = alone(body, WorldSettings { gravity: g, dt, ..implicit(1e-13) });
     w.step().unwrap();
     let got = w.bodies[0].velocities();
     let scale = reference.iter().fold(0.0f64, |a, b| a.max(b.abs()));
     let err = max_abs_diff(got, &reference);
-    // Tolerance: both solve the same equations. The dense solve's finite-difference Jacobian
-    // (h = 1e-6) only slows its Newton iterations, which run until ‖r‖ < 1e-15; the engine stops
-    // at ‖r‖ ≤ 1e-13 ‖r_0‖ (mass-weighted), and since A ⪰ M the velocity error is at most
-    // ‖r‖_{M⁻¹} / sqrt(m_min) ≈ 1e-13 · ‖r_0‖ / 0.1 — about 1e-11 of the velocities here. We
-    // ask for 1e-8 relative, as the issue does.
     assert!(err <= 1e-8 * scale, "max |Δv| = {err:e} of {scale}");
-    assert!(w.stats(0).solver_iterations.newton >= 2, "a nonlinear step takes Newton iterations");
+    w
 }
 
 /// The same with hinges (`body/hinges.rs`) bent away from their frozen angles: their forces
@@ -229,15 +237,7 @@ fn a_tight_implicit_step_with_hinges_matches_a_dense_newton_solution() {
     let v = vec![0.0; x.len()];
     body.set_state(&x, &v).unwrap();
     swirl(&mut body, 1.0);
-    let (dt, g) = (0.02, 9.81);
-    let reference = dense_backward_euler(&body, &p, g, dt);
-    let mut w = alone(body, WorldSettings { gravity: g, dt, ..implicit(1e-13) });
-    w.step().unwrap();
-    let got = w.bodies[0].velocities();
-    let scale = reference.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-    let err = max_abs_diff(got, &reference);
-    // Tolerance: as above (1e-8 relative), the dense forces' finite differences adding ~1e-13 N.
-    assert!(err <= 1e-8 * scale, "max |Δv| = {err:e} of {scale}");
+    step_against_dense(body, &p);
 }
 
 // ----- order --------------------------------------------------------------------------------

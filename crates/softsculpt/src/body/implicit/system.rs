@@ -386,6 +386,18 @@ fn gather_springs(rows: &SpringRows, sb: &SpringBlocks, i: usize, f: &mut [f64; 
     }
 }
 
+/// blk += c g gᵀ, blk a symmetric 3×3 as (xx, yy, zz, xy, xz, yz): a rank-one term's diagonal
+/// block (the gas's γ g gᵀ, a hinge's c_h ∇θ ∇θᵀ).
+#[inline(always)]
+fn add_outer(blk: &mut [f64; 6], c: f64, g: [f64; 3]) {
+    blk[0] += c * g[0] * g[0];
+    blk[1] += c * g[1] * g[1];
+    blk[2] += c * g[2] * g[2];
+    blk[3] += c * g[0] * g[1];
+    blk[4] += c * g[0] * g[2];
+    blk[5] += c * g[1] * g[2];
+}
+
 /// Inverse of the symmetric 3×3 (xx, yy, zz, xy, xz, yz) by its adjugate.
 #[inline(always)]
 fn inverse_sym(m: &[f64; 6]) -> [f64; 6] {
@@ -427,12 +439,7 @@ impl Rows<'_> {
                     f[1] += fs * g[1];
                     f[2] += fs * g[2];
                     abs += fs.abs() * (g[0].abs() + g[1].abs() + g[2].abs());
-                    blk[0] += ch * g[0] * g[0];
-                    blk[1] += ch * g[1] * g[1];
-                    blk[2] += ch * g[2] * g[2];
-                    blk[3] += ch * g[0] * g[1];
-                    blk[4] += ch * g[0] * g[2];
-                    blk[5] += ch * g[1] * g[2];
+                    add_outer(&mut blk, ch, [g[0], g[1], g[2]]);
                 }
             }
             if self.gas {
@@ -448,13 +455,7 @@ impl Rows<'_> {
                     g[3 * li + d] = gi[d];
                 }
                 abs += self.s.abs() * (gi[0].abs() + gi[1].abs() + gi[2].abs());
-                let gm = sys.gamma;
-                blk[0] += gm * gi[0] * gi[0];
-                blk[1] += gm * gi[1] * gi[1];
-                blk[2] += gm * gi[2] * gi[2];
-                blk[3] += gm * gi[0] * gi[1];
-                blk[4] += gm * gi[0] * gi[2];
-                blk[5] += gm * gi[1] * gi[2];
+                add_outer(&mut blk, sys.gamma, gi);
             }
             if self.contacts {
                 let (cf, cb) = (&self.cf[i], &self.cblk[i]);
