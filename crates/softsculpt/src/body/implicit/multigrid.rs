@@ -31,7 +31,8 @@
 //! P_iᵀ P_j = [[I, −[r_j]×], [[r_i]×, (r_i·r_j) I − r_j r_iᵀ]]. Left out of the coarse
 //! matrices and of the cycle's own products: the gas's rank-one term γ g gᵀ (the conjugate
 //! gradient, whose product has it, takes care of that one direction). A hinge's rank-one
-//! c ∇θ ∇θᵀ adds c w_q w_rᵀ, w_q = P_qᵀ ∇_q θ, to the blocks of its four vertices' nodes. Pinned vertices are no
+//! c ∇θ ∇θᵀ adds c W_I W_Jᵀ to the blocks of its vertices' nodes, W_I = Σ_{q ∈ I} P_qᵀ ∇_q θ
+//! (the sum per node first: a hinge spans ~2 nodes, so ~5 outer products instead of 16). Pinned vertices are no
 //! part of the system: their springs count on the free end's diagonal only. Vertices the
 //! ground holds have no y unknown (`ground.rs`): the fine matrix is F A F (F zeroes their y rows
 //! and columns: the fine product zeroes the rows, and every vector it is given is 0 there), and a spring block touching one is F_i B F_j, added
@@ -314,9 +315,9 @@ struct Level {
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Multigrid {
     levels: Vec<Level>,
-    /// Per hinge, the level-1 block of each of its 16 vertex pairs (q, r) (`NONE`: none), found
-    /// on the first assembly with hinges (from the mesh alone).
-    hpos: Vec<[u32; 16]>,
+    /// Per hinge, its level-1 nodes and their blocks, found on the first assembly with hinges
+    /// (from the mesh alone).
+    hpos: Vec<HingeNodes>,
     chol: Vec<f64>,
     drop: Vec<bool>,
     t: Vec<f64>,
@@ -353,7 +354,7 @@ impl Multigrid {
         let free = |i: usize| m.inv_mass[i] != 0.0;
         if sys.hinged && self.hpos.len() != m.hinges.v.len() {
             if let Some(first) = self.levels.first() {
-                self.hpos = hinge_blocks(&first.s, sys, m);
+                self.hpos = hinge_blocks(&first.s, m);
             }
         }
         let Multigrid { levels, hpos, .. } = self;
@@ -405,36 +406,57 @@ impl Multigrid {
         }
         // The hinges' rank-one blocks c ∇θ ∇θᵀ (`system.rs`): with w_q = P_qᵀ ∇_q θ = (g_q, r_q × g_q)
         // (g_q's y zeroed where the ground holds the vertex; a pinned vertex is no unknown),
-        // c w_q w_rᵀ goes to block (node of q, node of r). Every pair of a hinge's vertices is
-        // an edge or its bending pair, so the level's sparsity has the block already. Without
-        // them the coarse levels did not see bending: at 10,242 vertices with the modeler's
-        // D = 0.05 J the conjugate gradient took 6× the iterations (BENCHMARKS.md).
+        // Pᵀ (c ∇θ ∇θᵀ) P = c W Wᵀ with W_I = Σ_{q ∈ I} w_q summed per node first: block
+        // (I, J) gets c W_I W_Jᵀ, (J, I) its transpose (a hinge spans 1–4 nodes, ~2 on average:
+        // ~5 outer products instead of the 16 vertex pairs'). Every pair of a hinge's vertices
+        // is an edge or its bending pair, so the level's sparsity has the block already.
+        // Without them the coarse levels did not see bending: at 10,242 vertices with the
+        // modeler's D = 0.05 J the conjugate gradient took 6× the iterations (BENCHMARKS.md).
         if sys.hinged {
-            for (h, at) in hpos.iter().enumerate() {
+            for (h, hn) in hpos.iter().enumerate() {
                 let c = sys.hc[h];
                 if c == 0.0 {
                     continue;
                 }
                 let (g, hv) = (&sys.hg[h], &m.hinges.v[h]);
+                let cs = c.sqrt();
                 let mut w = [[0.0; 6]; 4];
                 for q in 0..4 {
                     let v = hv[q] as usize;
                     if !free(v) {
                         continue; // a pinned vertex is no unknown: w_q = 0
                     }
-                    let gq = [c.sqrt() * g[3 * q], if held(v) { 0.0 } else { c.sqrt() * g[3 * q + 1] }, c.sqrt() * g[3 * q + 2]];
+                    let gq = [cs * g[3 * q], if held(v) { 0.0 } else { cs * g[3 * q + 1] }, cs * g[3 * q + 2]];
                     let rg = cross(&first.off[v], &gq);
-                    w[q] = [gq[0], gq[1], gq[2], rg[0], rg[1], rg[2]];
+                    let wn = &mut w[hn.slot[q] as usize];
+                    for (e, x) in wn.iter_mut().zip([gq[0], gq[1], gq[2], rg[0], rg[1], rg[2]]) {
+                        *e += x;
+                    }
                 }
-                for q in 0..4 {
-                    for r in 0..4 {
-                        if at[4 * q + r] == super::aggregate::NONE {
+                let k = hn.nodes as usize;
+                for a in 0..k {
+                    for b in a..k {
+                        let (ab, ba) = (hn.at[4 * a + b], hn.at[4 * b + a]);
+                        if ab == super::aggregate::NONE {
                             continue;
                         }
-                        let blk = &mut first.a[at[4 * q + r] as usize];
+                        let (wa, wb) = (&w[a], &w[b]);
+                        let mut o = [0.0; 36];
                         for p in 0..6 {
                             for t in 0..6 {
-                                blk[6 * p + t] += w[q][p] * w[r][t];
+                                o[6 * p + t] = wa[p] * wb[t];
+                            }
+                        }
+                        let blk = &mut first.a[ab as usize];
+                        for q in 0..36 {
+                            blk[q] += o[q];
+                        }
+                        if a != b {
+                            let blk = &mut first.a[ba as usize];
+                            for p in 0..6 {
+                                for t in 0..6 {
+                                    blk[6 * t + p] += o[6 * p + t];
+                                }
                             }
                         }
                     }
@@ -670,29 +692,52 @@ impl Multigrid {
     }
 }
 
-/// Per hinge of `m`, the level-1 block (`s`) of each of its vertex pairs (q, r) as 4 q + r: the
-/// node's diagonal block for q = r, else the block of the edge or bending pair (q, r) from row
-/// q (`NONE` if there is none). Pins are not looked at (they change between assemblies; the
-/// assembly leaves a pinned vertex out), so this depends on the mesh alone.
-fn hinge_blocks(s: &Shape, sys: &System, m: &Model) -> Vec<[u32; 16]> {
+/// A hinge's vertices by level-1 node: `slot[q]` is vertex q's node among the hinge's
+/// `nodes` distinct ones (in the order met), `at[4 a + b]` the level-1 block (`s`) of nodes
+/// (a, b): the node's diagonal block for a = b, else the coupling's (`NONE` if the level has
+/// none: two nodes joined by the hinge's bending pair alone when there are no bending springs).
+/// Pins are not looked at (they change between assemblies; the assembly leaves a pinned vertex
+/// out), so this depends on the mesh alone.
+#[derive(Debug, Clone, Copy)]
+struct HingeNodes {
+    slot: [u8; 4],
+    nodes: u8,
+    at: [u32; 16],
+}
+
+fn hinge_blocks(s: &Shape, m: &Model) -> Vec<HingeNodes> {
     use super::aggregate::NONE;
-    let entry = |rows: &super::adjacency::SpringRows, i: usize, j: usize| (rows.start[i] as usize..rows.start[i + 1] as usize).find(|&k| rows.other[k] as usize == j);
+    let block = |i: usize, j: usize| {
+        if i == j {
+            return s.start[i];
+        }
+        let (r0, r1) = (s.start[i] as usize, s.start[i + 1] as usize);
+        s.col[r0 + 1..r1].binary_search(&(j as u32)).map_or(NONE, |k| (r0 + 1 + k) as u32)
+    };
     m.hinges
         .v
         .iter()
         .map(|hv| {
-            std::array::from_fn(|qr| {
-                let (vq, vr) = (hv[qr / 4] as usize, hv[qr % 4] as usize);
-                if vq == vr {
-                    s.start[s.parent[vq] as usize]
-                } else if let Some(k) = entry(&sys.edges, vq, vr) {
-                    s.pos[0][k]
-                } else if let Some(k) = entry(&sys.bends, vq, vr) {
-                    s.pos[1][k]
-                } else {
-                    NONE
+            let mut hn = HingeNodes { slot: [0; 4], nodes: 0, at: [NONE; 16] };
+            let mut node = [0usize; 4];
+            for (q, &v) in hv.iter().enumerate() {
+                let p = s.parent[v as usize] as usize;
+                let a = match node[..hn.nodes as usize].iter().position(|&x| x == p) {
+                    Some(a) => a,
+                    None => {
+                        node[hn.nodes as usize] = p;
+                        hn.nodes += 1;
+                        hn.nodes as usize - 1
+                    }
+                };
+                hn.slot[q] = a as u8;
+            }
+            for a in 0..hn.nodes as usize {
+                for b in 0..hn.nodes as usize {
+                    hn.at[4 * a + b] = block(node[a], node[b]);
                 }
-            })
+            }
+            hn
         })
         .collect()
 }

@@ -120,6 +120,9 @@ pub(crate) struct System {
     /// coefficient (dt² + dt τ) D w (kg·m²); the product's per-hinge c_h (∇θ · p) (`HingeProducts`).
     pub hrows: HingeRows,
     pub hg: Vec<[f64; 12]>,
+    /// Per entry of `hrows`, in row order: the hinge's ∇_i θ at that row's vertex, copied there
+    /// by the vertex pass (as `ecoef`), so the product streams it instead of gathering `hg`.
+    pub hcoef: Vec<[f64; 3]>,
     pub hf: Vec<f64>,
     pub hc: Vec<f64>,
     hp: HingeProducts,
@@ -195,11 +198,13 @@ impl System {
             ecoef: vec![[0.0; 5]; 2 * m.springs.len()],
             bcoef: vec![[0.0; 5]; 2 * m.bending.len()],
             bending: false,
-            hrows: HingeRows::new(n, &m.hinges.v),
-            hg: vec![[0.0; 12]; m.hinges.v.len()],
-            hf: vec![0.0; m.hinges.v.len()],
-            hc: vec![0.0; m.hinges.v.len()],
-            hp: HingeProducts::new(m.hinges.v.len()),
+            // The hinges' arrays (~130 B per hinge) wait for the first evaluation with D > 0.
+            hrows: HingeRows::default(),
+            hg: Vec::new(),
+            hcoef: Vec::new(),
+            hf: Vec::new(),
+            hc: Vec::new(),
+            hp: HingeProducts::default(),
             hinged: false,
             nf: vec![0.0; 3 * nf],
             g: vec![0.0; 3 * n],
@@ -218,7 +223,20 @@ impl System {
 
     /// Fits `m` (same vertex, spring and face counts as when built).
     pub fn fits(&self, m: &Model) -> bool {
-        self.diag.len() == m.mass.len() && self.eb.a.len() == m.springs.len() && self.bb.a.len() == m.bending.len() && 3 * m.faces.len() == self.nf.len() && self.hf.len() == m.hinges.v.len()
+        self.diag.len() == m.mass.len() && self.eb.a.len() == m.springs.len() && self.bb.a.len() == m.bending.len() && 3 * m.faces.len() == self.nf.len() && (self.hf.is_empty() || self.hf.len() == m.hinges.v.len())
+    }
+
+    /// The hinges' arrays, allocated on the first evaluation that has hinges.
+    fn ensure_hinges(&mut self, m: &Model) {
+        let nh = m.hinges.v.len();
+        if self.hf.len() != nh {
+            self.hrows = HingeRows::new(m.mass.len(), &m.hinges.v);
+            self.hg = vec![[0.0; 12]; nh];
+            self.hcoef = vec![[0.0; 3]; 4 * nh];
+            self.hf = vec![0.0; nh];
+            self.hc = vec![0.0; nh];
+            self.hp = HingeProducts::new(nh);
+        }
     }
 
     /// Forces at (x_t, v⁺), the residual r (into `r`), the matrix's coefficients and the
@@ -235,6 +253,7 @@ impl System {
         }
         self.hinged = p.rigidity > 0.0 && !m.hinges.v.is_empty();
         if self.hinged {
+            self.ensure_hinges(m);
             hinge_pass(th, &m.hinges, (p.rigidity, p.retardation_time()), dt, (xt, vp), (&mut self.hg, &mut self.hf, &mut self.hc), &mut self.eslots);
         }
 
@@ -304,8 +323,8 @@ impl System {
         let (g, diag, pre) = (Out::new(&mut self.g), Out::new(&mut self.diag), Out::new(&mut self.pre));
         let ro = Out::new(r);
         let react = Out::new(&mut self.ground.react);
-        let (ec, bc) = (Out::new(&mut self.ecoef), Out::new(&mut self.bcoef));
-        let (es, bs) = (&self.edges.start, &self.bends.start);
+        let (ec, bc, hcf) = (Out::new(&mut self.ecoef), Out::new(&mut self.bcoef), Out::new(&mut self.hcoef));
+        let (es, bs, hs, hinged) = (&self.edges.start, &self.bends.start, &self.hrows.start, self.hinged);
         let n = m.mass.len();
         let mut slots = std::mem::take(&mut self.vslots);
         th.each(&mut slots, |c, slot| {
@@ -313,7 +332,7 @@ impl System {
             // SAFETY: chunk c writes vertices vr only; chunks are disjoint.
             // (The CSR entries of rows vr are start[vr.start]..start[vr.end]: also disjoint.)
             unsafe {
-                let coef = (ec.range(es[vr.start] as usize..es[vr.end] as usize), bc.range(bs[vr.start] as usize..bs[vr.end] as usize));
+                let coef = (ec.range(es[vr.start] as usize..es[vr.end] as usize), bc.range(bs[vr.start] as usize..bs[vr.end] as usize), if hinged { hcf.range(hs[vr.start] as usize..hs[vr.end] as usize) } else { &mut [] });
                 let (r, react) = (ro.range(3 * vr.start..3 * vr.end), react.range(vr.clone()));
                 *slot = rows.run(vr.clone(), vp, xt, (r, react), g.range(3 * vr.start..3 * vr.end), diag.range(vr.clone()), pre.range(6 * vr.start..6 * vr.end), coef);
             }
@@ -411,15 +430,16 @@ fn inverse_sym(m: &[f64; 6]) -> [f64; 6] {
 
 impl Rows<'_> {
     #[allow(clippy::too_many_arguments)]
-    fn run(&self, vr: std::ops::Range<usize>, vp: &[f64], xt: &[f64], (r, react): (&mut [f64], &mut [f64]), g: &mut [f64], diag: &mut [f64], pre: &mut [f64], coef: (&mut [[f64; 5]], &mut [[f64; 5]])) -> [f64; 4] {
+    fn run(&self, vr: std::ops::Range<usize>, vp: &[f64], xt: &[f64], (r, react): (&mut [f64], &mut [f64]), g: &mut [f64], diag: &mut [f64], pre: &mut [f64], coef: (&mut [[f64; 5]], &mut [[f64; 5]], &mut [[f64; 3]])) -> [f64; 4] {
         let Frame { p, w, m, v, dt, .. } = *self.fr;
         let sys = self;
         let grav = [0.0, -w.gravity, 0.0];
         let c = p.damping;
         let targets = &m.targets;
         let (mut res2, mut noise2) = (0.0, 0.0);
-        let (ecoef, bcoef) = coef;
+        let (ecoef, bcoef, hcoef) = coef;
         let (ebase, bbase) = (sys.edges.start[vr.start] as usize, if sys.bending { sys.bends.start[vr.start] as usize } else { 0 });
+        let hbase = if sys.hinged { sys.hrows.start[vr.start] as usize } else { 0 };
         for (li, i) in vr.enumerate() {
             let mi = m.mass[i];
             let mut f = [0.0; 3];
@@ -431,9 +451,11 @@ impl Rows<'_> {
             }
             if self.hinged {
                 // Σ over the hinges around i: −D w (θ − θ̄ + τ θ̇) ∇_i θ, and c_h ∇_i θ ∇_i θᵀ.
-                for &e in &sys.hrows.entry[sys.hrows.start[i] as usize..sys.hrows.start[i + 1] as usize] {
+                for k in sys.hrows.start[i] as usize..sys.hrows.start[i + 1] as usize {
+                    let e = sys.hrows.entry[k];
                     let (h, s) = ((e / 4) as usize, 3 * (e % 4) as usize);
                     let g = &sys.hg[h][s..s + 3];
+                    hcoef[k - hbase] = [g[0], g[1], g[2]];
                     let (fs, ch) = (sys.hf[h], sys.hc[h]);
                     f[0] += fs * g[0];
                     f[1] += fs * g[1];
@@ -709,12 +731,12 @@ impl System {
                 row_product(&self.bends, &self.bcoef, i, p, &pi, &mut q);
             }
             if self.hinged {
-                for &e in &self.hrows.entry[self.hrows.start[i] as usize..self.hrows.start[i + 1] as usize] {
-                    let (h, s) = ((e / 4) as usize, 3 * (e % 4) as usize);
-                    let (c, g) = (self.hp.get(h), &self.hg[h]);
-                    q[0] += c * g[s];
-                    q[1] += c * g[s + 1];
-                    q[2] += c * g[s + 2];
+                let (k0, k1) = (self.hrows.start[i] as usize, self.hrows.start[i + 1] as usize);
+                for (&e, g) in self.hrows.entry[k0..k1].iter().zip(&self.hcoef[k0..k1]) {
+                    let c = self.hp.get((e / 4) as usize);
+                    q[0] += c * g[0];
+                    q[1] += c * g[1];
+                    q[2] += c * g[2];
                 }
             }
             if gg != 0.0 {
