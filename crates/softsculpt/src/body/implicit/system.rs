@@ -353,6 +353,9 @@ impl System {
     }
 }
 
+/// The vertex pass's per-entry outputs for its rows: `ecoef`, `bcoef`, `hcoef`.
+type RowCoefs<'a> = (&'a mut [[f64; 5]], &'a mut [[f64; 5]], &'a mut [[f64; 3]]);
+
 /// The vertex pass's inputs.
 struct Rows<'a> {
     fr: &'a Frame<'a>,
@@ -430,7 +433,7 @@ fn inverse_sym(m: &[f64; 6]) -> [f64; 6] {
 
 impl Rows<'_> {
     #[allow(clippy::too_many_arguments)]
-    fn run(&self, vr: std::ops::Range<usize>, vp: &[f64], xt: &[f64], (r, react): (&mut [f64], &mut [f64]), g: &mut [f64], diag: &mut [f64], pre: &mut [f64], coef: (&mut [[f64; 5]], &mut [[f64; 5]], &mut [[f64; 3]])) -> [f64; 4] {
+    fn run(&self, vr: std::ops::Range<usize>, vp: &[f64], xt: &[f64], (r, react): (&mut [f64], &mut [f64]), g: &mut [f64], diag: &mut [f64], pre: &mut [f64], coef: RowCoefs) -> [f64; 4] {
         let Frame { p, w, m, v, dt, .. } = *self.fr;
         let sys = self;
         let grav = [0.0, -w.gravity, 0.0];
