@@ -36,7 +36,8 @@
 //! just tight enough near the end (an Eisenstat–Walker-like forcing term).
 //!
 //! **Warm start** ([`Implicit::warm_start`]): Newton starts from the last step's velocity change
-//! when that lowers the residual (nearly the answer at a quasi-static state); r_0 above is still
+//! when that lowers the residual (nearly the answer at a quasi-static state), tried only where
+//! the residual at v⁺ = v is more than [`WARM_FROM`] times the threshold; r_0 above is still
 //! the residual at v⁺ = v. **Conjugate directions** ([`Implicit::conjugate`]) after
 //! [`CONJUGATE_FROM`] Newton iterations, against the zig-zag of a wrinkling membrane.
 //!
@@ -106,7 +107,7 @@ const CONJUGATE_FROM: u32 = 8;
 /// 240 steps (1.0: 611, 0.8: 1061, cold: 3681). Under-relaxed, the guess errs towards v⁺ = v,
 /// as a cold start does, which damps.
 const WARM_FRACTION: f64 = 0.9;
-/// The warm start is tried only where the residual at v⁺ = v is at least this many times the
+/// The warm start is tried only where the residual at v⁺ = v is more than this many times the
 /// convergence threshold. Closer than that one Newton iteration from v⁺ = v finishes the step,
 /// and at a body coming to rest the last step's Δv is mostly noise: measured on the modeler's
 /// 10,242-vertex sphere landing (8 s), of 106 warm starts tried at ratios 1–2, 92 were rejected

@@ -32,7 +32,8 @@
 //! matrices and of the cycle's own products: the gas's rank-one term γ g gᵀ (the conjugate
 //! gradient, whose product has it, takes care of that one direction). A hinge's rank-one
 //! c ∇θ ∇θᵀ adds c W_I W_Jᵀ to the blocks of its vertices' nodes, W_I = Σ_{q ∈ I} P_qᵀ ∇_q θ
-//! (the sum per node first: a hinge spans ~2 nodes, so ~5 outer products instead of 16). Pinned vertices are no
+//! (the sum per node first: a hinge on k nodes takes k(k + 1)/2 outer products, 3 for the
+//! typical 2, instead of 16). Pinned vertices are no
 //! part of the system: their springs count on the free end's diagonal only. Vertices the
 //! ground holds have no y unknown (`ground.rs`): the fine matrix is F A F (F zeroes their y rows
 //! and columns: the fine product zeroes the rows, and every vector it is given is 0 there), and a spring block touching one is F_i B F_j, added
@@ -408,7 +409,7 @@ impl Multigrid {
         // (g_q's y zeroed where the ground holds the vertex; a pinned vertex is no unknown),
         // Pᵀ (c ∇θ ∇θᵀ) P = c W Wᵀ with W_I = Σ_{q ∈ I} w_q summed per node first: block
         // (I, J) gets c W_I W_Jᵀ, (J, I) its transpose (a hinge spans 1–4 nodes, ~2 on average:
-        // ~5 outer products instead of the 16 vertex pairs'). Every pair of a hinge's vertices
+        // k(k + 1)/2 outer products for k nodes instead of the 16 vertex pairs'). Every pair of a hinge's vertices
         // is an edge or its bending pair, so the level's sparsity has the block already.
         // Without them the coarse levels did not see bending: at 10,242 vertices with the
         // modeler's D = 0.05 J the conjugate gradient took 6× the iterations (BENCHMARKS.md).
@@ -694,8 +695,9 @@ impl Multigrid {
 
 /// A hinge's vertices by level-1 node: `slot[q]` is vertex q's node among the hinge's
 /// `nodes` distinct ones (in the order met), `at[4 a + b]` the level-1 block (`s`) of nodes
-/// (a, b): the node's diagonal block for a = b, else the coupling's (`NONE` if the level has
-/// none: two nodes joined by the hinge's bending pair alone when there are no bending springs).
+/// (a, b): the node's diagonal block for a = b, else the coupling's. Every pair of a hinge's
+/// vertices is an edge or a bending pair (both always in the level's sparsity), so `NONE` does
+/// not occur for a mesh's hinges: it is a guard.
 /// Pins are not looked at (they change between assemblies; the assembly leaves a pinned vertex
 /// out), so this depends on the mesh alone.
 #[derive(Debug, Clone, Copy)]

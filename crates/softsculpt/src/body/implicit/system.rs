@@ -178,7 +178,7 @@ impl System {
             ecoef: vec![[0.0; 5]; 2 * m.springs.len()],
             bcoef: vec![[0.0; 5]; 2 * m.bending.len()],
             bending: false,
-            // The hinges' arrays (~130 B per hinge) wait for the first evaluation with D > 0.
+            // The hinges' arrays (~230 B per hinge) wait for the first evaluation with D > 0.
             hrows: HingeRows::default(),
             hg: Vec::new(),
             hcoef: Vec::new(),
@@ -357,7 +357,7 @@ struct Rows<'a> {
 }
 
 /// Add row `i` of a spring kind at (x_t, v⁺): Σ ±fs d into `f`, Σ (a I + b d dᵀ) into `blk`,
-/// Σ|fs d| into `abs`; each entry's (a, b, d) into `coef[k − base]`. Each spring is evaluated
+/// Σ|fs d| into `abs`; each entry kk's (a, b, d) into `coef[kk − base]`. Each spring is evaluated
 /// in both its ends' rows, always from its first end i to its second j (d = (x_j − x_i)/l), so
 /// both rows get the same bits, the forces are exactly opposite (momentum is kept to the last
 /// bit) and no pass over the springs has to write them for the rows to gather (measured on the
@@ -398,6 +398,8 @@ fn gather_springs(rows: &SpringRows, rest: &[f64], (k, cs, absolute): (f64, f64,
     }
 }
 
+/// blk += c g gᵀ, blk a symmetric 3×3 as (xx, yy, zz, xy, xz, yz): a rank-one term's diagonal
+/// block (the gas's γ g gᵀ, a hinge's c_h ∇θ ∇θᵀ).
 #[inline(always)]
 fn add_outer(blk: &mut [f64; 6], c: f64, g: [f64; 3]) {
     blk[0] += c * g[0] * g[0];
