@@ -78,6 +78,15 @@ fn aggregate(n: usize, g: Graph) -> (Vec<u32>, usize) {
     (parent, count as usize)
 }
 
+/// The entry of (I, J) in rows `start`/`col` (diagonal first, then increasing columns).
+fn entry(start: &[u32], col: &[u32], i: usize, j: usize) -> Option<u32> {
+    let (r0, r1) = (start[i] as usize, start[i + 1] as usize);
+    if i == j {
+        return Some(r0 as u32);
+    }
+    col[r0 + 1..r1].binary_search(&(j as u32)).ok().map(|k| (r0 + 1 + k) as u32)
+}
+
 impl Shape {
     /// Aggregate the n nodes of the level above along `agg` and couple the aggregates through
     /// every graph of `couplings`. An entry inside one aggregate goes to the diagonal when
@@ -130,7 +139,7 @@ impl Shape {
                             if inner_to_diagonal { r0 as u32 } else { NONE }
                         } else {
                             // Present by construction: the row was built from these entries.
-                            (r0 + 1 + col[r0 + 1..r1].binary_search(&pw).expect("coupling in the row")) as u32
+                            entry(&start, &col, pu, pw as usize).expect("coupling in the row")
                         };
                     }
                 }
@@ -138,6 +147,11 @@ impl Shape {
             })
             .collect();
         Shape { n: nc, parent, mstart, member, start, col, pos }
+    }
+
+    /// The entry of block (I, J) of this level's matrix (I's diagonal for I = J), if coupled.
+    pub fn entry(&self, i: usize, j: usize) -> Option<u32> {
+        entry(&self.start, &self.col, i, j)
     }
 
     /// This level's rows as a graph (for coarsening it in turn).

@@ -709,13 +709,7 @@ struct HingeNodes {
 
 fn hinge_blocks(s: &Shape, m: &Model) -> Vec<HingeNodes> {
     use super::aggregate::NONE;
-    let block = |i: usize, j: usize| {
-        if i == j {
-            return s.start[i];
-        }
-        let (r0, r1) = (s.start[i] as usize, s.start[i + 1] as usize);
-        s.col[r0 + 1..r1].binary_search(&(j as u32)).map_or(NONE, |k| (r0 + 1 + k) as u32)
-    };
+    let block = |i: usize, j: usize| s.entry(i, j).unwrap_or(NONE);
     m.hinges
         .v
         .iter()

@@ -69,7 +69,7 @@ use crate::world::WorldSettings;
 
 /// Vertices per chunk of a vertex pass (independent of the thread count).
 pub(crate) const VCHUNK: usize = 2048;
-/// Springs or faces per chunk.
+/// Hinges or faces per chunk.
 const ECHUNK: usize = 4096;
 
 /// What a step holds fixed: material, settings, model, the state at the step's start, dt.
@@ -131,7 +131,7 @@ pub(crate) struct System {
     pub absolute: bool,
     /// Reduction slots, one per chunk.
     pub vslots: Vec<[f64; 4]>,
-    eslots: Vec<f64>,
+    hslots: Vec<f64>,
     fslots: Vec<f64>,
 }
 
@@ -196,7 +196,7 @@ impl System {
             ground: GroundSet::new(n),
             absolute: false,
             vslots: vec![[0.0; 4]; chunks(n, VCHUNK)],
-            eslots: vec![0.0; chunks(m.springs.len().max(m.bending.len()).max(m.hinges.len()), ECHUNK)],
+            hslots: vec![0.0; chunks(m.hinges.len(), ECHUNK)],
             fslots: vec![0.0; chunks(nf, ECHUNK)],
         }
     }
@@ -229,7 +229,7 @@ impl System {
         self.hinged = p.rigidity > 0.0 && !m.hinges.v.is_empty();
         if self.hinged {
             self.ensure_hinges(m);
-            hinge_pass(th, &m.hinges, (p.rigidity, p.retardation_time()), dt, (xt, vp), (&mut self.hg, &mut self.hf, &mut self.hc), &mut self.eslots);
+            hinge_pass(th, &m.hinges, (p.rigidity, p.retardation_time()), dt, (xt, vp), (&mut self.hg, &mut self.hf, &mut self.hc), &mut self.hslots);
         }
 
         // Faces and gas: n_f per face and 6V (per-chunk sums in chunk order), then P.
