@@ -190,8 +190,8 @@ describe('the document’s substeps (real engine)', () => {
     const dt = doc.settings.dt, w = doc.world;
     expect(w.params(0).integrator).toBe('implicit');
     const steps: number[] = [];
-    const engineStep = w.step.bind(w);
-    w.step = (n = 1) => { for (let i = 0; i < n; i++) steps.push(w.params(0).dt as number); engineStep(n); };
+    const engineStep = w.stepSplitting.bind(w);
+    w.stepSplitting = (n, stalled, most) => { for (let i = 0; i < n; i++) steps.push(w.params(0).dt as number); engineStep(n, stalled, most); };
     w.sync();
     const t0 = w.body(0).stats.time;
     doc.pace.pieces = 4;

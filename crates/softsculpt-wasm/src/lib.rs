@@ -42,6 +42,7 @@
 //! | `ss_animation_glb(times, n, counts, tracks, tris, frames)` | result: the GLB of recorded frames (`softsculpt::mesh::animation`, as `softsculpt run --frames` writes) |
 //! | `ss_clear(w)` | drop bodies, events and loads, forget the open scene; keep settings |
 //! | `ss_step(w, n)` | `World::step_n`: n steps or none (the whole world rolls back; `step` error with `time`) |
+//! | `ss_step_splitting(w, n, stalled, most)` | `World::step_n_splitting`: as `ss_step`, each Newton solve giving up after `stalled` iterations without progress or `most` in all |
 //! | `ss_sync(w)` | refresh every body's f32 render positions, pins and stats |
 //! | `ss_body_count(w)`, `ss_body_views(w, b) -> ptr` | bodies; body b's layout table (`views.rs`) |
 //! | `ss_param_table()` | result: the parameter table JSON (`softsculpt::params::table_json`) |

@@ -10,7 +10,7 @@ use softsculpt::mesh::{self, builtin, LoadedMesh, ObjData, TriMesh};
 use softsculpt::params::{self, ParamError, Scope, Value};
 use softsculpt::snapshot::SnapshotError;
 use softsculpt::{
-    Material, MeshError, SimError, SoftBody, StepError, Target, World, WorldSettings,
+    world::GiveUp, Material, MeshError, SimError, SoftBody, StepError, Target, World, WorldSettings,
 };
 use std::cell::RefCell;
 
@@ -323,6 +323,14 @@ pub extern "C" fn ss_clear(w: u32) -> i32 {
 #[no_mangle]
 pub extern "C" fn ss_step(w: u32, n: u32) -> i32 {
     status(|| with_world(w, |h| h.world.step_n(n as u64).map_err(step_fail)))
+}
+
+/// `ss_step` for a caller that splits refused steps (`World::step_n_splitting`): an implicit
+/// step's Newton solve gives up after `stalled` (≥ 1) iterations without a new lowest residual
+/// or `most` (≥ 1) in all (`GiveUp`).
+#[no_mangle]
+pub extern "C" fn ss_step_splitting(w: u32, n: u32, stalled: u32, most: u32) -> i32 {
+    status(|| with_world(w, |h| h.world.step_n_splitting(n as u64, GiveUp { stalled, most }).map_err(step_fail)))
 }
 
 // ----- parameters -----------------------------------------------------------------------------

@@ -573,6 +573,7 @@ fn settings_from_v1(s: SettingsV1) -> Result<WorldSettings, String> {
         dt: s.dt,
         tolerance: crate::params::TOLERANCE.number(),
         newton_iterations: crate::params::NEWTON_ITERATIONS.number() as u32,
+        give_up: None,
         contact: ContactSettings { thickness: s.contact_thickness, friction: s.contact_friction, edge_contact: s.edge_contact },
     };
     settings.validate().map_err(|e| e.to_string())?;

@@ -5,7 +5,7 @@ mod common;
 use common::*;
 use softsculpt::body::{Material, SoftBody, Target};
 use softsculpt::mesh::builtin::icosphere;
-use softsculpt::world::{Ground, Integrator, World, WorldSettings};
+use softsculpt::world::{GiveUp, Ground, Integrator, StepError, World, WorldSettings};
 use softsculpt::SimError;
 
 fn implicit(tolerance: f64) -> WorldSettings {
@@ -476,4 +476,68 @@ fn one_and_two_threads_give_the_same_result() {
     let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     assert!(max_abs_diff(a, b) <= 1e-12 * scale);
     assert_eq!(one.stats(0).solver_iterations, two.stats(0).solver_iterations);
+}
+
+#[test]
+fn a_step_that_will_not_converge_is_given_up_early_and_a_converging_one_is_untouched() {
+    // The modeler's material grabbed hard at 1/60 s (the top pulled 2 m sideways and 1 m up
+    // over 0.4 s, a band round the equator the other way, at the page's strongest pull
+    // ω = 600 1/s: k_t = m ω²): most steps converge in a few Newton iterations, a few take
+    // 60–130, and at the end of the pull one buckles and does not converge within the cap.
+    let body = sphere_body(2, 1.0, Material::default());
+    let mut a = alone(body, implicit(1e-3));
+    a.apply_preset(0, "modeler").unwrap();
+    let n = a.bodies[0].vertex_count();
+    let k = (1.0 / n as f64) * 600.0f64.powi(2);
+    let x0 = a.bodies[0].positions().to_vec();
+    let top: Vec<usize> = (0..n).filter(|&i| x0[3 * i + 1] > 0.8).collect();
+    let band: Vec<usize> = (0..n).filter(|&i| x0[3 * i + 1].abs() < 0.3 && x0[3 * i] > 0.8).collect();
+    let give_up = GiveUp { stalled: 12, most: 48 };
+    let iterations = |e: &StepError| match e.error {
+        SimError::NotConverged { iterations, .. } => iterations,
+        _ => panic!("{e}"),
+    };
+    let mut refused_early = 0;
+    for s in 0..40 {
+        let t = (s as f64 / 24.0).min(1.0);
+        let at = |i: usize, d: [f64; 3]| Target { vertex: i, anchor: [x0[3 * i] + t * d[0], x0[3 * i + 1] + t * d[1], x0[3 * i + 2]], stiffness: k, damping: 0.0 };
+        let targets: Vec<Target> = top.iter().map(|&i| at(i, [2.0, 1.0, 0.0])).chain(band.iter().map(|&i| at(i, [-2.0, 0.0, 0.0]))).collect();
+        a.bodies[0].set_targets(&targets).unwrap();
+        let (x, v) = (a.bodies[0].positions().to_vec(), a.bodies[0].velocities().to_vec());
+        let mut b = a.clone();
+        let quick = b.step_n_splitting(1, give_up);
+        assert_eq!(b.settings.give_up, None, "the setting is back after the call");
+        let full = a.step_n(1);
+        let newton = a.bodies[0].solver_iterations().newton;
+        match (&quick, &full) {
+            // Where the solve without giving up took fewer than `stalled` iterations in all, it
+            // cannot have given up (a stall is `stalled` iterations without a new lowest
+            // residual after the first): the same iterations, the same bits. (Elsewhere an
+            // accepted step may differ: a warm-started solve given up is redone cold, which may
+            // converge elsewhere within the tolerance on this non-convex problem.)
+            (Ok(()), Ok(())) if newton < give_up.stalled => {
+                assert_eq!(b.bodies[0].positions(), a.bodies[0].positions());
+                assert_eq!(b.bodies[0].velocities(), a.bodies[0].velocities());
+            }
+            (Ok(()), Ok(())) => {}
+            (Ok(()), Err(e)) => panic!("converged only when giving up early: {e}"),
+            // Refused: the state untouched, within `most` iterations (the last attempt's).
+            (Err(q), _) => {
+                assert_eq!(b.bodies[0].positions(), &x[..]);
+                assert_eq!(b.bodies[0].velocities(), &v[..]);
+                assert!(iterations(q) <= give_up.most, "{q}");
+                match full {
+                    Err(f) => {
+                        // The same step without giving up ran to the cap.
+                        assert_eq!(iterations(&f), a.settings.newton_iterations);
+                        refused_early += 1;
+                        break;
+                    }
+                    Ok(()) => assert!(newton >= give_up.stalled, "gave up on a step that converged in {newton} Newton iterations"),
+                }
+            }
+        }
+    }
+    // The pull reached the step that does not converge (else this checks little).
+    assert_eq!(refused_early, 1);
 }

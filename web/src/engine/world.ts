@@ -270,6 +270,8 @@ export class World {
 
   /** `n` steps or none: on a blow-up the whole world is rolled back and this throws (kind 'step'). */
   step(n = 1): void { this.call((w) => raw().ss_step(w, n)); }
+  /** `step` for a caller that splits refused steps: an implicit step's Newton solve gives up after `stalled` iterations without progress or `most` in all. */
+  stepSplitting(n: number, stalled: number, most: number): void { this.call((w) => raw().ss_step_splitting(w, n, stalled, most)); }
   /** Refresh every body's render positions, pins and stats. */
   sync(): void { this.call((w) => raw().ss_sync(w)); }
 

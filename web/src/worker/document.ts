@@ -14,7 +14,7 @@ import { initEngine } from '../engine/wasm';
 import { World, type DeltaScope, type FreezeReport, type ParamInfo, type ParamValue } from '../engine/world';
 import { addModel, dtFor, stableDt, useDefaults } from '../engine/models';
 import { stepSplitting } from './split';
-import { Pace, stepPaced } from './pace';
+import { NEWTON_MOST, NEWTON_STALLED, Pace, stepPaced } from './pace';
 import { History, travel } from '../history';
 import { parse, ProjectError, serialize } from '../project';
 import type { Autosave, AutosaveRecord } from '../storage';
@@ -654,9 +654,11 @@ export class Document {
 
   /** `n` steps of `h` (s), the world's dt back to the settings' after a split step. */
   private stepAt(h: number, n: number): void {
-    if (h === this.settings.dt) { this.world.step(n); return; }
+    // A Newton solve that stalls or runs long gives up early (`pace.ts`): the step is split.
+    const step = () => this.world.stepSplitting(n, NEWTON_STALLED, NEWTON_MOST);
+    if (h === this.settings.dt) { step(); return; }
     this.world.setParam(0, 'dt', h);
-    try { this.world.step(n); } finally { this.world.setParam(0, 'dt', this.settings.dt); }
+    try { step(); } finally { this.world.setParam(0, 'dt', this.settings.dt); }
   }
 
   /** Frames whose implicit step had to be split (since the model was loaded). */

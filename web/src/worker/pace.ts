@@ -33,6 +33,19 @@ export const LOW_STEPS = 30;
  */
 export const GRAB_PIECES = 4;
 export const BRACE_STEPS = 10;
+/**
+ * A substep's Newton solve gives up after NEWTON_STALLED iterations without a new lowest
+ * residual or NEWTON_MOST in all (the engine's `GiveUp`), and the substep is split: a step that
+ * will not converge is found out in a few iterations instead of the cap (100), three times over
+ * (warm start, cold, without the ground's vertices). Measured (BENCHMARKS.md, "A step that will
+ * not converge, found out at once"): the mushroom subdivided twice, grabbed with mirror X at
+ * ω = 600 1/s, 1 s of pulling took 50.6 s of wall time in Node with the cap alone (its worst
+ * frame 15.8 s), 23.1, 23.5 and 25.8 s giving up after 8, 12 and 24 stalled iterations (worst
+ * frames 2.0, 2.4, 3.7 s). NEWTON_MOST, twice NEWTON_HIGH (a substep that slow doubles the
+ * substeps anyway), is for a solve that creeps without stalling.
+ */
+export const NEWTON_STALLED = 12;
+export const NEWTON_MOST = 2 * NEWTON_HIGH;
 
 /** The anchors of a stroke moving within the tick (the grab's: `anchorpath.ts`), bound to its body. */
 export interface Anchors {

@@ -105,6 +105,7 @@ pub fn build(spec: &SceneSpec, text: &str, resolve: Resolver) -> Result<Built, S
         dt: w.dt,
         tolerance: w.tolerance,
         newton_iterations: w.newton_iterations,
+        give_up: None,
         contact: ContactSettings { thickness: w.contact_thickness, friction: w.contact_friction, ..ContactSettings::default() },
     };
 

@@ -43,7 +43,7 @@ pub use clock::Clock;
 pub use events::{Action, Event, Events, Load};
 pub use freeze::SUPPORT_GAP;
 pub use obstacles::{Obstacle, Shape};
-pub use settings::{check_dt, ContactSettings, Ground, Integrator, WorldSettings};
+pub use settings::{check_dt, ContactSettings, GiveUp, Ground, Integrator, WorldSettings};
 
 use crate::body::{SoftBody, Stats};
 use crate::error::SimError;

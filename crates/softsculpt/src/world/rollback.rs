@@ -11,7 +11,7 @@
 //! velocities and clock of the call's start: the steps before the first event changed nothing
 //! else.
 
-use super::{Clock, Events, StepError, World, WorldSettings};
+use super::{Clock, Events, GiveUp, StepError, World, WorldSettings};
 use crate::body::SoftBody;
 use crate::error::SimError;
 
@@ -33,6 +33,16 @@ pub(crate) struct Backup {
 }
 
 impl World {
+    /// [`World::step_n`] for a caller that splits a refused step into shorter ones (the
+    /// modeler): each implicit step's Newton solve gives up as `give_up` says
+    /// ([`WorldSettings::give_up`]). The setting is back as it was after the call.
+    pub fn step_n_splitting(&mut self, n: u64, give_up: GiveUp) -> Result<(), StepError> {
+        let was = self.settings.give_up.replace(give_up);
+        let out = self.step_n(n);
+        self.settings.give_up = was;
+        out
+    }
+
     /// Take `n` steps, or none: on failure the whole world is back where it was before the call
     /// and the error names the simulated time of the failing step (3 significant digits) and the
     /// time rolled back to. A state that became non-finite without failing a step (it would fail

@@ -109,8 +109,26 @@ pub struct WorldSettings {
     /// Implicit integrator only: at most this many Newton iterations per step (≥ 1); a step
     /// that has not converged by then is refused.
     pub newton_iterations: u32,
+    /// Implicit integrator only, the caller's choice for a run (not saved in scenes or
+    /// snapshots; [`World::step_n_splitting`] sets it for its steps): when a Newton solve gives
+    /// up before the cap (`body/implicit/mod.rs`). `None`: only at the cap.
+    pub give_up: Option<GiveUp>,
     /// Contact between bodies and self-collision.
     pub contact: ContactSettings,
+}
+
+/// When an implicit step's Newton solve gives up before `newton_iterations` (the step is then
+/// refused as at the cap, the state untouched), for a caller that splits a refused step into
+/// shorter ones (the modeler): such a step costs a few iterations instead of the cap — three
+/// times over, with the integrator's retries (warm start, cold, without the ground's
+/// vertices). Measured on the modeler's mushroom subdivided twice and grabbed (BENCHMARKS.md,
+/// "A step that will not converge, found out at once").
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct GiveUp {
+    /// Iterations without a new lowest residual (≥ 1): the solve has stalled.
+    pub stalled: u32,
+    /// Iterations in all (≥ 1): a step this slow costs more than two of half its dt.
+    pub most: u32,
 }
 
 impl Default for WorldSettings {
@@ -126,6 +144,7 @@ impl Default for WorldSettings {
             dt: table::DT.number(),
             tolerance: table::TOLERANCE.number(),
             newton_iterations: table::NEWTON_ITERATIONS.number() as u32,
+            give_up: None,
             contact: ContactSettings::default(),
         }
     }
@@ -139,6 +158,11 @@ impl WorldSettings {
         check_positive("tolerance", self.tolerance)?;
         if !(1..=MAX_NEWTON).contains(&self.newton_iterations) {
             return Err(bad("newton-iterations", format!("must be a whole number from 1 to {MAX_NEWTON}, got {}", self.newton_iterations)));
+        }
+        if let Some(g) = self.give_up {
+            if g.stalled == 0 || g.most == 0 {
+                return Err(bad("give-up", format!("must be at least 1 iteration each, got {g:?}")));
+            }
         }
         if !self.gravity.is_finite() {
             return Err(bad("gravity", format!("must be finite, got {}", self.gravity)));

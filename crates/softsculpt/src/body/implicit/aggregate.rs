@@ -132,7 +132,7 @@ impl Shape {
                 let mut pos = vec![NONE; g.nbr.len()];
                 for u in 0..n {
                     let pu = parent[u] as usize;
-                    let (r0, r1) = (start[pu] as usize, start[pu + 1] as usize);
+                    let r0 = start[pu] as usize;
                     for k in g.start[u] as usize..g.start[u + 1] as usize {
                         let pw = parent[g.nbr[k] as usize];
                         pos[k] = if pw as usize == pu {

@@ -8,7 +8,8 @@
 //!
 //! each Newton step δ from A δ = −r with A = M + dt D + dt² K (K, D the projected stiffness and
 //! damping, `system.rs`) by a preconditioned conjugate gradient (`cg.rs`; block Jacobi, or a
-//! multigrid V-cycle from `multigrid::MULTIGRID_FROM` vertices: `multigrid.rs`), then a
+//! multigrid V-cycle from `multigrid::MULTIGRID_FROM` vertices, or
+//! `multigrid::HINGED_FROM` with the hinges on: `multigrid.rs`), then a
 //! line search along δ ([`Implicit::line_search`]). Anchors: Baraff & Witkin 1998 (large steps in cloth simulation).
 //!
 //! **Convergence** (what `tolerance` means): with the mass-weighted norm
@@ -141,6 +142,9 @@ pub(crate) struct Implicit {
     pprev: Vec<f64>,
     /// The last `newton` started from the warm start (not from v⁺ = v).
     warmed: bool,
+    /// The last `newton` held a vertex on the ground at some iteration (if not, the retry
+    /// without the ground's vertices would repeat it: `step`).
+    held_any: bool,
 }
 
 impl Implicit {
@@ -148,8 +152,9 @@ impl Implicit {
         let n = m.mass.len();
         let sys = System::new(m);
         let chunks = sys.vslots.len();
-        let mg = multigrid::Multigrid::new(&sys, n, multigrid::MULTIGRID_FROM);
-        Implicit { sys, mg, cg: cg::Cg::new(n, chunks), vp: vec![0.0; 3 * n], xt: vec![0.0; 3 * n], r: vec![0.0; 3 * n], delta: vec![0.0; 3 * n], zprev: vec![0.0; 3 * n], pprev: vec![0.0; 3 * n], warmed: false }
+        let mut mg = multigrid::Multigrid::new(&sys, n, multigrid::HINGED_FROM);
+        mg.unhinged_from = multigrid::MULTIGRID_FROM;
+        Implicit { sys, mg, cg: cg::Cg::new(n, chunks), vp: vec![0.0; 3 * n], xt: vec![0.0; 3 * n], r: vec![0.0; 3 * n], delta: vec![0.0; 3 * n], zprev: vec![0.0; 3 * n], pprev: vec![0.0; 3 * n], warmed: false, held_any: false }
     }
 
     /// Built for a body with `m`'s vertex, spring and face counts.
@@ -235,6 +240,7 @@ impl Implicit {
         self.sys.ground.find(m, ground, fr.x, fr.v, fr.dt);
         self.sys.absolute = false;
         self.warmed = false;
+        self.held_any = false;
         self.vp.copy_from_slice(fr.v);
         self.sys.ground.prescribe(&mut self.vp);
         let (mut r0, mut noise) = self.eval(th, fr)?;
@@ -260,7 +266,11 @@ impl Implicit {
         // CG iterations in 60 steps with the first iteration's coarse levels, 6,733 with these;
         // 8,527 with the held vertices' F A F as well, on another Newton path: BENCHMARKS.md).
         let mut stale = true;
+        // The lowest relative residual so far and the iteration it was reached at (the stall
+        // test, `WorldSettings::give_up`).
+        let mut best = (f64::INFINITY, 0u32);
         loop {
+            self.held_any |= self.sys.ground.active();
             // Vertices the ground would have to pull down are let go for the rest of the step
             // (the set only shrinks: no cycling), at convergence and at iterations 1, 2, 3, 4,
             // 8, 16, … (`ground::release_due`).
@@ -295,6 +305,19 @@ impl Implicit {
                 return Err(Fault::NotConverged { iterations: k, residual: rho });
             }
             if k >= w.newton_iterations {
+                return Err(Fault::NotConverged { iterations: k, residual: rho });
+            }
+            // Given up early (a caller that splits refused steps asks for this: `GiveUp`):
+            // stalled, no new lowest residual for `stalled` iterations, or `most` iterations in
+            // all. Measured on the modeler's mushroom subdivided twice and grabbed (5,762
+            // vertices, BENCHMARKS.md): a step that buckles (the mass term m/dt² no longer
+            // outweighs the negative stiffness along the line search's direction: its slope
+            // steepens as it goes) leaves a residual of 1e-3 for one of 2–50, wanders back to
+            // 1e-2 and stays there until the cap, three times over.
+            if rho < best.0 {
+                best = (rho, k);
+            }
+            if w.give_up.is_some_and(|g| k - best.1 >= g.stalled || k >= g.most) {
                 return Err(Fault::NotConverged { iterations: k, residual: rho });
             }
             let eta = 0.1f64.min((rho * rho).max(0.5 * w.tolerance / rho));
@@ -385,12 +408,14 @@ impl Implicit {
         // And a cold solve that fails with the ground's vertices held (`ground.rs`) is redone
         // without them (the plane then only the after-step projection, as before it was part of
         // the solve).
-        // (Only if the warm start was taken: otherwise the cold solve was the one that failed.)
+        // (Only if the warm start was taken: otherwise the cold solve was the one that failed;
+        // and only if the failed solve held a vertex on the ground: otherwise it was already
+        // the solve without them.)
         let mut solved = match self.newton(th, &fr, warm, true, &mut it) {
             Err(_) if self.warmed => self.newton(th, &fr, None, true, &mut it),
             done => done,
         };
-        if solved.is_err() && w.ground.is_some() {
+        if solved.is_err() && w.ground.is_some() && self.held_any {
             solved = self.newton(th, &fr, None, false, &mut it);
         }
         solved?;

@@ -69,6 +69,16 @@ use crate::par::{chunk, Out, Threads};
 /// 10,242–40,962, 1.13–1.15× faster at 163,842. Bodies of 10,000–20,000 vertices, the modeler's
 /// largest that can run near real time, decided it.
 pub(crate) const MULTIGRID_FROM: usize = 8_000;
+/// Vertices from which the V-cycle preconditions a body whose hinges are on (rigidity D > 0):
+/// the hinges couple each vertex to its neighbours' neighbours, stiff and long-ranged, which
+/// block Jacobi resolves slowly. Measured (BENCHMARKS.md, "A step that will not converge, found
+/// out at once"), one thread, D = 0.05 J: the modeler's mushroom subdivided twice (5,762
+/// vertices) grabbed and released, 1.7–2× less time (8× fewer CG iterations); the 2,562-vertex
+/// sphere landing with each material preset 1.1–2.2× less time (clay at rest 0.9–1.0×); at 642
+/// even. Without hinges the cycle did not pay there (cloth at 2,562: 1.5× slower; jelly at
+/// 5,762: 1.4× slower), so `MULTIGRID_FROM` stays for them. The hierarchy is built from here
+/// either way (the rigidity can change mid-run) and used where the hinges are on.
+pub(crate) const HINGED_FROM: usize = 2_000;
 /// Nodes of the coarsest level at most (solved densely: 6 n unknowns).
 pub(crate) const COARSEST: usize = 24;
 /// Levels below the finest at most.
@@ -316,6 +326,8 @@ struct Level {
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Multigrid {
     levels: Vec<Level>,
+    /// Vertices from which the cycle is used without hinges (`HINGED_FROM`); 0 in `new`.
+    pub unhinged_from: usize,
     /// Per hinge, its level-1 nodes and their blocks, found on the first assembly with hinges
     /// (from the mesh alone).
     hpos: Vec<HingeNodes>,
@@ -346,12 +358,15 @@ impl Multigrid {
             }
         }
         let nc = levels.last().map_or(0, |l| 6 * l.s.n);
-        Multigrid { levels, hpos: Vec::new(), chol: vec![0.0; nc * nc], drop: vec![false; nc], t: vec![0.0; 3 * n] }
+        Multigrid { levels, unhinged_from: 0, hpos: Vec::new(), chol: vec![0.0; nc * nc], drop: vec![false; nc], t: vec![0.0; 3 * n] }
     }
 
     /// Coarse matrices from the system's current coefficients (after `System::eval`) and the
     /// positions `x` (flat xyz) they were taken at.
     pub fn assemble(&mut self, sys: &System, m: &Model, x: &[f64]) {
+        if !self.cycles(sys, m.mass.len()) {
+            return;
+        }
         let free = |i: usize| m.inv_mass[i] != 0.0;
         if sys.hinged && self.hpos.len() != m.hinges.v.len() {
             if let Some(first) = self.levels.first() {
@@ -640,11 +655,17 @@ impl Multigrid {
         }
     }
 
+    /// Whether the V-cycle preconditions this body of `n` vertices now (its hinges on or off:
+    /// [`HINGED_FROM`]).
+    fn cycles(&self, sys: &System, n: usize) -> bool {
+        !self.levels.is_empty() && (sys.hinged || n >= self.unhinged_from)
+    }
+
     /// z = B res, B the V-cycle (block Jacobi alone when there are no coarse levels); returns
     /// res · z. `slots`: one reduction slot per vertex chunk.
     pub fn apply(&mut self, th: &Threads, sys: &System, m: &Model, res: &[f64], z: &mut [f64], slots: &mut [[f64; 4]]) -> f64 {
         let n = m.mass.len();
-        if self.levels.is_empty() {
+        if !self.cycles(sys, n) {
             return jacobi(th, sys, n, 1.0, res, None, z, slots);
         }
         let Multigrid { levels, chol, drop, t, .. } = self;
