@@ -2,6 +2,8 @@
 // instead of repeating the last frame's "real time".
 import { describe, expect, it } from 'vitest';
 import { paceText, STALL_MS, viewText } from '../src/view/pace';
+import { Stepper } from '../src/worker/stepper';
+import type { Document } from '../src/worker/document';
 
 const base = { playing: true, busy: false, slowMotion: false, realTimeFraction: 1, sinceFrameMs: 16 };
 
@@ -22,5 +24,43 @@ describe('the HUD pace', () => {
     expect(viewText(44.2, 43.9, false)).toBe('view 44 fps');
     expect(viewText(44.2, 2.04, true)).toBe('view 44 fps, new shape 2.0/s');
     expect(viewText(30, 12.4, true)).toBe('view 30 fps, new shape 12/s');
+  });
+});
+
+describe('the worker’s fraction of real time (stepper.ts)', () => {
+  // A fake clock and a document whose step takes `costMs` of it: the fraction shown is
+  // simulated seconds over wall seconds, from one tick's end to the next's.
+  const run = (costMs: number, ticks: number) => {
+    let t = 1000;
+    const dt = 1 / 60;
+    const doc = {
+      settings: { playing: true, realTime: true, dt, substeps: 1 },
+      updateStroke() {},
+      advance(_h: number, n: number) { t += costMs * n; return true; },
+    } as unknown as Document;
+    const stepper = new Stepper(() => t);
+    const fractions: number[] = [];
+    for (let i = 0; i < ticks; i++) {
+      t += 2; // the worker's wait between ticks
+      stepper.tick(doc);
+      fractions.push(stepper.slowMotion ? stepper.realTimeFraction : 1);
+    }
+    return fractions;
+  };
+
+  it('a step of 1 s reads as 1/60 of real time, not the steps done over the 0.1 s of steps wanted', () => {
+    const f = run(1000, 5).slice(1);
+    // Each tick: one step (dt = 1/60 s) in 1002 ms from the last tick's end.
+    for (const x of f) expect(x).toBeCloseTo((1 / 60) / 1.002, 6);
+  });
+
+  it('steps of 50 ms at 1/60 s read as a third of real time', () => {
+    const f = run(50, 20).slice(5);
+    // The budget (30 ms) lets one 50 ms step run per tick: 16.7 ms simulated in 52 ms.
+    for (const x of f) expect(x).toBeCloseTo((1000 / 60) / 52, 6);
+  });
+
+  it('steps that fit the clock read as real time', () => {
+    expect(run(2, 20).slice(2).every((x) => x === 1)).toBe(true);
   });
 });

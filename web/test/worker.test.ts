@@ -211,6 +211,19 @@ describe('worker service', () => {
     expect(h.replies.filter((r) => r.type === 'ui').at(-1)).toEqual({ type: 'ui', ui: { brush: { radius: 0.5 }, tool: 'press', strengths: { press: 99 }, symmetry: [false, true, false] } });
   });
 
+  it('subdividing a coarse mesh says that smoothing rounded it, and by how much', async () => {
+    const h = await started();
+    await h.send({ type: 'import', name: 'cube.obj', data: bytes(CUBE) });
+    const v0 = h.service.doc.stats().volume;
+    await h.send({ type: 'subdivide' });
+    const v1 = h.service.doc.stats().volume;
+    // Loop subdivision of a unit cube's 8 vertices and 12 triangles moves every vertex towards
+    // a rounded limit surface: far more than the 2 % the message calls a kept shape.
+    expect(v1 / v0).toBeLessThan(0.9);
+    const change = Math.round(100 * (1 - v1 / v0));
+    expect(h.messages().at(-1)).toBe(`subdivided: 8 → 26 vertices, smoothing rounded the shape: volume −${change} %, held under its weight (Ctrl+Z undoes)`);
+  });
+
   it('a reload brings back the shape as it ran on after the last edit (the autosave is written while running)', async () => {
     const h = await started();
     const t0 = h.tick()!.stats.time;

@@ -31,6 +31,8 @@ export const HISTORY_STEPS = 200;
 export const HISTORY_BYTES = 512 * 1024 * 1024;
 /** Undo steps kept across a reload: the newest that fit in this many bytes (the autosave is written after every operation). */
 export const HISTORY_KEPT_BYTES = 48 * 1024 * 1024;
+/** The volume change (relative) up to which a subdivision says it kept the shape. */
+const SUBDIVIDE_KEPT = 0.02;
 /** Frames with split steps before the modeler says so (once per model). */
 export const SPLIT_NOTICE = 10;
 
@@ -495,6 +497,8 @@ export class Document {
       this.hooks.progress('subdividing');
       let dropped = 0, underLoad = false;
       const n0 = this.totalVertices;
+      const volume = () => { this.synced(); return this.everyBody.reduce((v, b) => v + this.world.body(b).stats.volume, 0); };
+      const v0 = volume();
       for (const b of this.everyBody) {
         const before = this.world.params(b);
         dropped += this.world.subdivide(b);
@@ -509,7 +513,13 @@ export class Document {
         }
       }
       // Said, so the last operation's message does not stay on screen as if it were this one's.
-      this.hooks.message(`subdivided: ${n0.toLocaleString('en-US')} → ${this.totalVertices.toLocaleString('en-US')} vertices, the shape kept${underLoad ? ' under its weight' : ''} (Ctrl+Z undoes)`);
+      // Loop subdivision moves every vertex towards a smooth limit surface: a fine mesh keeps its
+      // shape, a coarse one is rounded (an 8-vertex box becomes a pill of 43 % its volume), and
+      // the message says which.
+      const change = volume() / v0 - 1;
+      const kept = Math.abs(change) <= SUBDIVIDE_KEPT;
+      const shape = kept ? `the shape kept${underLoad ? ' under its weight' : ''}` : `smoothing rounded the shape: volume ${change > 0 ? '+' : '−'}${pct(Math.abs(change))}${underLoad ? ', held under its weight' : ''}`;
+      this.hooks.message(`subdivided: ${n0.toLocaleString('en-US')} → ${this.totalVertices.toLocaleString('en-US')} vertices, ${shape} (Ctrl+Z undoes)`, kept ? 'info' : 'warn');
       if (dropped > 0) this.hooks.message(`${dropped} pending scene events of the bodies no longer fit their meshes and were dropped`, 'warn');
       // Implicit steps keep dt (the parameters do not depend on the resolution); an explicit
       // integrator needs the finer mesh's stable step.

@@ -13,8 +13,15 @@ export class Stepper {
   /** Wall-clock ms spent stepping since `take()`. */
   private spent = 0;
   slowMotion = false;
-  /** Simulated time over the wall-clock time the last tick covered (1: real time). */
+  /**
+   * Simulated time over wall-clock time (1: real time), over the last tick: from the end of the
+   * tick before it to its own end (its steps and the wait before them). Not the steps done over
+   * the steps wanted: those are for at most 0.1 s of clock, so a step that takes 1 s read as 1/6
+   * of real time instead of 1/60 (the page said 17 % at 2–7 %).
+   */
   realTimeFraction = 1;
+  /** When the last tick ended (ms), 0 before the first. */
+  private lastEnd = 0;
 
   constructor(private readonly now: () => number, private readonly budgetMs = 30) {}
 
@@ -28,6 +35,7 @@ export class Stepper {
       doc.updateStroke(0);
       this.slowMotion = false;
       this.carry = 0;
+      this.lastEnd = 0;
       return false;
     }
     const want = s.realTime ? elapsed / s.dt + this.carry : s.substeps;
@@ -39,7 +47,10 @@ export class Stepper {
     const done = this.run(doc, s.dt, n, this.budgetMs);
     this.slowMotion = done < n;
     if (this.slowMotion) this.carry = 0;
-    this.realTimeFraction = n > 0 ? done / n : 1;
+    const end = this.now();
+    const wall = (end - (this.lastEnd || now)) / 1000;
+    this.lastEnd = end;
+    this.realTimeFraction = this.slowMotion && wall > 0 ? Math.min(1, (done * s.dt) / wall) : 1;
     return done > 0;
   }
 
