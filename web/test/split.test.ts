@@ -9,7 +9,7 @@ const blowUp = () => Object.assign(new Error('blew up'), { kind: 'step', fields:
 /** A fake world whose steps converge only at dt ≤ `limit`; a failed call leaves `time` alone. */
 function world(limit: number) {
   const w = { time: 0, calls: [] as [number, number][] };
-  const step = (dt: number, n: number) => {
+  const step = (dt: number, n: number, _last = false) => {
     w.calls.push([dt, n]);
     if (dt > limit) throw unconverged();
     w.time += dt * n;
@@ -36,6 +36,15 @@ describe('split steps', () => {
     expect(stepSplitting(step, 1 / 60, 1)).toBe(1 + 2 + 4);
     expect(w.time).toBeCloseTo(1 / 60, 15);
     expect(Math.min(...w.calls.map(([dt]) => dt))).toBeCloseTo(1 / 480, 15);
+  });
+
+  it('tells only the shortest split that no shorter one follows (the engine then keeps its whole cap)', () => {
+    const seen: [number, boolean][] = [];
+    const { step } = world(0.0025);
+    stepSplitting((dt, n, last) => { seen.push([dt, last]); step(dt, n, last); }, 1 / 60, 1);
+    // dt/8 is the last split: told so; every longer try is not.
+    for (const [dt, last] of seen) expect(last).toBe(Math.abs(dt - 1 / 480) < 1e-15);
+    expect(seen.some(([, last]) => last)).toBe(true);
   });
 
   it('gives up past three levels with the engine error, the state untouched', () => {

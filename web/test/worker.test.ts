@@ -220,7 +220,7 @@ describe('worker service', () => {
     // Loop subdivision of a unit cube's 8 vertices and 12 triangles moves every vertex towards
     // a rounded limit surface: far more than the 2 % the message calls a kept shape.
     expect(v1 / v0).toBeLessThan(0.9);
-    const change = Math.round(100 * (1 - v1 / v0));
+    const change = (100 * (1 - v1 / v0)).toFixed(0);
     expect(h.messages().at(-1)).toBe(`subdivided: 8 → 26 vertices, smoothing rounded the shape: volume −${change} %, held under its weight (Ctrl+Z undoes)`);
   });
 

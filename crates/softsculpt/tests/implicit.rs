@@ -530,6 +530,12 @@ fn a_step_that_will_not_converge_is_given_up_early_and_a_converging_one_is_untou
                     Err(f) => {
                         // The same step without giving up ran to the cap.
                         assert_eq!(iterations(&f), a.settings.newton_iterations);
+                        // And the stall test alone (no `most`) gives up before the cap too:
+                        // this step made no new lowest residual for 12 iterations before 100.
+                        let mut c = b.clone();
+                        let stalled = c.step_n_splitting(1, GiveUp { stalled: 12, most: u32::MAX }).unwrap_err();
+                        assert!(iterations(&stalled) < a.settings.newton_iterations, "{stalled}");
+                        assert_eq!(c.bodies[0].positions(), &x[..]);
                         refused_early += 1;
                         break;
                     }

@@ -76,9 +76,29 @@ export class Hud {
 
   show(lines: string[]): void {
     const text = lines.join('\n');
-    if (this.readout.textContent !== text) this.readout.textContent = text;
+    if (this.readout.textContent !== text) {
+      this.readout.textContent = text;
+      this.clearHint();
+    }
     for (const f of this.shown) f();
   }
+
+  /**
+   * The "Press ?" hint sits at the top right of the view, the readout at the top left; a long
+   * readout line ("17 % of real time (slow motion) … new shape 1.2/s") reached under the hint
+   * and was cut off (the 12th and 13th sessions' trials): then the hint moves below the readout.
+   */
+  private clearHint(): void {
+    if (this.hint.hidden) return;
+    const r = this.readout.getBoundingClientRect();
+    if (!this.hintLowered) {
+      const h = this.hint.getBoundingClientRect();
+      // Once lowered it stays so (a readout a character shorter must not make it jump back).
+      this.hintLowered = r.right + 8 > h.left && r.top < h.bottom;
+    }
+    if (this.hintLowered) this.hint.style.top = `${Math.ceil(r.bottom + 6)}px`;
+  }
+  private hintLowered = false;
 
   /** A long operation under way ("subdividing", with the fraction done if known), or none (null). */
   progress(label: string | null, fraction?: number): void {

@@ -261,7 +261,7 @@ export class Document {
       // Let it settle on the ground (a few simulated seconds) so it opens at rest.
       const dt = this.settings.dt, chunk = Math.max(1, Math.round(0.5 / dt));
       for (let t = 0; t < 6; t += dt * chunk) {
-        stepSplitting((h, n) => this.stepAt(h, n), dt, chunk);
+        stepSplitting((h, n, last) => this.stepAt(h, n, last), dt, chunk);
         this.hooks.progress(label, t / 6);
       }
     });
@@ -514,8 +514,8 @@ export class Document {
       }
       // Said, so the last operation's message does not stay on screen as if it were this one's.
       // Loop subdivision moves every vertex towards a smooth limit surface: a fine mesh keeps its
-      // shape, a coarse one is rounded (an 8-vertex box becomes a pill of 43 % its volume), and
-      // the message says which.
+      // shape, a coarse one is rounded (an 8-vertex unit cube loses half its volume), and the
+      // message says which.
       const change = volume() / v0 - 1;
       const kept = Math.abs(change) <= SUBDIVIDE_KEPT;
       const shape = kept ? `the shape kept${underLoad ? ' under its weight' : ''}` : `smoothing rounded the shape: volume ${change > 0 ? '+' : '−'}${pct(Math.abs(change))}${underLoad ? ', held under its weight' : ''}`;
@@ -593,11 +593,11 @@ export class Document {
       let splits = 0;
       if (this.implicit) {
         // Implicit steps in adaptive substeps (`pace.ts`), a grab's anchors moved across them.
-        splits = stepPaced(this.pace, anchors, (h) => { this.stepAt(h, 1); return this.newtonIterations(); }, dt, n);
+        splits = stepPaced(this.pace, anchors, (h, last) => { this.stepAt(h, 1, last); return this.newtonIterations(); }, dt, n);
       } else {
         // Explicit steps in batches, a grab's anchors moved once for the batch.
         anchors?.aim(dt * n);
-        splits = stepSplitting((h, k) => this.stepAt(h, k), dt, n);
+        splits = stepSplitting((h, k, last) => this.stepAt(h, k, last), dt, n);
         anchors?.took(dt * n);
         anchors?.stepped(0, false);
       }
@@ -662,10 +662,13 @@ export class Document {
     return Math.max(0, ...this.everyBody.map((b) => this.world.newtonIterations(b)));
   }
 
-  /** `n` steps of `h` (s), the world's dt back to the settings' after a split step. */
-  private stepAt(h: number, n: number): void {
-    // A Newton solve that stalls or runs long gives up early (`pace.ts`): the step is split.
-    const step = () => this.world.stepSplitting(n, NEWTON_STALLED, NEWTON_MOST);
+  /**
+   * `n` steps of `h` (s), the world's dt back to the settings' after a split step. A Newton
+   * solve that stalls or runs long gives up early and the step is split (`pace.ts`), except at
+   * the last split (`last`), where only the engine's cap refuses it.
+   */
+  private stepAt(h: number, n: number, last = false): void {
+    const step = () => last ? this.world.step(n) : this.world.stepSplitting(n, NEWTON_STALLED, NEWTON_MOST);
     if (h === this.settings.dt) { step(); return; }
     this.world.setParam(0, 'dt', h);
     try { step(); } finally { this.world.setParam(0, 'dt', this.settings.dt); }

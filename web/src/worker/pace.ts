@@ -36,8 +36,9 @@ export const BRACE_STEPS = 10;
 /**
  * A substep's Newton solve gives up after NEWTON_STALLED iterations without a new lowest
  * residual or NEWTON_MOST in all (the engine's `GiveUp`), and the substep is split: a step that
- * will not converge is found out in a few iterations instead of the cap (100), three times over
- * (warm start, cold, without the ground's vertices). Measured (BENCHMARKS.md, "A step that will
+ * will not converge is found out in a few iterations instead of the cap (100), in each of its
+ * attempts (warm start, cold, without the ground's vertices if it held some). Not at the last
+ * split (`split.ts`): a step that converges slowly there beats a refusal the user sees. Measured (BENCHMARKS.md, "A step that will
  * not converge, found out at once"): the mushroom subdivided twice, grabbed with mirror X at
  * ω = 600 1/s, 1 s of pulling took 50.6 s of wall time in Node with the cap alone (its worst
  * frame 15.8 s), 23.1, 23.5 and 25.8 s giving up after 8, 12 and 24 stalled iterations (worst
@@ -109,20 +110,20 @@ export class Pace {
 
 /**
  * `n` steps of `dt`, each in `pace.pieces` substeps, each substep split if it does not converge
- * (`split.ts`); the anchors, if any, set before every substep. `step(h)` takes one substep of
- * `h` s (or throws, the world untouched) and returns its Newton iterations (the most over the
- * bodies). Returns the splits.
+ * (`split.ts`); the anchors, if any, set before every substep. `step(h, last)` takes one
+ * substep of `h` s (or throws, the world untouched; `last`: the shortest split, see `StepFn`)
+ * and returns its Newton iterations (the most over the bodies). Returns the splits.
  */
-export function stepPaced(pace: Pace, anchors: Anchors | null, step: (h: number) => number, dt: number, n: number): number {
+export function stepPaced(pace: Pace, anchors: Anchors | null, step: (h: number, last: boolean) => number, dt: number, n: number): number {
   let splits = 0;
   for (let i = 0; i < n; i++) {
     const p = pace.pieces;
     let newton = 0, most = 0, s = 0;
     for (let k = 0; k < p; k++) {
       // One substep per call (n = 1): a failed try leaves the anchors' path where it was.
-      s += stepSplitting((h) => {
+      s += stepSplitting((h, _n, last) => {
         anchors?.aim(h);
-        const it = step(h);
+        const it = step(h, last);
         anchors?.took(h);
         newton += it;
         most = Math.max(most, it);

@@ -3,8 +3,12 @@
 // steps of dt/2, each split again if it also fails, at most `depth` times (dt/8 by default).
 // Any other failure, or one at the smallest split, is thrown as it came.
 
-/** Steps `n` of `dt` (s) or none: throws the engine's error and leaves the state as it was. */
-export type StepFn = (dt: number, n: number) => void;
+/**
+ * Steps `n` of `dt` (s) or none: throws the engine's error and leaves the state as it was.
+ * `last`: no shorter split follows if this fails (the engine should not give up early then:
+ * `pace.ts`, NEWTON_STALLED).
+ */
+export type StepFn = (dt: number, n: number, last: boolean) => void;
 
 /** Whether `e` is an implicit step that did not converge (and may succeed with a smaller dt). */
 export function notConverged(e: unknown): boolean {
@@ -19,7 +23,7 @@ export function notConverged(e: unknown): boolean {
  */
 export function stepSplitting(step: StepFn, dt: number, n: number, depth = 3): number {
   try {
-    step(dt, n);
+    step(dt, n, depth <= 0);
     return 0;
   } catch (e) {
     if (!notConverged(e) || depth <= 0) throw e;

@@ -119,9 +119,11 @@ pub struct WorldSettings {
 
 /// When an implicit step's Newton solve gives up before `newton_iterations` (the step is then
 /// refused as at the cap, the state untouched), for a caller that splits a refused step into
-/// shorter ones (the modeler): such a step costs a few iterations instead of the cap — three
-/// times over, with the integrator's retries (warm start, cold, without the ground's
-/// vertices). Measured on the modeler's mushroom subdivided twice and grabbed (BENCHMARKS.md,
+/// shorter ones (the modeler): such a step costs a few iterations instead of the cap, in each
+/// of the integrator's attempts (warm start, cold, without the ground's vertices if it held
+/// some). It can refuse a step that would have converged (the residual is not monotone: the
+/// line search follows the slope of the step's incremental potential), so the caller's last,
+/// shortest split should step without it. Measured on the modeler's mushroom subdivided twice and grabbed (BENCHMARKS.md,
 /// "A step that will not converge, found out at once").
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct GiveUp {

@@ -240,7 +240,7 @@ impl Implicit {
         self.sys.ground.find(m, ground, fr.x, fr.v, fr.dt);
         self.sys.absolute = false;
         self.warmed = false;
-        self.held_any = false;
+        self.held_any = self.sys.ground.active();
         self.vp.copy_from_slice(fr.v);
         self.sys.ground.prescribe(&mut self.vp);
         let (mut r0, mut noise) = self.eval(th, fr)?;
@@ -267,10 +267,10 @@ impl Implicit {
         // 8,527 with the held vertices' F A F as well, on another Newton path: BENCHMARKS.md).
         let mut stale = true;
         // The lowest relative residual so far and the iteration it was reached at (the stall
-        // test, `WorldSettings::give_up`).
+        // test, `WorldSettings::give_up`); from scratch when the ground's set changes (another
+        // problem, another residual).
         let mut best = (f64::INFINITY, 0u32);
         loop {
-            self.held_any |= self.sys.ground.active();
             // Vertices the ground would have to pull down are let go for the rest of the step
             // (the set only shrinks: no cycling), at convergence and at iterations 1, 2, 3, 4,
             // 8, 16, … (`ground::release_due`).
@@ -278,6 +278,7 @@ impl Implicit {
             if (converged || ground::release_due(k)) && released != Some(k) && self.sys.ground.active() && self.sys.ground.release() {
                 released = Some(k);
                 stale = true;
+                best = (f64::INFINITY, k);
                 (norm, noise) = self.eval(th, fr)?;
                 continue;
             }
@@ -286,6 +287,8 @@ impl Implicit {
             if let (Some(g), true) = (ground, !converged && k >= 1 && k <= ground::ADD_UNTIL && k.is_power_of_two() && added != Some(k)) {
                 added = Some(k);
                 if self.sys.ground.add(m, g, fr.dt, fr.x, &self.xt) {
+                    self.held_any = true;
+                    best = (f64::INFINITY, k);
                     self.sys.ground.prescribe(&mut self.vp);
                     // The last direction moved the new vertices' y freely: the next one is a
                     // plain Newton step (`conjugate`), so their prescribed v⁺_y stays.
@@ -312,8 +315,11 @@ impl Implicit {
             // all. Measured on the modeler's mushroom subdivided twice and grabbed (5,762
             // vertices, BENCHMARKS.md): a step that buckles (the mass term m/dt² no longer
             // outweighs the negative stiffness along the line search's direction: its slope
-            // steepens as it goes) leaves a residual of 1e-3 for one of 2–50, wanders back to
-            // 1e-2 and stays there until the cap, three times over.
+            // steepens as it goes) got to a relative residual of 1e-3 in 3 iterations, was
+            // thrown to 2–50 by the line search's extrapolation, wandered back to ~1e-2 and
+            // stayed there until the cap — in each of the step's attempts (warm, cold, and
+            // without the ground if it held vertices). Not at the caller's last split
+            // (`web/src/worker/split.ts`): there a slow step that converges beats a refusal.
             if rho < best.0 {
                 best = (rho, k);
             }
