@@ -517,7 +517,8 @@ export class Document {
       // shape, a coarse one is rounded (an 8-vertex unit cube loses half its volume), and the
       // message says which.
       const change = volume() / v0 - 1;
-      const kept = Math.abs(change) <= SUBDIVIDE_KEPT;
+      // (An open mesh has no volume to compare: no change said.)
+      const kept = !Number.isFinite(change) || !(v0 > 0) || Math.abs(change) <= SUBDIVIDE_KEPT;
       const shape = kept ? `the shape kept${underLoad ? ' under its weight' : ''}` : `smoothing rounded the shape: volume ${change > 0 ? '+' : '−'}${pct(Math.abs(change))}${underLoad ? ', held under its weight' : ''}`;
       this.hooks.message(`subdivided: ${n0.toLocaleString('en-US')} → ${this.totalVertices.toLocaleString('en-US')} vertices, ${shape} (Ctrl+Z undoes)`, kept ? 'info' : 'warn');
       if (dropped > 0) this.hooks.message(`${dropped} pending scene events of the bodies no longer fit their meshes and were dropped`, 'warn');

@@ -123,8 +123,8 @@ pub struct WorldSettings {
 /// of the integrator's attempts (warm start, cold, without the ground's vertices if it held
 /// some). It can refuse a step that would have converged (the residual is not monotone: the
 /// line search follows the slope of the step's incremental potential), so the caller's last,
-/// shortest split should step without it. Measured on the modeler's mushroom subdivided twice and grabbed (BENCHMARKS.md,
-/// "A step that will not converge, found out at once").
+/// shortest split should step without it. Measured on the modeler's mushroom subdivided twice
+/// and grabbed (BENCHMARKS.md, "A step that will not converge, found out at once").
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct GiveUp {
     /// Iterations without a new lowest residual (≥ 1): the solve has stalled.
