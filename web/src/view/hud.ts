@@ -78,7 +78,7 @@ export class Hud {
     const text = lines.join('\n');
     if (this.readout.textContent !== text) {
       this.readout.textContent = text;
-      this.clearHint();
+      this.keepHintClear();
     }
     for (const f of this.shown) f();
   }
@@ -88,7 +88,7 @@ export class Hud {
    * readout line ("17 % of real time (slow motion) … new shape 1.2/s") reached under the hint
    * and was cut off (the 12th and 13th sessions' trials): then the hint moves below the readout.
    */
-  private clearHint(): void {
+  private keepHintClear(): void {
     if (this.hint.hidden) return;
     const r = this.readout.getBoundingClientRect();
     if (!this.hintLowered) {
