@@ -29,6 +29,17 @@ export const FOLLOW_ZONE = 0.25;
 /** …then the camera closes the excess with this time constant (s): 1 − e^(−Δt/τ) of it per frame. */
 export const FOLLOW_TAU = 0.1;
 
+/**
+ * Where the camera's target should be (m): `base`, the target the view was set with when the
+ * model's centre was at `anchor`, moved by the part of the centre's displacement beyond `zone`
+ * (m) — d (1 − zone/|d|) for d = centre − anchor, nothing inside the zone.
+ */
+export function followTarget(base: THREE.Vector3, anchor: THREE.Vector3, centre: THREE.Vector3, zone: number): THREE.Vector3 {
+  const d = centre.clone().sub(anchor);
+  const len = d.length();
+  return base.clone().addScaledVector(d, len > zone ? 1 - zone / len : 0);
+}
+
 export interface CameraState { position: number[]; target: number[]; mode: CameraMode }
 
 export class CameraRig {
@@ -74,7 +85,7 @@ export class CameraRig {
   private readonly ended = () => {
     // What the user moved the target by (a pan) is kept; a turn or a zoom keeps the target, and
     // the model's own motion meanwhile is not the user's.
-    if (this.moving) this.offset.add(this.target).sub(this.startTarget);
+    if (this.moving) this.base.add(this.target).sub(this.startTarget);
     else this.reanchor = true;
     this.moving = false;
     for (const f of this.settled) f();
@@ -85,28 +96,33 @@ export class CameraRig {
   // ----- following the model (a body the wind blows away, one that falls, stays in view) -----
   /** The user is moving the camera. */
   private moving = false;
-  /** Where the user put the target relative to the model's centre (a pan): kept while it moves. */
-  private offset = new THREE.Vector3();
+  /** The model's centre when the view was last set (framed, restored, turned, a new model)… */
+  private anchor = new THREE.Vector3();
+  /** …and the target the view had then, plus the user's pans since (a pan is kept while the model moves). */
+  private base = new THREE.Vector3();
   /** The view was just set (framed, restored, a new model): the next centre seen is where it keeps the model. */
   private reanchor = true;
   private followedAt = performance.now();
 
   /**
-   * The model's centre this frame: when it has left a dead zone of FOLLOW_ZONE model radii around
-   * where the view keeps it (the target less the user's pan), the camera slides with it, keeping
-   * its direction and distance, closing the gap with time constant FOLLOW_TAU (no jump). Not
-   * while the user moves the camera or a tool drags (`enabled` off): the view never moves under
-   * a grab. The zone keeps a press or a grab's wobble from moving the view.
+   * The model's centre this frame. The camera's target eases (time constant FOLLOW_TAU, no jump)
+   * towards `followTarget`: the target the view was set with, moved by as much as the centre has
+   * left a dead zone of FOLLOW_ZONE model radii around where it was then — keeping its direction
+   * and distance. A function of where the model is now, not of the path it took: a grab's wobble
+   * that leaves the zone moves the view a little and, once the model is back, the view is back
+   * too (before, the view followed each excursion and kept it: after four grabs on the mushroom
+   * its target had crept 0.15 m, ~27 px). Not while the user moves the camera or a tool drags
+   * (`enabled` off): the view never moves under a grab.
    */
   follow(centre: THREE.Vector3, now = performance.now()): void {
     const dt = Math.min(0.25, Math.max(0, (now - this.followedAt) / 1000));
     this.followedAt = now;
-    if (this.reanchor) { this.offset.copy(this.target).sub(centre); this.reanchor = false; return; }
+    if (this.reanchor) { this.anchor.copy(centre); this.base.copy(this.target); this.reanchor = false; return; }
     if (this.moving || !this.controls.enabled) return;
-    const away = centre.clone().add(this.offset).sub(this.target);
-    const len = away.length(), zone = FOLLOW_ZONE * this.radius;
-    if (!(len > zone)) return;
-    away.multiplyScalar((1 - Math.exp(-dt / FOLLOW_TAU)) * (1 - zone / len));
+    const away = followTarget(this.base, this.anchor, centre, FOLLOW_ZONE * this.radius).sub(this.target);
+    // Closer than a millionth of the model's size: done (no endless sub-pixel redraws).
+    if (!(away.length() > 1e-6 * this.radius)) return;
+    away.multiplyScalar(1 - Math.exp(-dt / FOLLOW_TAU));
     this.target.add(away);
     this.camera.position.add(away);
     this.controls.update();
