@@ -53,6 +53,16 @@ test('an open cloth-like mesh loads without gas, says so, and the gas controls a
   const x = await inspect(page, () => window.softsculpt.positions());
   assert.ok(x.every(Number.isFinite), 'it simulates');
   await shot(page, 'import-02-cloth-loaded');
+  // U, as the import message suggests for a coarse model, then F: both act (before, Subdivide
+  // failed on an open surface: "gas reference: must be finite with a positive volume").
+  await page.keyboard.press('u');
+  await page.waitForFunction(() => window.softsculpt.vertexCount() === 33 * 33 && !window.softsculpt.busy(), null, { timeout: 30000 });
+  await page.keyboard.press('f');
+  await page.waitForFunction(() => /frozen/.test(window.softsculpt.lastMessage()), null, { timeout: 15000 });
+  await page.waitForTimeout(1000);
+  assert.deepEqual((await shown(page)).filter((m) => /error/.test(m.kind)), [], 'no error shown');
+  assert.ok((await inspect(page, () => window.softsculpt.positions())).every(Number.isFinite), 'it simulates');
+  await shot(page, 'import-03-cloth-subdivided');
   assert.deepEqual(errors, []);
   await page.context().close();
 });

@@ -354,6 +354,30 @@ describe('importing', () => {
     expect(x.every(Number.isFinite)).toBe(true);
   });
 
+  it('an imported open sheet subdivides, freezes, and its saved project opens (no gas reference of zero volume)', async () => {
+    // Before: Freeze made the sheet's gas reference volume its divergence-theorem volume, 0, and
+    // Subdivide — the import message's own hint for a coarse model — failed with "gas reference:
+    // must be finite with a positive volume" (core: GasReference::volume_for).
+    const h = await started();
+    await h.send({ type: 'import', name: 'cloth.obj', data: bytes(sheetObj(8, 2)) });
+    await h.send({ type: 'subdivide' });
+    expect(h.messages().at(-1)).not.toMatch(/error|could not|as it was before/);
+    expect(h.service.doc.vertexCount).toBe(17 * 17);
+    await h.send({ type: 'subdivide' });
+    expect(h.service.doc.vertexCount).toBe(33 * 33);
+    await h.send({ type: 'freeze' });
+    expect(h.messages().at(-1)).toMatch(/frozen/);
+    for (let i = 0; i < 30; i++) h.giveBack(h.tick()!);
+    const x = Array.from(h.service.doc.world.body(0).positions);
+    expect(x.every(Number.isFinite)).toBe(true);
+    await h.send({ type: 'saveProject', ui: { brush: { radius: 0.5 }, tool: 'grab', strengths: {}, symmetry: [true, false, false] } });
+    const d = h.replies.filter((r) => r.type === 'download').at(-1) as Reply & { type: 'download' };
+    await h.send({ type: 'loadBuiltin', name: 'sphere' });
+    await h.send({ type: 'openProject', name: d.filename, text: d.text });
+    expect(h.messages().at(-1)).not.toMatch(/error|could not/);
+    expect(Array.from(h.service.doc.world.body(0).positions)).toEqual(x);
+  });
+
   it('a cancelled import leaves the model as it was; an answer with nothing waiting says so', async () => {
     const h = await started();
     // Two pieces: the page is asked.

@@ -580,11 +580,15 @@ fn settings_from_v1(s: SettingsV1) -> Result<WorldSettings, String> {
     Ok(settings)
 }
 
+/// A V0 that is not positive was written by a Freeze of an open surface before V0 was kept
+/// positive (`GasReference::volume_for`: 1 m³ there, as now); read the same way, so such a
+/// project still opens. V0 enters only the gas energy (P = nRT/V does not depend on it), so
+/// the body steps to the same bits as before.
 fn gas(g: [f64; 2]) -> Result<GasReference, String> {
-    if !(g.iter().all(|v| v.is_finite()) && g[1] > 0.0) {
-        return Err(format!("gas reference {g:?} must be finite with a positive volume"));
+    if !g.iter().all(|v| v.is_finite()) {
+        return Err(format!("gas reference {g:?} must be finite"));
     }
-    Ok(GasReference { ambient_pressure: g[0], reference_volume: g[1] })
+    Ok(GasReference { ambient_pressure: g[0], reference_volume: GasReference::volume_for(g[1]) })
 }
 
 fn body_from_v1(b: BodyV1) -> Result<SoftBody, String> {

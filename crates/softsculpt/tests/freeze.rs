@@ -421,3 +421,72 @@ fn a_nudged_mushroom_frozen_keeping_tension_comes_back() {
         assert!(moved < 1e-3, "{what}: {moved} m from the frozen shape 3 s after the nudge");
     }
 }
+
+/// An open surface has no enclosed volume (a flat sheet: exactly 0 by the divergence theorem), so
+/// freezing it must not make that its gas reference volume V₀ (a V₀ that is not positive is refused
+/// everywhere else). Before: Freeze set V₀ := V = 0, and then Subdivide (the
+/// page's hint for a coarse import), setting the gas reference back, and opening the saved
+/// project all failed ("gas reference: must be finite with a positive volume"). Now a body
+/// without a positive volume keeps the reference a new body gets (1 m³; unused without gas).
+#[test]
+fn an_open_sheet_can_be_frozen_subdivided_saved_and_opened_again() {
+    let n = 8;
+    let mut obj = String::new();
+    for i in 0..=n {
+        for j in 0..=n {
+            obj += &format!("v {} 0.5 {}\n", 2.0 * i as f64 / n as f64 - 1.0, 2.0 * j as f64 / n as f64 - 1.0);
+        }
+    }
+    let v = |i: usize, j: usize| i * (n + 1) + j + 1;
+    for i in 0..n {
+        for j in 0..n {
+            obj += &format!("f {} {} {}\nf {} {} {}\n", v(i, j), v(i, j + 1), v(i + 1, j + 1), v(i, j), v(i + 1, j + 1), v(i + 1, j));
+        }
+    }
+    let mesh = softsculpt::mesh::load_obj(obj.as_bytes()).unwrap().mesh;
+    let body = SoftBody::new(&mesh, 1.0, Material::default()).unwrap();
+    let mut w = World::single(body, WorldSettings::default());
+    // As the page imports it: the modeler's preset without its gas (skipped on an open surface).
+    assert_eq!(w.apply_preset_scaled(0, "modeler", 1.0).unwrap(), ["gas.nrt"]);
+    steps(&mut w, 30);
+    let plain = FreezeOptions { under_load: false, keep_tension: false };
+    let load = FreezeOptions { under_load: true, keep_tension: false };
+    w.freeze(0, plain).unwrap();
+    let gas = w.bodies[0].gas_reference();
+    assert!(gas.reference_volume > 0.0, "{gas:?}");
+    // The page sets the reference back after a freeze (`document.ts`): the same value is taken.
+    w.bodies[0].set_gas_reference(gas).unwrap();
+    w.subdivide(0, load).unwrap();
+    assert_eq!(w.bodies[0].vertex_count(), (2 * n + 1) * (2 * n + 1));
+    w.freeze(0, load).unwrap();
+    steps(&mut w, 30);
+    // Saved and opened again: the same world, stepping to the same bits.
+    let bytes = w.snapshot();
+    let mut again = World::restore(&bytes).unwrap();
+    steps(&mut w, 10);
+    steps(&mut again, 10);
+    assert_eq!(w.bodies[0].positions(), again.bodies[0].positions());
+    assert!(w.bodies[0].positions().iter().all(|x| x.is_finite()));
+    // A project saved before the fix (V0 = 0 after the freeze: the gas pairs [P_ref, V0] =
+    // [0, 1] written as [0, 0], checksum redone) opens, and steps to the same bits (V0 enters
+    // only the gas energy, and there is no gas).
+    let mut old = bytes.clone();
+    let (one, zero) = (1.0f64.to_le_bytes(), 0.0f64.to_le_bytes());
+    let pair: Vec<u8> = zero.iter().chain(&one).copied().collect();
+    let mut patched = 0;
+    for k in 21..old.len() - 16 {
+        if old[k..k + 16] == pair[..] {
+            old[k + 8..k + 16].copy_from_slice(&zero);
+            patched += 1;
+        }
+    }
+    assert!(patched >= 2, "the body's and the frozen state's gas references: {patched}");
+    let crc = crc32fast::hash(&old[21..]).to_le_bytes();
+    old[17..21].copy_from_slice(&crc);
+    let mut opened = World::restore(&old).unwrap();
+    assert_eq!(opened.bodies[0].gas_reference().reference_volume, 1.0);
+    let mut again = World::restore(&bytes).unwrap();
+    steps(&mut opened, 10);
+    steps(&mut again, 10);
+    assert_eq!(opened.bodies[0].positions(), again.bodies[0].positions());
+}

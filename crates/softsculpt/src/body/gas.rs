@@ -24,6 +24,17 @@ pub struct GasReference {
     pub reference_volume: f64,
 }
 
+impl GasReference {
+    /// V0 for a body whose volume is now `volume` (m³): that volume, or 1 m³ where there is no
+    /// positive one (an open surface — a flat sheet's divergence-theorem volume is exactly 0 —
+    /// or an inside-out mesh). Such a body has no gas (`gas.nrt` is refused on an open mesh), so
+    /// V0 is then unused, but it must stay a valid reference: a non-positive V0 is refused by
+    /// `SoftBody::set_gas_reference` and by a snapshot's restore.
+    pub fn volume_for(volume: f64) -> f64 {
+        if volume > 0.0 && volume.is_finite() { volume } else { 1.0 }
+    }
+}
+
 /// The volume the gas law uses (m³): the exact one from the faces stage (`six_v` = 6V), or one
 /// of the paper's bounding volumes computed from the positions `x` (flat xyz) and the faces
 /// `tris` (the ellipsoid's axes).

@@ -216,8 +216,7 @@ impl SoftBody {
             frozen: Frozen { x: Vec::new(), rest: Vec::new(), bending_rest: Vec::new(), gas: GasReference { ambient_pressure: 0.0, reference_volume: 1.0 }, prestress: vec![0.0; 3 * n] },
             material,
         };
-        let v0 = body.volume();
-        body.model.gas.reference_volume = if v0 > 0.0 { v0 } else { 1.0 };
+        body.model.gas.reference_volume = GasReference::volume_for(body.volume());
         body.frozen = Frozen { x: body.state.x.clone(), rest: body.model.springs.rest.clone(), bending_rest: body.model.bending.rest.clone(), gas: body.model.gas, prestress: body.model.prestress.clone() };
         body.hinges_to_frozen();
         Ok(body)
