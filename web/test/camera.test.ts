@@ -86,3 +86,16 @@ describe('the camera follows a body that leaves, not a wobble', () => {
     expect(far.distanceTo(new THREE.Vector3(1, 2, 4.5))).toBeLessThan(1e-12);
   });
 });
+
+describe('framing (V)', () => {
+  it('frames the model where it is now, not where it arrived', () => {
+    const { r, centre, radius } = rig();
+    const lying = centre.clone().add(new THREE.Vector3(0.3, -0.6, -0.1));
+    const direction = r.camera.position.clone().sub(r.target).normalize();
+    r.frame(lying);
+    expect(r.target.distanceTo(lying)).toBeLessThan(1e-12);
+    // From the same direction, at the framing distance (outside the model).
+    expect(r.camera.position.clone().sub(r.target).normalize().distanceTo(direction)).toBeLessThan(1e-9);
+    expect(r.camera.position.distanceTo(lying)).toBeGreaterThan(radius);
+  });
+});

@@ -188,8 +188,9 @@ export class CameraRig {
     return Math.max(1.6 * fit, MIN_DISTANCE_RADII * this.radius);
   }
 
-  /** Fit the model in the view from the current direction, level (V). */
-  frame(): void {
+  /** Fit the model in the view from the current direction, level (V); around `centre` if given (where the model is now). */
+  frame(centre?: THREE.Vector3): void {
+    if (centre) this.centre.copy(centre);
     const dir = this.camera.position.clone().sub(this.target);
     if (dir.lengthSq() < 1e-12) dir.copy(HOME_DIRECTION);
     // Level: no roll, and not straight down or up (a turntable cannot turn from there).

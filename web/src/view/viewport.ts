@@ -64,8 +64,16 @@ export class Viewport {
   /** The active camera controls (the tools switch them off while they drag). */
   get controls() { return this.rig.controls; }
 
-  /** Fit the model in the view, level (V). */
-  resetView(): void { this.rig.frame(); }
+  /**
+   * Fit the model in the view, level (V): around where it is now (a model that fell over or was
+   * blown away is framed where it lies, not where it arrived).
+   */
+  resetView(): void {
+    const g = this.surface.geometry;
+    g.computeBoundingSphere();
+    const sphere = g.boundingSphere;
+    this.rig.frame(sphere && Number.isFinite(sphere.radius) ? sphere.center : undefined);
+  }
 
   /** The model's bounding sphere (from the drawn positions): zoom limits follow it. */
   /** The bounding-sphere radius (m) of the model when it was last measured. */
