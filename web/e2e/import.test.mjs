@@ -89,6 +89,11 @@ test('a file of two shells: the dialog counts them; largest only, or one body pe
   const [lo, hi] = extent(x, 1);
   assert.ok(x.every(Number.isFinite));
   assert.ok(hi - lo > 0.8, `the larger ball is ${hi - lo} m tall`);
+  // Exported, the message counts what the file holds: both bodies (before: the active one's 42).
+  const [download] = await Promise.all([page.waitForEvent('download'), page.locator('.lil-gui button', { hasText: 'Export OBJ' }).click()]);
+  const obj = readFileSync(await download.path(), 'utf8');
+  const count = (p) => obj.split('\n').filter((l) => l.startsWith(p)).length;
+  assert.equal(await inspect(page, () => window.softsculpt.lastMessage()).then((m) => m.match(/(\d+) vertices, (\d+) faces in 2 bodies/)?.slice(1).map(Number).join(' ')), `${count('v ')} ${count('f ')}`);
   await page.context().close();
 });
 

@@ -198,10 +198,15 @@ export class App implements ToolContext {
 
   /** Download the shapes as drawn (every body), in the imported file's units and frame. */
   async export(format: ExportFormat): Promise<void> {
-    const blob = await exportShape(format, this.mirror.shapes(), undefined, this.mirror.settings.frame);
+    const shapes = this.mirror.shapes();
+    const blob = await exportShape(format, shapes, undefined, this.mirror.settings.frame);
     const name = `${baseName(this.mirror.settings.model)}.${format}`;
     download(blob, name);
-    this.message(`exported ${name}: ${this.mirror.vertexCount} vertices, ${this.mirror.faceCount} faces (${sig3(blob.size / 1024)} KB, in your downloads)`);
+    // What the file holds: every body (a new-user trial saw one body's counts for a file of two).
+    const vertices = shapes.reduce((n, s) => n + s.positions.length / 3, 0);
+    const faces = shapes.reduce((n, s) => n + s.triangles.length / 3, 0);
+    const bodies = shapes.length > 1 ? ` in ${shapes.length} bodies` : '';
+    this.message(`exported ${name}: ${vertices} vertices, ${faces} faces${bodies} (${sig3(blob.size / 1024)} KB, in your downloads)`);
   }
   /** Start or stop recording (io: worker/recorder.ts); export the recording as GLB morph targets. */
   record(on = !this.mirror.recording): void { this.send({ type: 'record', on }); }
