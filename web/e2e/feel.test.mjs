@@ -5,6 +5,8 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
 import { browserSuite, dist, drag, inspect, openModeler, settle, shot, topVertex, vertex } from './harness.mjs';
 
 const suite = browserSuite();
@@ -502,4 +504,29 @@ test('V frames the model where it lies now: a sphere pulled across the ground is
   await shot(page, 'feel-frame-where-it-lies');
   assert.deepEqual(errors, []);
   await page.context().close();
+});
+
+test('an opened project names its material, in a browser that has never seen it', async () => {
+  // A new-user trial: clay chosen, the project saved, opened in a fresh browser — the list said
+  // "modeler's own" (it names materials by values learned in this browser's storage).
+  const { page, errors } = await openModeler(suite.browser, suite.server.url);
+  const materialList = (p) => p.locator('.lil-controller:has(.lil-name:text-is("material")) select');
+  await materialList(page).selectOption('clay');
+  await page.waitForFunction(() => /material: clay/.test(window.softsculpt.lastMessage()), null, { timeout: 15000 });
+  await page.waitForTimeout(500);
+  assert.equal(await materialList(page).inputValue(), 'clay');
+  const stiffness = await inspect(page, () => window.softsculpt.param('stiffness'));
+  const [download] = await Promise.all([page.waitForEvent('download'), page.keyboard.press('Control+s')]);
+  const path = join(tmpdir(), 'clay.softsculpt.json');
+  await download.saveAs(path);
+  await page.context().close();
+  const fresh = await openModeler(suite.browser, suite.server.url);
+  assert.equal(await materialList(fresh.page).inputValue(), 'modeler\'s own');
+  await fresh.page.locator('input[data-picker=project]').setInputFiles(path);
+  await fresh.page.waitForFunction((k) => window.softsculpt.param('stiffness') === k, stiffness, { timeout: 15000 });
+  await fresh.page.waitForTimeout(500);
+  assert.equal(await materialList(fresh.page).inputValue(), 'clay');
+  await shot(fresh.page, 'feel-project-material');
+  assert.deepEqual([...errors, ...fresh.errors], []);
+  await fresh.page.context().close();
 });

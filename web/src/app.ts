@@ -213,8 +213,14 @@ export class App implements ToolContext {
   exportRecording(): void { this.send({ type: 'exportRecording' }); }
 
   ui(): UiState {
-    return { brush: { ...this.brush }, tool: this.tools.tool.name, strengths: Object.fromEntries(this.tools.tools.map((t) => [t.name, t.strength])), symmetry: [...this.symmetryAxes] as Axes };
+    const ui: UiState = { brush: { ...this.brush }, tool: this.tools.tool.name, strengths: Object.fromEntries(this.tools.tools.map((t) => [t.name, t.strength])), symmetry: [...this.symmetryAxes] as Axes };
+    if (this.materialName) ui.material = this.materialName;
+    return ui;
   }
+  /** The material's name the panel shows ('' before it knows); kept in projects (UiState.material). */
+  materialName = '';
+  /** A material name from an opened project or session, for the panel to give the model that arrives with it. */
+  materialFromUi: string | null = null;
   /** Tell the worker the tool state (kept in project files and the autosave). */
   sendUi(): void { this.send({ type: 'ui', ui: this.ui() }); }
 
@@ -229,6 +235,7 @@ export class App implements ToolContext {
       if (typeof v === 'number' && t.strengthInfo) t.strength = t.isLength ? v : Math.min(Math.max(v, t.strengthInfo.min), t.strengthInfo.max);
     }
     if (ui.tool) this.tools.select(ui.tool);
+    if (typeof ui.material === 'string') this.materialFromUi = ui.material;
     if (Array.isArray(ui.symmetry) && ui.symmetry.length === 3) {
       ui.symmetry.forEach((v, d) => (this.symmetryAxes[d] = v === true));
       this.symmetryFrom = 'ui';

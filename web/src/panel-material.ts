@@ -52,13 +52,21 @@ export class MaterialTracker {
   /**
    * The name of the material `params` hold. `history` (undo, redo sizes) tells when an expected
    * preset has landed; `fresh`: a model just loaded with the modeler's material (its values are
-   * learned as the modeler's unless they are known already).
+   * learned as the modeler's unless they are known already); `given`: with `fresh`, the name
+   * an opened project gives its material.
    */
-  name(params: Params, history: [number, number], fresh: boolean): string {
+  name(params: Params, history: [number, number], fresh: boolean, given: string | null = null): string {
     const key = materialKey(params);
     if (this.expecting && history.join(',') !== this.expecting.history) {
       this.learn(key, this.expecting.name);
       this.expecting = null;
+    }
+    // `given`: the name an opened project says its material has (UiState.material); custom
+    // values stay unnamed.
+    if (fresh && given) {
+      if (given === CUSTOM) return CUSTOM;
+      this.learn(key, given);
+      return given;
     }
     const known = this.known.get(key);
     if (known) return known;

@@ -193,7 +193,15 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
       const loadKey = `${app.mirror.settings.model}#${app.mirror.settings.opened ?? ''}`;
       const fresh = shownModel !== loadKey && app.mirror.scene === null;
       shownModel = loadKey;
-      material.name = materials.name(app.mirror.params, app.mirror.history, fresh);
+      // An opened project names its material (UiState.material): given to the model it brings.
+      // (Only a name the list has: a project from a later page may name a preset this one lacks.)
+      const names = [MODELER, CUSTOM, ...app.mirror.presets.map((p) => p.name)];
+      const given = fresh && app.materialFromUi && names.includes(app.materialFromUi) ? app.materialFromUi : null;
+      if (fresh) app.materialFromUi = null;
+      material.name = materials.name(app.mirror.params, app.mirror.history, fresh, given);
+      // The worker keeps the page's state for projects and the autosave: told when the name
+      // changes, so a reload is not handed a stale name.
+      if (material.name !== app.materialName) { app.materialName = material.name; app.sendUi(); }
     }
     // The list shows built-in models only: an import or a scene leaves it blank.
     view.model = (MODELS as readonly string[]).includes(app.mirror.settings.model) ? app.mirror.settings.model : '';

@@ -53,6 +53,11 @@ export interface UiState {
   strengths: Record<string, number>;
   /** Mirror symmetry axes (X, Y, Z) for the tools. */
   symmetry?: [boolean, boolean, boolean];
+  /**
+   * The material's name as the panel shows it (a preset's name, 'modeler' or 'custom'), so an
+   * opened project names its material again in a browser that has not seen it (panel-material.ts).
+   */
+  material?: string;
 }
 
 /** The tools whose strokes act on the body (see worker/strokes.ts). */

@@ -98,6 +98,18 @@ describe('the material list', () => {
     expect(new MaterialTracker(s).name(clay, [0, 0], true)).toBe('clay');
   });
 
+  it('names the material an opened project gives, in a browser that has never seen it', () => {
+    // A new-user trial: clay on an imported model, saved, opened in a fresh browser — the list
+    // said "modeler's own" (the values were learned as the modeler's on arrival).
+    const t = new MaterialTracker(store());
+    expect(t.name(clay, [0, 0], true, 'clay')).toBe('clay');
+    expect(t.name(clay, [0, 0], false)).toBe('clay'); // learned: later frames keep the name
+    expect(t.name({ ...clay, stiffness: 250 }, [1, 0], false)).toBe(CUSTOM); // an edit after it
+    expect(t.name({ ...clay, stiffness: 251 }, [0, 0], true, CUSTOM)).toBe(CUSTOM); // custom values stay unnamed
+    expect(t.name({ ...clay, stiffness: 251 }, [0, 0], false)).toBe(CUSTOM);
+    expect(t.name(modeler, [0, 0], true)).toBe(MODELER); // a model loaded without a name: the modeler's
+  });
+
   it('still names a material learned before the rigidity existed (rigidity 0 is left out of the key)', () => {
     const s = store();
     const { rigidity: _, ...before } = clay; // what a page without the rigidity had

@@ -209,6 +209,11 @@ describe('worker service', () => {
     expect(h.service.doc.vertexCount).toBe(8);
     // The page's state comes back with it, the mirror axes too.
     expect(h.replies.filter((r) => r.type === 'ui').at(-1)).toEqual({ type: 'ui', ui: { brush: { radius: 0.5 }, tool: 'press', strengths: { press: 99 }, symmetry: [false, true, false] } });
+    // And the material's name the panel showed (UiState.material), for a browser that never saw it.
+    await h.send({ type: 'saveProject', ui: { brush: { radius: 0.5 }, tool: 'grab', strengths: {}, material: 'clay' } });
+    const e = h.replies.filter((r) => r.type === 'download').at(-1) as Reply & { type: 'download' };
+    await h.send({ type: 'openProject', name: e.filename, text: e.text });
+    expect((h.replies.filter((r) => r.type === 'ui').at(-1) as Reply & { type: 'ui' }).ui.material).toBe('clay');
   });
 
   it('subdividing a coarse mesh says that smoothing rounded it, and by how much', async () => {

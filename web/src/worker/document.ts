@@ -792,6 +792,7 @@ export class Document {
     if (typeof u.tool === 'string') page.tool = u.tool;
     if (u.strengths && typeof u.strengths === 'object') page.strengths = u.strengths;
     if (Array.isArray(u.symmetry) && u.symmetry.length === 3 && u.symmetry.every((a) => typeof a === 'boolean')) page.symmetry = u.symmetry;
+    if (typeof u.material === 'string') page.material = u.material;
     this.ui = { ...this.ui, ...page };
     this.hooks.ui(page);
   }
