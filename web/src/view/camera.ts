@@ -110,8 +110,8 @@ export class CameraRig {
    * left a dead zone of FOLLOW_ZONE model radii around where it was then — keeping its direction
    * and distance. A function of where the model is now, not of the path it took: a grab's wobble
    * that leaves the zone moves the view a little and, once the model is back, the view is back
-   * too (before, the view followed each excursion and kept it: after four grabs on the mushroom
-   * its target had crept 0.15 m, ~27 px). Not while the user moves the camera or a tool drags
+   * too (before, the view followed each excursion and kept it: one grab on the mushroom moved
+   * its target 0.15 m for good, four ~27 px on screen). Not while the user moves the camera or a tool drags
    * (`enabled` off): the view never moves under a grab.
    */
   follow(centre: THREE.Vector3, now = performance.now()): void {
