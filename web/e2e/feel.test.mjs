@@ -517,6 +517,7 @@ test('an opened project names its material, in a browser that has never seen it'
   assert.equal(await materialList(page).inputValue(), 'clay');
   const stiffness = await inspect(page, () => window.softsculpt.param('stiffness'));
   const [download] = await Promise.all([page.waitForEvent('download'), page.keyboard.press('Control+s')]);
+  assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /^saved the project .*in your downloads/);
   const path = join(tmpdir(), 'clay.softsculpt.json');
   await download.saveAs(path);
   await page.context().close();

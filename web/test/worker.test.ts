@@ -203,6 +203,7 @@ describe('worker service', () => {
     await h.send({ type: 'saveProject', ui: { brush: { radius: 0.5 }, tool: 'press', strengths: { press: 99 }, symmetry: [false, true, false] } });
     const d = h.replies.find((r) => r.type === 'download') as Reply & { type: 'download' };
     expect(d.filename).toBe('cube.softsculpt.json');
+    expect(h.messages().at(-1)).toMatch(/^saved the project cube\.softsculpt\.json \([\d.]+ KB, in your downloads\)/);
     await h.send({ type: 'loadBuiltin', name: 'sphere' });
     expect(h.service.doc.vertexCount).toBe(642);
     await h.send({ type: 'openProject', name: 'cube.softsculpt.json', text: d.text });

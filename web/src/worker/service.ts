@@ -144,7 +144,11 @@ export class Service {
 
   private saveProject(ui: UiState): void {
     this.doc.ui = ui;
-    this.post({ type: 'download', filename: `${baseName(this.doc.settings.model)}.softsculpt.json`, mime: 'application/json', text: this.doc.projectText() });
+    const filename = `${baseName(this.doc.settings.model)}.softsculpt.json`;
+    const text = this.doc.projectText();
+    this.post({ type: 'download', filename, mime: 'application/json', text });
+    // Said, as exports are (a new-user trial saw nothing happen on Ctrl+S).
+    this.message(`saved the project ${filename} (${(text.length / 1024).toPrecision(3)} KB, in your downloads): Open project (Ctrl+O) continues from here`);
   }
 
   private exportRecording(): void {
