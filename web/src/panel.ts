@@ -195,8 +195,8 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
       shownModel = loadKey;
       // An opened project names its material (UiState.material): given to the model it brings.
       // (Only a name the list has: a project from a later page may name a preset this one lacks.)
-      const names = [MODELER, CUSTOM, ...app.mirror.presets.map((p) => p.name)];
-      const given = fresh && app.materialFromUi && names.includes(app.materialFromUi) ? app.materialFromUi : null;
+      const ui = fresh ? app.materialFromUi : null;
+      const given = ui && [MODELER, CUSTOM, ...app.mirror.presets.map((p) => p.name)].includes(ui) ? ui : null;
       if (fresh) app.materialFromUi = null;
       material.name = materials.name(app.mirror.params, app.mirror.history, fresh, given);
       // The worker keeps the page's state for projects and the autosave: told when the name

@@ -34,10 +34,10 @@ export const FOLLOW_TAU = 0.1;
  * model's centre was at `anchor`, moved by the part of the centre's displacement beyond `zone`
  * (m) — d (1 − zone/|d|) for d = centre − anchor, nothing inside the zone.
  */
-export function followTarget(base: THREE.Vector3, anchor: THREE.Vector3, centre: THREE.Vector3, zone: number): THREE.Vector3 {
-  const d = centre.clone().sub(anchor);
+export function followTarget(base: THREE.Vector3, anchor: THREE.Vector3, centre: THREE.Vector3, zone: number, out = new THREE.Vector3()): THREE.Vector3 {
+  const d = out.subVectors(centre, anchor);
   const len = d.length();
-  return base.clone().addScaledVector(d, len > zone ? 1 - zone / len : 0);
+  return d.multiplyScalar(len > zone ? 1 - zone / len : 0).add(base);
 }
 
 export interface CameraState { position: number[]; target: number[]; mode: CameraMode }
@@ -103,6 +103,8 @@ export class CameraRig {
   /** The view was just set (framed, restored, a new model): the next centre seen is where it keeps the model. */
   private reanchor = true;
   private followedAt = performance.now();
+  /** Scratch for `follow` (called every frame: no allocation). */
+  private readonly away = new THREE.Vector3();
 
   /**
    * The model's centre this frame. The camera's target eases (time constant FOLLOW_TAU, no jump)
@@ -111,15 +113,15 @@ export class CameraRig {
    * and distance. A function of where the model is now, not of the path it took: a grab's wobble
    * that leaves the zone moves the view a little and, once the model is back, the view is back
    * too (before, the view followed each excursion and kept it: one grab on the mushroom moved
-   * its target 0.15 m for good, four ~27 px on screen). Not while the user moves the camera or a tool drags
-   * (`enabled` off): the view never moves under a grab.
+   * its target 0.15 m for good, four ~27 px on screen). Not while the user moves the camera or a
+   * tool drags (`enabled` off): the view never moves under a grab.
    */
   follow(centre: THREE.Vector3, now = performance.now()): void {
     const dt = Math.min(0.25, Math.max(0, (now - this.followedAt) / 1000));
     this.followedAt = now;
     if (this.reanchor) { this.anchor.copy(centre); this.base.copy(this.target); this.reanchor = false; return; }
     if (this.moving || !this.controls.enabled) return;
-    const away = followTarget(this.base, this.anchor, centre, FOLLOW_ZONE * this.radius).sub(this.target);
+    const away = followTarget(this.base, this.anchor, centre, FOLLOW_ZONE * this.radius, this.away).sub(this.target);
     // Closer than a millionth of the model's size: done (no endless sub-pixel redraws).
     if (!(away.length() > 1e-6 * this.radius)) return;
     away.multiplyScalar(1 - Math.exp(-dt / FOLLOW_TAU));

@@ -165,7 +165,8 @@ impl SoftBody {
         }
     }
 
-    /// Zero velocities, V0 := V (`GasReference::volume_for`: 1 m³ without a positive volume), the prestress (cleared if `None`), and the frozen state.
+    /// Zero velocities, V0 := V (`GasReference::volume_for`: 1 m³ without a positive volume),
+    /// the prestress (cleared if `None`), and the frozen state.
     fn finish_freeze(&mut self, prestress: Option<Vec<f64>>) {
         self.state.v.fill(0.0);
         self.model.gas.reference_volume = gas::GasReference::volume_for(self.volume());
