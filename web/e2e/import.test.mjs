@@ -8,7 +8,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import validator from 'gltf-validator';
-import { browserSuite, inspect, openModeler, shot } from './harness.mjs';
+import { browserSuite, inspect, openModeler, settle, shot } from './harness.mjs';
 
 const suite = browserSuite();
 const FIXTURES = fileURLToPath(new URL('./fixtures/', import.meta.url));
@@ -136,6 +136,40 @@ test('a Z-up STL stands upright at its own size, fills the view, and its export 
   const g = await inspect(page, () => window.softsculpt.positions());
   const [glo, ghi] = extent(g, 1);
   assert.ok(Math.abs((ghi - glo) / (hi - lo) - 1) < 0.02, `GLB re-imported height ${ghi - glo} m vs ${hi - lo} m`);
+  await ctx.close();
+});
+
+test('the default model exported as STL comes back standing: the header says Y-up, no question asked', async () => {
+  const { page, ctx, errors } = await openModeler(suite.browser, suite.server.url);
+  await settle(page, 0.05, 30000);
+  // Paused, so the shape exported is the shape measured and the one read back is not moving.
+  await page.keyboard.press('Space');
+  await page.waitForFunction(() => window.softsculpt.playing() === false);
+  await page.waitForTimeout(300);
+  const before = await inspect(page, () => window.softsculpt.positions());
+  const [lo, hi] = extent(before, 1);
+  const [download] = await Promise.all([page.waitForEvent('download'), page.locator('.lil-gui button', { hasText: 'Export STL' }).click()]);
+  assert.equal(download.suggestedFilename(), 'mushroom.stl');
+  const path = join(tmpdir(), 'mushroom.stl');
+  await download.saveAs(path);
+  const file = readFileSync(path);
+  // The 80-byte header says who wrote it and which axis is up; the rest is binary STL as before.
+  assert.equal(file.subarray(0, 80).toString('latin1').trimEnd(), 'SoftSculpt export, Y-up, metres');
+  assert.equal(file.length, 84 + 50 * file.readUInt32LE(80));
+  assert.equal(file.readUInt32LE(80), await inspect(page, () => window.softsculpt.faceCount()));
+  await page.locator('input[data-picker=import]').setInputFiles(path);
+  await drawn(page, 'mushroom.stl');
+  assert.equal(await page.locator('.import-dialog').count(), 0, 'no question: the file says Y is up');
+  assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /imported mushroom\.stl: .*; Y-up \(written by SoftSculpt as Y-up; Model › up axis changes it\)/);
+  const after = await inspect(page, () => window.softsculpt.positions());
+  const [alo, ahi] = extent(after, 1);
+  // Standing as before: the same height. Float32 coordinates of a model 2 m across are rounded
+  // to 1.2e-7 m; a lying mushroom would be as tall as its cap is wide (its z extent).
+  const [zlo, zhi] = extent(before, 2);
+  assert.ok(Math.abs(zhi - zlo - (hi - lo)) > 0.1, `the test tells standing from lying: height ${hi - lo} m, depth ${zhi - zlo} m`);
+  assert.ok(Math.abs(ahi - alo - (hi - lo)) < 1e-5, `re-imported height ${ahi - alo} m vs ${hi - lo} m`);
+  await shot(page, 'import-08-stl-reimported-upright');
+  assert.deepEqual(errors, []);
   await ctx.close();
 });
 

@@ -1,10 +1,12 @@
 import { beforeAll, describe, expect, it } from 'vitest';
 import * as THREE from 'three';
 import { STLExporter } from 'three/examples/jsm/exporters/STLExporter.js';
+import { OBJExporter } from 'three/examples/jsm/exporters/OBJExporter.js';
 import { loadEngine } from './setup';
-import { guessUp, isClosed, needsAnswer, place, question, REFERENCE_DIAGONAL, sizeFactor, toFile } from '../src/io/import';
-import { exportShape, shapeMesh } from '../src/io/export';
+import { guessUp, headerText, isClosed, needsAnswer, place, question, REFERENCE_DIAGONAL, sizeFactor, toFile, type ImportFrame, type Up } from '../src/io/import';
+import { exportHeader, exportShape, shapeMesh } from '../src/io/export';
 import { animationGlb, World } from '../src/engine/world';
+import { addModel } from '../src/engine/models';
 
 beforeAll(loadEngine);
 
@@ -145,3 +147,152 @@ describe('export', () => {
     expect(m.geometry.getAttribute('position').count).toBe(3);
   });
 });
+
+// ----- our STL and OBJ say which axis is up -------------------------------------------------------
+
+/**
+ * A file read back as the worker reads it (worker/importer.ts `read`, then `build` with the
+ * guessed axis): the engine's pieces, the question from the file's first bytes, and the pieces
+ * placed (turned upright if Z-up, standing on the ground) with their frame.
+ */
+function readBack(name: string, data: Uint8Array) {
+  const w = World.create();
+  try {
+    const { first, report } = w.addFile(name, data, true);
+    const bodies = report.pieces.map((_, k) => w.body(first + k));
+    const lists = bodies.map((b) => b.positions.slice()), triangles = bodies.map((b) => b.triangles.slice());
+    const q = question(name, report, lists, triangles, headerText(data));
+    return { q, lists, triangles, ...place(lists, q.guessedUp) };
+  } finally {
+    w.free();
+  }
+}
+
+/**
+ * How far the points of `a` are from the same points in `b` (as many; the reader may weld and
+ * reorder them): the largest distance from a point of `a` to its nearest in `b`.
+ */
+function farthest(a: ArrayLike<number>, b: ArrayLike<number>): number {
+  expect(a.length).toBe(b.length);
+  let worst = 0;
+  for (let i = 0; i < a.length; i += 3) {
+    let best = Infinity;
+    for (let j = 0; j < b.length; j += 3) best = Math.min(best, Math.hypot(a[i] - b[j], a[i + 1] - b[j + 1], a[i + 2] - b[j + 2]));
+    worst = Math.max(worst, best);
+  }
+  return worst;
+}
+
+const bytesOf = async (blob: Blob) => new Uint8Array(await blob.arrayBuffer());
+/** A model's size: its bounding-box diagonal. */
+const diagonal = (x: ArrayLike<number>) => Math.hypot(...bounds3(x));
+/** A model's extents in x, y and z. */
+function bounds3(x: ArrayLike<number>): [number, number, number] {
+  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < x.length; i += 3) for (let d = 0; d < 3; d++) { lo[d] = Math.min(lo[d], x[i + d]); hi[d] = Math.max(hi[d], x[i + d]); }
+  return [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+}
+
+describe('exports say which axis is up, and come back as they were', () => {
+  // A new-user trial: our STL of a Y-up model came back lying on its side (STL declares no up
+  // axis; the guess for STL is Z-up, unsure, unless the shape tells).
+  it('a built-in (Y-up) model exported as STL and OBJ is read back Y-up for sure, upright', async () => {
+    const w = World.create();
+    addModel(w, 'octopus');
+    const x = w.body(0).positions.slice(), t = w.body(0).triangles.slice();
+    w.free();
+    // Lifted off the ground (as a grab leaves it, or mid-bounce): the shape no longer says Y-up.
+    for (let i = 1; i < x.length; i += 3) x[i] += 0.3;
+    expect(guessUp('STL', [x], [t]).sure).toBe(false);
+    // As the page exports it: no import frame, the engine's own coordinates.
+    const upright = place([x], 'y').positions[0];
+    for (const format of ['stl', 'obj'] as const) {
+      const data = await bytesOf(await exportShape(format, x, t));
+      const r = readBack(`octopus.${format}`, data);
+      // The header text is what we wrote (and the STL's header is its first 80 bytes).
+      expect(exportHeader(null)).toBe('SoftSculpt export, Y-up, metres');
+      expect(headerText(data, format === 'stl' ? 80 : 34).trim()).toBe(format === 'stl' ? exportHeader(null) : `# ${exportHeader(null)}`);
+      expect(r.q).toMatchObject({ guessedUp: 'y', upSure: true, guessReason: 'written by SoftSculpt as Y-up' });
+      expect(needsAnswer(r.q)).toBe(false);
+      // Upright: the same positions as before, within float32 rounding.
+      expect(r.positions[0].length).toBe(x.length);
+      expect(farthest(r.positions[0], upright)).toBeLessThan(1e-6 * diagonal(x));
+    }
+  });
+
+  it('an imported Z-up STL and a Y-up OBJ off the ground, exported as STL and OBJ, come back as they were', async () => {
+    // A tall ellipsoid (3 m along its up axis, centred at the origin: nothing rests on a plane).
+    const g = new THREE.IcosahedronGeometry(1, 3);
+    const ball = Float64Array.from(g.getAttribute('position').array);
+    const files: { name: string; up: Up; data: Uint8Array }[] = [];
+    const tall = (up: Up) => { const p = ball.slice(); for (let i = 0; i < p.length; i += 3) p[i + (up === 'z' ? 2 : 1)] *= 1.5; return p; };
+    // Written by three.js (zeroed STL header, no OBJ comment): the guess is unsure, the user answers.
+    files.push({ name: 'tall.stl', up: 'z', data: new Uint8Array((new STLExporter().parse(new THREE.Mesh(geometryOf(tall('z'))), { binary: true }) as unknown as DataView).buffer as ArrayBuffer) });
+    files.push({ name: 'tall.obj', up: 'y', data: new Uint8Array(enc(new OBJExporter().parse(new THREE.Mesh(geometryOf(tall('y')))))) });
+    for (const f of files) {
+      const first = readBack(f.name, f.data);
+      expect(first.q.upSure).toBe(false);
+      // The user's answer builds it: upright in the engine, the file's frame kept for exports.
+      const { positions, frame } = place(first.lists, f.up);
+      frame.format = first.q.format;
+      const engine = positions[0];
+      expect(bounds3(engine)[1]).toBeCloseTo(3, 5);
+      for (const format of ['stl', 'obj'] as const) {
+        const data = await bytesOf(await exportShape(format, [{ positions: engine, triangles: first.triangles[0] }], undefined, frame));
+        const header = exportHeader(frame);
+        expect(header).toBe(`SoftSculpt export, ${f.up.toUpperCase()}-up, units as in the imported ${first.q.format} file`);
+        expect(headerText(data, 4096).startsWith(format === 'stl' ? header : `# ${header}`)).toBe(true);
+        const r = readBack(`again.${format}`, data);
+        expect(r.q).toMatchObject({ guessedUp: f.up, upSure: true, guessReason: `written by SoftSculpt as ${f.up.toUpperCase()}-up` });
+        expect(needsAnswer(r.q)).toBe(false);
+        // As it was: the same file coordinates and the same upright model in the engine.
+        expect(farthest(r.lists[0], first.lists[0])).toBeLessThan(1e-6 * 3);
+        expect(farthest(r.positions[0], engine)).toBeLessThan(1e-6 * 3);
+        expect(r.frame.offset.every((o, d) => Math.abs(o - frame.offset[d]) < 1e-6)).toBe(true);
+      }
+    }
+  });
+
+  it('the header keeps the binary STL as it was: 80 bytes, the triangle count at byte 80, never "solid"', async () => {
+    const w = World.create();
+    w.addBuiltin('sphere');
+    const b = w.body(0);
+    const frames: (ImportFrame | null)[] = [null, { up: 'z', offset: [0, 0, 0], format: 'STL' }, { up: 'y', offset: [0, 0, 0], format: 'glTF' }];
+    for (const frame of frames) {
+      const data = await bytesOf(await exportShape('stl', [{ positions: b.positions.slice(), triangles: b.triangles.slice() }], undefined, frame));
+      expect(data.length).toBe(84 + 50 * b.faceCount);
+      expect(new DataView(data.buffer).getUint32(80, true)).toBe(b.faceCount);
+      expect(exportHeader(frame).length).toBeLessThanOrEqual(80);
+      expect(new TextDecoder().decode(data.subarray(0, 5))).not.toBe('solid');
+      // The rest of the file is three's, byte for byte.
+      const plain = new Uint8Array((new STLExporter().parse(shapeMesh(toFile(b.positions, frame ?? { up: 'y', offset: [0, 0, 0] }), b.triangles), { binary: true }) as unknown as DataView).buffer as ArrayBuffer);
+      expect(data.subarray(80)).toEqual(plain.subarray(80));
+    }
+    expect(exportHeader({ up: 'y', offset: [0, 0, 0], format: 'glTF' })).toBe('SoftSculpt export, Y-up, metres');
+    // OBJ: the comment line, then three's statements unchanged.
+    const obj = await (await exportShape('obj', b.positions.slice(), b.triangles.slice())).text();
+    const [first, ...rest] = obj.split('\n');
+    expect(first).toBe('# SoftSculpt export, Y-up, metres');
+    expect(rest.join('\n')).toBe(new OBJExporter().parse(shapeMesh(b.positions, b.triangles)));
+    w.free();
+  });
+
+  it("other programs' headers are read as before; a SoftSculpt command-line header states no axis", () => {
+    const far = [[0, -1, -1, 1, 1, 1]];
+    expect(guessUp('STL', far, [], 'Exported from Blender-3.4').up).toBe('z');
+    expect(guessUp('OBJ', far, [], '# Blender 3.4 OBJ File').up).toBe('y');
+    expect(guessUp('STL', far, [], 'SoftSculpt export, Z-up, metres')).toEqual({ up: 'z', reason: 'written by SoftSculpt as Z-up', sure: true });
+    expect(guessUp('OBJ', far, [], '# SoftSculpt export, Y-up, metres o softsculpt v 0 0 0')).toEqual({ up: 'y', reason: 'written by SoftSculpt as Y-up', sure: true });
+    // The CLI writes in the input's own frame and says nothing of an axis: unsure, as before.
+    expect(guessUp('STL', far, [], 'SoftSculpt remesh in.stl --edge 0.1').sure).toBe(false);
+    // We write no PLY: a PLY's header is not taken for ours.
+    expect(guessUp('PLY', far, [], 'SoftSculpt export, Z-up').sure).toBe(false);
+  });
+});
+
+/** A three.js geometry of xyz positions (unindexed triangles). */
+function geometryOf(p: Float64Array): THREE.BufferGeometry {
+  const geo = new THREE.BufferGeometry();
+  geo.setAttribute('position', new THREE.BufferAttribute(Float32Array.from(p), 3));
+  return geo;
+}

@@ -68,11 +68,20 @@ export function bounds(lists: ArrayLike<number>[]): { lo: Vec3; hi: Vec3 } {
 export interface UpGuess { up: Up; reason: string; sure: boolean }
 
 /**
- * Exporters named in a file's header or comments, with the up axis they write by default:
- * Blender writes OBJ Y-up (its OBJ exporter's default: −Z forward, Y up) but STL and PLY in its
- * own Z-up frame (Y forward, Z up); CAD programs and slicers are Z-up.
+ * SoftSculpt's own STL and OBJ exports (io/export.ts `exportHeader`): "SoftSculpt export, Y-up, …"
+ * at the start of the file (the binary STL's header, an OBJ comment), with the up axis they were
+ * written in: Y for built-in models, the imported file's for an import exported back to its frame.
  */
-const EXPORTERS: { re: RegExp; formats: string[]; up: Up; name: string }[] = [
+export const OWN_EXPORT = /^\s*(?:#\s*)?SoftSculpt export, ([YZ])-up\b/i;
+
+/**
+ * Exporters named in a file's header or comments, with the up axis they write by default
+ * (`stated`: the axis the header names, its first group): SoftSculpt says which; Blender writes
+ * OBJ Y-up (its OBJ exporter's default: −Z forward, Y up) but STL and PLY in its own Z-up frame
+ * (Y forward, Z up); CAD programs and slicers are Z-up.
+ */
+const EXPORTERS: { re: RegExp; formats: string[]; up: Up | 'stated'; name: string }[] = [
+  { re: OWN_EXPORT, formats: ['STL', 'OBJ'], up: 'stated', name: 'SoftSculpt' },
   { re: /blender/i, formats: ['OBJ'], up: 'y', name: "Blender's OBJ export (Y-up by default)" },
   { re: /blender/i, formats: ['STL', 'PLY'], up: 'z', name: "Blender's STL and PLY export (Z-up by default)" },
   { re: /solidworks|autodesk|fusion ?360|inventor|onshape|freecad|openscad|catia|creo|rhino|sketchup|prusaslicer|cura|tinkercad|meshmixer|3ds ?max|zbrush/i,
@@ -97,7 +106,8 @@ function flatBase(lists: ArrayLike<number>[], triangles: ArrayLike<number>[], d:
 
 /**
  * The up axis to offer for a file that does not declare one, and whether the guess is sure:
- * 1. the exporter its header or comments name (`EXPORTERS`);
+ * 1. the exporter its header or comments name (`EXPORTERS`), or the axis SoftSculpt's own
+ *    export states on its first line (`OWN_EXPORT`);
  * 2. the shape: a model is made standing on its ground plane — resting on z = 0 and not on
  *    y = 0 says Z-up (and the other way round); else a flat base (faces lying at the lowest
  *    level covering ≥ 10 % of the box's cross-section) at min z and not at min y says Z-up
@@ -108,7 +118,13 @@ function flatBase(lists: ArrayLike<number>[], triangles: ArrayLike<number>[], d:
  *    PLY (Blender's OBJ export, scanners) → Y, and the page asks (or uses the user's last answer).
  */
 export function guessUp(format: string, lists: ArrayLike<number>[], triangles: ArrayLike<number>[] = [], header = ''): UpGuess {
-  for (const e of EXPORTERS) if (e.formats.includes(format) && e.re.test(header)) return { up: e.up, reason: `written by ${e.name}`, sure: true };
+  for (const e of EXPORTERS) {
+    const m = e.formats.includes(format) ? e.re.exec(header) : null;
+    if (!m) continue;
+    if (e.up !== 'stated') return { up: e.up, reason: `written by ${e.name}`, sure: true };
+    const up = m[1].toLowerCase() as Up;
+    return { up, reason: `written by ${e.name} as ${up.toUpperCase()}-up`, sure: true };
+  }
   const { lo, hi } = bounds(lists);
   const ext = [0, 1, 2].map((d) => hi[d] - lo[d]);
   const diag = Math.hypot(ext[0], ext[1], ext[2]);
