@@ -42,6 +42,10 @@
 //! the residual at v⁺ = v. **Conjugate directions** ([`Implicit::conjugate`]) after
 //! [`CONJUGATE_FROM`] Newton iterations, against the zig-zag of a wrinkling membrane.
 //!
+//! **Momentum** ([`Implicit::keep_momentum`]): a free body's accepted step is moved by the one
+//! uniform velocity that takes the net impulse out of its residual, so its momentum follows
+//! backward Euler's exactly at any tolerance.
+//!
 //! **The ground** ([`ground`]): vertices resting on it at the step's start are constrained in
 //! the solve (v⁺_y = 0), and so are those landing in the step (predicted from the step's start
 //! or put below the plane by an early iterate: v⁺_y = (h − y) / dt, they end the step on it);
@@ -402,6 +406,49 @@ impl Implicit {
         Ok(cold)
     }
 
+    /// The accepted v⁺ moved by one uniform velocity u that takes the net impulse out of its
+    /// residual (Σ_i r_i = 0), where the body's forces are those of a free body: no pinned
+    /// vertex, no target springs, no vertex held by the ground, no wind.
+    ///
+    /// Why: backward Euler conserves momentum exactly (Σ_i r_i = Σ m_i Δv_i − dt F_ext with
+    /// the internal forces summing to zero), but an accepted step only has ‖r‖ within the
+    /// tolerance, and whatever net impulse that residual carries is momentum gained or lost:
+    /// how much depends on the inexact linear solves, not on the physics (measured at the
+    /// modeler's 1e-3: 5.1e-5 kg·m/s in 30 steps of a swirling ball, `tests/implicit.rs`; a
+    /// looser forcing term drifted 4.4e-10 of Σ m|v| at 1e-8: BENCHMARKS.md). Among the
+    /// velocities within the tolerance this picks the one that conserves it.
+    ///
+    /// Derivation: the internal forces (springs and their damping, bending, hinges, gas, face
+    /// pressures, self-contacts) depend only on differences of positions and velocities, so
+    /// they do not change when every x_t moves by dt u and every v⁺ by u; gravity, user forces
+    /// and kept loads are constant; the viscous damping −c m v changes by −c m u. So
+    /// r_i(v⁺ + u) = r_i(v⁺) + (1 + dt c) m_i u exactly, and u = −Σ r_i / ((1 + dt c) Σ m_i)
+    /// gives Σ r_i = 0. It also only lowers ‖r‖_{M⁻¹} (the mass-weighted mean is projected out:
+    /// ‖r'‖² = ‖r‖² − |Σ r_i|² / Σ m_i for c = 0), so the step stays within the tolerance.
+    /// Pins, targets and a held ground take impulse from outside (momentum is not conserved
+    /// there, and the correction would not be exact); the wind's force depends on v⁺ itself.
+    fn keep_momentum(&mut self, fr: &Frame) {
+        let (w, m) = (fr.w, fr.m);
+        let wind = w.wind_drag > 0.0 && w.wind != [0.0; 3];
+        if wind || m.targets.active() || self.sys.ground.active() || m.inv_mass.iter().any(|&im| im == 0.0) {
+            return;
+        }
+        let mut net = [0.0; 3];
+        for r in self.r.chunks_exact(3) {
+            for d in 0..3 {
+                net[d] += r[d];
+            }
+        }
+        let mass: f64 = m.mass.iter().sum();
+        let u = net.map(|s| -s / ((1.0 + fr.dt * fr.p.damping) * mass));
+        for (vp, xt) in self.vp.chunks_exact_mut(3).zip(self.xt.chunks_exact_mut(3)) {
+            for d in 0..3 {
+                vp[d] += u[d];
+                xt[d] += fr.dt * u[d];
+            }
+        }
+    }
+
     /// One backward-Euler step of `dt` (s): the state is replaced only on success.
     pub fn step(&mut self, th: &Threads, p: &Material, w: &WorldSettings, m: &Model, s: &mut State, dt: f64) -> Result<SolverIterations, Fault> {
         let fr = Frame { p, w, m, x: &s.x, v: &s.v, dt };
@@ -425,6 +472,7 @@ impl Implicit {
             solved = self.newton(th, &fr, None, false, &mut it);
         }
         solved?;
+        self.keep_momentum(&fr);
         // Accepted: x⁺ = x + dt v⁺ (already in x_t), v⁺.
         s.warm.resize(s.v.len(), 0.0);
         for ((d, &vp), &v) in s.warm.iter_mut().zip(&self.vp).zip(&s.v) {
