@@ -37,11 +37,26 @@ pub fn run(a: RemeshArgs) -> Result<(), String> {
     let loaded = input::load(&a.input, a.up)?;
     input::warn(&a.input, &loaded);
     remesh::check_edge_length(&loaded.mesh, a.edge).map_err(|e| format!("--edge: {e}"))?;
-    let out = remesh::remesh(&loaded.mesh, a.edge, a.crease).map_err(|e| format!("{}: {e}", a.input))?;
-    let header = format!("SoftSculpt remesh {} --edge {}", a.input, a.edge);
+    // The shape is kept or the remesh refused (mesh::remesh::remesh_keeping_shape): a mesh too
+    // coarse for --edge is remeshed at a half or a quarter of it, and says so.
+    let kept = remesh::remesh_keeping_shape(&loaded.mesh, a.edge, a.crease).map_err(|e| format!("{}: {e}", a.input))?;
+    let (out, r) = (kept.mesh, kept.report);
+    let header = format!("SoftSculpt remesh {} --edge {}", a.input, r.edge);
     output::write_mesh(&a.out, format, &out, &header)?;
-    let (q0, q1) = (quality(&loaded.mesh, Some(a.edge)), quality(&out, Some(a.edge)));
-    eprintln!("wrote {}: {} -> {} triangles, volume {:.6} -> {:.6} m^3", a.out.display(), loaded.mesh.triangles.len(), out.triangles.len(), loaded.mesh.volume(), out.volume());
+    let (q0, q1) = (quality(&loaded.mesh, Some(r.edge)), quality(&out, Some(r.edge)));
+    if r.shortened() {
+        let creases = if a.crease.is_none() && r.crease_deg.is_some() { format!(", keeping edges sharper than {}°", remesh::CREASE) } else { String::new() };
+        eprintln!("note: --edge {} would have changed the shape (the mesh is too coarse for it): remeshed at edge {} m{creases}", a.edge, r.edge);
+    }
+    eprintln!(
+        "wrote {}: {} -> {} triangles, volume {:.6} -> {:.6} m^3, surface moved by at most {:.3e} m",
+        a.out.display(),
+        loaded.mesh.triangles.len(),
+        out.triangles.len(),
+        loaded.mesh.volume(),
+        out.volume(),
+        r.departure.distance()
+    );
     eprintln!("  before: {}", summary(&q0));
     eprintln!("  after:  {}", summary(&q1));
     Ok(())

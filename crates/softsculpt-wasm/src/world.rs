@@ -448,15 +448,23 @@ pub extern "C" fn ss_reset(w: u32, b: u32) -> i32 {
     })
 }
 
-/// Replace body `b` by its isotropic remeshing to edge length `edge` (m) (`World::remesh`;
-/// `under_load` ≠ 0: frozen under load); result `{"dropped_events": n}`. Its views change.
+/// Replace body `b` by its isotropic remeshing to edge length `edge` (m)
+/// (`World::remesh_reporting`; `under_load` ≠ 0: frozen under load); result
+/// `{"dropped_events": n, "edge": m, "requested": m, "crease_deg": deg | null, "tries": n,
+/// "distance": m, "volume_change": fraction}`: the edge length used (shorter than asked when the
+/// shape needed it), keeping creases or not, and how far the surface moved. A remesh that would
+/// change the shape is an error and changes nothing. Its views change.
 #[no_mangle]
 pub extern "C" fn ss_remesh(w: u32, b: u32, edge: f64, under_load: u32) -> i32 {
     status(|| {
         with_body(w, b, |h, i| {
-            let (dropped, _) = h.world.remesh(i, edge, under_load != 0).map_err(sim_fail)?;
+            let (dropped, _, r) = h.world.remesh_reporting(i, edge, under_load != 0).map_err(sim_fail)?;
             h.views[i] = BodyViews::new(&h.world, i);
-            set_result(serde_json::json!({ "dropped_events": dropped }).to_string().into_bytes());
+            let json = serde_json::json!({
+                "dropped_events": dropped, "edge": r.edge, "requested": r.requested, "crease_deg": r.crease_deg,
+                "tries": r.tries, "distance": r.departure.distance(), "volume_change": r.departure.volume_change,
+            });
+            set_result(json.to_string().into_bytes());
             Ok(())
         })
     })

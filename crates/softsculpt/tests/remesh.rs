@@ -1,9 +1,9 @@
 //! Isotropic remeshing (Botsch & Kobbelt 2004): the result is a regular mesh of the same shape.
 
 use softsculpt::mesh::quality::quality;
-use softsculpt::mesh::remesh::{closest_on_triangle, remesh};
+use softsculpt::mesh::remesh::{closest_on_triangle, remesh, remesh_keeping_shape};
 use softsculpt::vec3::{get, norm, sub};
-use softsculpt::{Material, SoftBody};
+use softsculpt::{Material, SoftBody, World, WorldSettings};
 use softsculpt::mesh::{builtin, load_obj, TriMesh};
 use std::f64::consts::PI;
 
@@ -201,4 +201,102 @@ fn a_remeshed_body_keeps_its_painted_masses_and_pins() {
         assert!(d < 1.1 * 0.1 / 3f64.sqrt(), "{d}");
     }
     assert!(pins.iter().all(|&p| get(r.positions(), p)[1] < -0.9));
+}
+
+/// A 4 × 4 × 10 cm box (x, y up, z), 8 vertices and 12 triangles: the new-user trial's tower.
+fn tower_box() -> TriMesh {
+    let (w, h) = (0.04, 0.1);
+    let p = [[0., 0., 0.], [w, 0., 0.], [w, h, 0.], [0., h, 0.], [0., 0., w], [w, 0., w], [w, h, w], [0., h, w]];
+    let quads = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [2, 3, 7, 6], [1, 2, 6, 5], [0, 4, 7, 3]];
+    let mut s = String::new();
+    for v in p {
+        s += &format!("v {} {} {}\n", v[0], v[1], v[2]);
+    }
+    for q in quads {
+        s += &format!("f {} {} {} {}\n", q[0] + 1, q[1] + 1, q[2] + 1, q[3] + 1);
+    }
+    load_obj(s.as_bytes()).unwrap().mesh
+}
+
+/// The new-user trial: the 4 × 4 × 10 cm box remeshed at its mean edge length (as the modeler's
+/// Remesh does). The remesher alone turns it into a 5-vertex double pyramid 7.8 cm wide; the body's
+/// remesh keeps the box. Its last try keeps the 90° edges (creases above 60°): corners and
+/// edges are constrained, never moved, and every other vertex is projected onto a flat face, so
+/// the box is exact up to rounding (1e-12 m on 0.1 m; its volume to 1e-9 relative).
+#[test]
+fn a_coarse_box_keeps_its_shape_at_its_mean_edge_length() {
+    let m = tower_box();
+    let edge = quality(&m, None).edge_mean;
+    let plain = remesh(&m, edge, None).unwrap();
+    let width = |m: &TriMesh| { let (lo, hi) = m.bounds(); hi[0] - lo[0] };
+    eprintln!("box: L {edge:.4} m; the remesher alone: {} vertices, {:?}, volume {:.3e} m³", plain.vertex_count(), plain.bounds(), plain.volume());
+    assert!(width(&plain) > 0.06, "the remesher alone loses the box (the check below matters)");
+
+    let b = SoftBody::new(&m, 1.0, Material::default()).unwrap();
+    let (r, report) = b.remeshed_reporting(edge).unwrap();
+    let out = r.to_mesh();
+    let (lo, hi) = out.bounds();
+    eprintln!("box kept: {report:?}; {} vertices, {} triangles, {lo:?}..{hi:?}, volume {:.6e}", out.vertex_count(), out.triangles.len(), out.volume());
+    for k in 0..3 {
+        assert!(lo[k].abs() < 1e-12 && (hi[k] - [0.04, 0.1, 0.04][k]).abs() < 1e-12, "bounds {lo:?}..{hi:?}");
+    }
+    assert!((out.volume() / m.volume() - 1.0).abs() < 1e-9, "{} vs {}", out.volume(), m.volume());
+    assert!(out.is_closed());
+    // More to shape than the 8 corners, at the edge length it says it used.
+    assert!(out.vertex_count() > 8);
+    assert!(report.shortened() && report.edge < edge && report.requested == edge, "{report:?}");
+    // `remeshed` (the earlier API) is the same remesh.
+    assert_eq!(b.remeshed(edge).unwrap().positions(), r.positions());
+}
+
+/// A mesh that remeshes fine is remeshed exactly as before: one try, at the edge asked for, the
+/// same positions and triangles as the remesher alone (no needless retry).
+#[test]
+fn a_kept_shape_is_remeshed_exactly_as_before() {
+    for name in ["sphere", "kangaroo", "mushroom"] {
+        let m = builtin::builtin(name).unwrap();
+        let edge = quality(&m, None).edge_mean;
+        let kept = remesh_keeping_shape(&m, edge, None).unwrap();
+        let plain = remesh(&m, edge, None).unwrap();
+        eprintln!("{name}: {} -> {} vertices, {:?}", m.vertex_count(), kept.mesh.vertex_count(), kept.report);
+        assert_eq!((kept.report.tries, kept.report.edge, kept.report.crease_deg), (1, edge, None), "{name}");
+        assert_eq!(kept.mesh, plain, "{name}");
+    }
+}
+
+/// A shape no try keeps is refused with one error, and the world is unchanged: a rod 1 m long
+/// and 2 cm thick, 16 vertices, whose mean edge (0.39 m) is 20 times its thickness; at every
+/// edge tried the remesher collapses it to a line (−98 % of its volume before the correction).
+#[test]
+fn a_shape_no_try_keeps_is_refused_with_one_clear_error() {
+    let m = rod(8, 0.01, 1.0);
+    let edge = quality(&m, None).edge_mean;
+    let e = remesh_keeping_shape(&m, edge, None).unwrap_err().to_string();
+    eprintln!("rod: {e}");
+    for says in ["would change the shape", "% of its volume", "Subdivide it first"] {
+        assert!(e.contains(says), "'{e}' lacks '{says}'");
+    }
+    let mut w = World::new(vec![SoftBody::new(&m, 1.0, Material::default()).unwrap()], WorldSettings::default());
+    let before = w.bodies[0].positions().to_vec();
+    let err = w.remesh(0, edge, false).unwrap_err().to_string();
+    assert!(err.contains("would change the shape"), "{err}");
+    assert_eq!(w.bodies[0].positions(), &before[..]);
+}
+
+/// A rod along y: an n-gon prism of radius `r` and length `len` (2n vertices; the caps fans).
+fn rod(n: usize, r: f64, len: f64) -> TriMesh {
+    let mut s = String::new();
+    for y in [0.0, len] {
+        for k in 0..n {
+            let a = 2.0 * PI * k as f64 / n as f64;
+            s += &format!("v {} {y} {}\n", r * a.cos(), r * a.sin());
+        }
+    }
+    for k in 0..n {
+        let (a, b) = (k + 1, (k + 1) % n + 1);
+        s += &format!("f {a} {} {} {b}\n", a + n, b + n);
+    }
+    s += &format!("f {}\n", (1..=n).map(|i| i.to_string()).collect::<Vec<_>>().join(" "));
+    s += &format!("f {}\n", (1..=n).rev().map(|i| (i + n).to_string()).collect::<Vec<_>>().join(" "));
+    load_obj(s.as_bytes()).unwrap().mesh
 }

@@ -2,7 +2,7 @@
 
 use super::SoftBody;
 use crate::error::SimError;
-use crate::mesh::remesh::{remesh, Surface};
+use crate::mesh::remesh::{remesh_keeping_shape, RemeshReport, Surface};
 use crate::vec3::get;
 
 impl SoftBody {
@@ -12,14 +12,25 @@ impl SoftBody {
     /// scaled so the total is unchanged (a region painted ten times heavier stays ten times
     /// heavier per vertex); an old pinned vertex pins the new vertex nearest to it, and a new
     /// vertex whose nearest old vertex is pinned is pinned too (a pinned region stays pinned).
+    ///
+    /// The shape is kept or the remesh refused ([`remesh_keeping_shape`]): a body too coarse for
+    /// `edge` is remeshed at `edge`/2 or `edge`/4 (or keeping its sharp edges), and one that no
+    /// try keeps is an error, the body unchanged. [`SoftBody::remeshed_reporting`] says which.
     pub fn remeshed(&self, edge: f64) -> Result<SoftBody, SimError> {
-        Ok(self.remeshed_with_origins(edge)?.0)
+        Ok(self.remeshed_reporting(edge)?.0)
     }
 
-    /// [`SoftBody::remeshed`] and, per vertex of the new body, the old vertex nearest to it.
-    pub(crate) fn remeshed_with_origins(&self, edge: f64) -> Result<(SoftBody, Vec<usize>), SimError> {
+    /// [`SoftBody::remeshed`] and how: the edge length used, the tries, how far the surface moved.
+    pub fn remeshed_reporting(&self, edge: f64) -> Result<(SoftBody, RemeshReport), SimError> {
+        let (body, _, report) = self.remeshed_with_origins(edge)?;
+        Ok((body, report))
+    }
+
+    /// [`SoftBody::remeshed_reporting`] and, per vertex of the new body, the old vertex nearest to it.
+    pub(crate) fn remeshed_with_origins(&self, edge: f64) -> Result<(SoftBody, Vec<usize>, RemeshReport), SimError> {
         let bad = |e: crate::error::MeshError| SimError::BadParameter { name: "remesh", message: e.to_string() };
-        let mesh = remesh(&self.to_mesh(), edge, None).map_err(bad)?;
+        let kept = remesh_keeping_shape(&self.to_mesh(), edge, None).map_err(bad)?;
+        let (mesh, report) = (kept.mesh, kept.report);
         let (mesh, _) = crate::mesh::reorder::by_locality(&mesh);
         let total: f64 = self.model.mass.iter().sum();
         let mut body = SoftBody::new(&mesh, total, self.material.clone()).map_err(|e| SimError::BadParameter { name: "remesh", message: e.to_string() })?;
@@ -39,7 +50,7 @@ impl SoftBody {
             }
         }
         body.freeze();
-        Ok((body, old_near_new))
+        Ok((body, old_near_new, report))
     }
 }
 

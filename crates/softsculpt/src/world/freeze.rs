@@ -50,10 +50,18 @@ impl World {
     /// (`SoftBody::remeshed`: masses and pins carried to the nearest new vertices), frozen
     /// plainly, or, `under_load`, with the gas reference it had and under load (as Subdivide
     /// does under gravity, so the shape holds). Returns the dropped pending events and the
-    /// freeze's report.
+    /// freeze's report. The shape is kept or the remesh refused, the world unchanged (see
+    /// [`crate::mesh::remesh::remesh_keeping_shape`]); [`World::remesh_reporting`] says how.
     pub fn remesh(&mut self, body: usize, edge: f64, under_load: bool) -> Result<(usize, FreezeReport), SimError> {
+        let (dropped, report, _) = self.remesh_reporting(body, edge, under_load)?;
+        Ok((dropped, report))
+    }
+
+    /// [`World::remesh`] and how the shape was kept: the edge length used (shorter than `edge`
+    /// when the mesh was too coarse for it), the tries, how far the surface moved.
+    pub fn remesh_reporting(&mut self, body: usize, edge: f64, under_load: bool) -> Result<(usize, FreezeReport, crate::mesh::remesh::RemeshReport), SimError> {
         let b = self.bodies.get(body).ok_or_else(|| no_body(body, self.bodies.len()))?;
-        let (mut even, nearest) = b.remeshed_with_origins(edge)?;
+        let (mut even, nearest, remeshed) = b.remeshed_with_origins(edge)?;
         let gas = b.gas_reference();
         // A new vertex rests where the old vertex nearest to it rested.
         let rested = self.resting_vertices(body)?;
@@ -64,7 +72,7 @@ impl World {
             self.bodies[body].set_gas_reference(gas)?;
             report = self.freeze(body, FreezeOptions { under_load: true, keep_tension: false })?;
         }
-        Ok((dropped, report))
+        Ok((dropped, report, remeshed))
     }
 
     /// Put back on its support every vertex of `b` (a new mesh of a body of this world) for
