@@ -99,7 +99,7 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   tip(model.add(app.mirror.settings, 'keepTension').name('freeze keeps tension').onChange((v: boolean) => app.setSettings({ keepTension: v })), 'Freeze keeps the skin taut: the gas keeps pressing and the rest lengths are corrected so the shape holds, so a press dents as before the freeze (on coarse meshes; see docs/model.md); off: the skin goes slack');
   tip(model.add({ f: () => app.reset() }, 'f').name('Reset (R)'), 'Back to the last frozen shape (R)');
   tip(model.add({ f: () => app.subdivide() }, 'f').name('Subdivide (U)'), 'Loop subdivision of the current shape; masses and pins carried over; the result is frozen (U)');
-  tip(model.add({ f: () => app.remesh() }, 'f').name('Remesh (even triangles)'), 'Isotropic remeshing at the mean edge length: long thin triangles make poor springs (an import says when); masses and pins carried over; undoable');
+  tip(model.add({ f: () => app.remesh() }, 'f').name('Remesh (even triangles)'), 'Isotropic remeshing at the mean edge length (at a shorter one, or keeping sharp edges, if the model is too coarse for it; refused if the shape would still change): long thin triangles make poor springs (an import says when); masses and pins carried over; undoable');
   // (pieces) An imported model's up axis, to fix a wrong guess: re-built from the file, undoable.
   const upAxis = { up: 'y' };
   const upControl = tip(model.add(upAxis, 'up', { 'Y up': 'y', 'Z up (turned upright)': 'z' }).name('up axis')

@@ -291,6 +291,58 @@ describe('worker service', () => {
     expect(h.service.doc.vertexCount).toBe(362);
   });
 
+  it('remeshing an imported 8-vertex tower keeps its shape, and says at which edge length', async () => {
+    // The new-user trial: the tower (4 × 4 cm base, 2 × 2 cm top, 10 cm tall, 8 vertices) came back
+    // from Remesh as a 5-vertex double pyramid 9.8 × 8.0 × 10 cm, the message naming only angles.
+    const h = await started();
+    const stl = readFileSync(new URL('../e2e/fixtures/zup-tower.stl', import.meta.url));
+    await h.send({ type: 'import', name: 'zup-tower.stl', data: stl.buffer.slice(stl.byteOffset, stl.byteOffset + stl.byteLength) as ArrayBuffer });
+    const w = h.service.doc.world;
+    expect(w.body(0).vertexCount).toBe(8);
+    const extent = () => {
+      const x = w.body(0).positions, lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+      for (let i = 0; i < x.length; i++) { lo[i % 3] = Math.min(lo[i % 3], x[i]); hi[i % 3] = Math.max(hi[i % 3], x[i]); }
+      return hi.map((v, k) => v - lo[k]);
+    };
+    const [size0, volume0, edge] = [extent(), h.service.doc.stats().volume, w.quality(0).edge_mean];
+    await h.send({ type: 'remesh' });
+    const size1 = extent(), volume1 = h.service.doc.stats().volume;
+    // The core keeps the box's corners and edges (its last try keeps creases): the extents and
+    // volume are the input's up to rounding and the freeze under load (a tower resting on its
+    // base: 1e-4 m, 1 % of its 4 cm width, is far above both and far below the 2–6 cm the
+    // double pyramid was off).
+    for (let k = 0; k < 3; k++) expect(Math.abs(size1[k] - size0[k])).toBeLessThan(1e-4);
+    expect(Math.abs(volume1 / volume0 - 1)).toBeLessThan(0.01);
+    expect(w.body(0).vertexCount).toBeGreaterThan(8);
+    const m = h.messages().at(-1)!;
+    expect(m).toMatch(/^remeshed: \d+ vertices; angles below 25°.*; made at edge ([\d.]+) m, keeping its sharp edges, since the mean edge ([\d.]+) m would have changed the shape/);
+    const [used, mean] = m.match(/made at edge ([\d.]+) m.*the mean edge ([\d.]+) m/)!.slice(1).map(Number);
+    expect(mean).toBeCloseTo(edge, 3);
+    expect(used).toBeCloseTo(edge / 4, 3);
+    await h.send({ type: 'undo' });
+    expect(w.body(0).vertexCount).toBe(8);
+  });
+
+  it('a remesh that cannot keep the shape is one error and leaves the model as it was', async () => {
+    // A rod 1 m long and 2 cm thick of 16 vertices: at any edge from its mean (0.39 m) down to a
+    // quarter, the remesher collapses it to a line (tests/remesh.rs in the core).
+    let obj = '';
+    for (const y of [0, 1]) for (let k = 0; k < 8; k++) obj += `v ${0.01 * Math.cos(k * Math.PI / 4)} ${y} ${0.01 * Math.sin(k * Math.PI / 4)}\n`;
+    for (let k = 1; k <= 8; k++) obj += `f ${k} ${k + 8} ${(k % 8) + 9} ${(k % 8) + 1}\n`;
+    obj += 'f 1 2 3 4 5 6 7 8\nf 16 15 14 13 12 11 10 9\n';
+    const h = await started();
+    await h.send({ type: 'import', name: 'rod.obj', data: bytes(obj) });
+    const w = h.service.doc.world;
+    expect(w.body(0).vertexCount).toBe(16);
+    const history = h.tick()!.history;
+    const x0 = w.body(0).positions.slice();
+    await h.send({ type: 'remesh' });
+    expect(h.messages().at(-1)).toMatch(/^not remeshed: remeshing at edge length [\d.]+ m would change the shape: .*Subdivide it first.* — the model is as it was before$/);
+    expect(Array.from(w.body(0).positions)).toEqual(Array.from(x0));
+    // No undo entry: nothing happened.
+    expect(h.tick()!.history ?? history).toEqual(history);
+  });
+
   it('a material preset from the core\'s list applies its values in one undo step', async () => {
     const h = await started();
     const f = h.tick()!;

@@ -10,6 +10,22 @@
 import { errorJson, raw, resultBytes, resultText, view, withArrays, withBytes } from './wasm';
 
 /** What the engine refused, and why: `kind` is one of the binding's error kinds. */
+/** What `ss_remesh` reports (lengths in m; `volume_change` relative, before the remesher's correction). */
+export interface RemeshReport {
+  dropped_events: number;
+  /** The edge length used. */
+  edge: number;
+  /** The edge length asked for. */
+  requested: number;
+  /** The crease angle kept (degrees), or null. */
+  crease_deg: number | null;
+  /** 1: remeshed as asked; more: the shape needed a shorter edge or its sharp edges kept. */
+  tries: number;
+  /** The largest distance between the old and the new surface. */
+  distance: number;
+  volume_change: number;
+}
+
 export class EngineError extends Error {
   readonly kind: 'mesh' | 'parameter' | 'step' | 'snapshot' | 'scene' | 'delta' | 'project' | 'usage';
   /** Every field of the engine's error JSON (time, step, line, parameter, unit, key, …). */
@@ -309,8 +325,16 @@ export class World {
   /** Loop subdivision of body `b`; returns how many of its pending scene events were dropped. */
   /** Replace body `b` by its isotropic remeshing to `edge` m (frozen, under load if asked); returns the dropped pending events. */
   remesh(b: number, edge: number, underLoad: boolean): number {
+    return this.remeshReporting(b, edge, underLoad).dropped_events;
+  }
+  /**
+   * `remesh` and how the core kept the shape: the edge length used (shorter than `edge` when the
+   * mesh was too coarse for it), creases kept, tries, how far the surface moved. A remesh that
+   * would change the shape throws (an `EngineError`) and changes nothing.
+   */
+  remeshReporting(b: number, edge: number, underLoad: boolean): RemeshReport {
     this.call((w) => raw().ss_remesh(w, b, edge, underLoad ? 1 : 0));
-    return (JSON.parse(resultText()) as { dropped_events: number }).dropped_events;
+    return JSON.parse(resultText()) as RemeshReport;
   }
   /** Body `b`'s triangle quality: smallest angle (°), share of angles below 25°, mean edge (m), spread (σ/mean), poor. */
   quality(b: number): { min_angle_deg: number; small_angle_share: number; edge_mean: number; edge_spread: number; poor: boolean } {

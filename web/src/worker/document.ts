@@ -11,7 +11,8 @@
 // are limited to HISTORY_STEPS and HISTORY_BYTES in all, the oldest dropped first.
 
 import { initEngine } from '../engine/wasm';
-import { World, type DeltaScope, type FreezeReport, type ParamInfo, type ParamValue } from '../engine/world';
+import { World, type DeltaScope, type FreezeReport, type ParamInfo, type ParamValue, type RemeshReport } from '../engine/world';
+import { sig3 } from '../format';
 import { addModel, dtFor, stableDt, useDefaults } from '../engine/models';
 import { stepSplitting } from './split';
 import { NEWTON_MOST, NEWTON_STALLED, Pace, stepPaced } from './pace';
@@ -470,22 +471,32 @@ export class Document {
    * Remesh: even triangles at the body's mean edge length (isotropic remeshing in the core;
    * masses and pins carried to the nearest new vertices), frozen under load under gravity as
    * Subdivide is, so the shape holds; undoable. Every body, each at its own mean edge length.
+   * The core keeps the shape or refuses (docs/meshing.md, "The shape is kept"): a body too coarse
+   * for its mean edge (an imported 8-vertex box) is remeshed at a half or a quarter of it, or
+   * keeping its sharp edges, and the message says so; one that cannot be kept is one error, and
+   * every body is as it was.
    */
   remesh(): void {
     const before = this.everyBody.map((b) => this.world.quality(b));
-    this.edit('remesh', true, () => {
+    const reports: RemeshReport[] = [];
+    const done = this.edit('remesh', true, () => {
       this.hooks.progress('remeshing');
       const underLoad = this.world.params(0).gravity !== 0;
       for (const b of this.everyBody) {
         const gas = this.world.params(b)['gas.ambient'];
-        this.world.remesh(b, before[b].edge_mean, underLoad);
+        reports.push(this.world.remeshReporting(b, before[b].edge_mean, underLoad));
         if (!underLoad && typeof gas === 'number') this.world.setParam(b, 'gas.ambient', gas);
       }
-    });
+    }, 'all', (why) => `not remeshed: ${why.replace(/^remesh: /, '')} — the model is as it was before`);
+    if (!done) return;
     const after = this.everyBody.map((b) => this.world.quality(b));
     const share = (q: typeof before) => Math.max(...q.map((x) => x.small_angle_share));
     const least = (q: typeof before) => Math.min(...q.map((x) => x.min_angle_deg));
-    this.hooks.message(`remeshed: ${this.totalVertices} vertices${after.length > 1 ? ` in ${after.length} bodies` : ''}; angles below 25°: ${pct(share(before))} → ${pct(share(after))}, smallest ${least(before).toFixed(0)}° → ${least(after).toFixed(0)}°`);
+    // What the core had to do to keep the shape: the edge it used instead of the mean edge.
+    const shortened = reports.filter((r) => r.tries > 1);
+    const r = shortened[0];
+    const how = r ? `; made at edge ${sig3(r.edge)} m${r.crease_deg !== null ? ', keeping its sharp edges,' : ''} since the mean edge ${sig3(r.requested)} m would have changed the shape (too coarse for it)${r.distance > 1e-6 * r.edge ? `; the surface moved ≤ ${sig3(r.distance)} m` : ''}${shortened.length > 1 ? `; ${shortened.length} bodies so` : ''}` : '';
+    this.hooks.message(`remeshed: ${this.totalVertices} vertices${after.length > 1 ? ` in ${after.length} bodies` : ''}; angles below 25°: ${pct(share(before))} → ${pct(share(after))}, smallest ${least(before).toFixed(0)}° → ${least(after).toFixed(0)}°${how}`);
   }
 
   /** Vertices of every body. */
