@@ -73,3 +73,20 @@ fn sketch_writes_a_closed_balloon_and_refuses_bad_outlines() {
     assert_one_error(&softsculpt(&["sketch", &square, "--out", &d.s("x.obj"), "--edge", "5"]), "too long");
     assert!(!d.path("x.obj").exists());
 }
+
+/// A box too coarse for the edge asked (4 × 4 × 10 cm, 8 vertices, at 7 cm) is remeshed at a
+/// shorter edge that keeps it a box, and stderr says so; the file is the same box (its corners
+/// and edges kept: volume exact up to the OBJ's shortest decimals, 1e-9 relative).
+#[test]
+fn remesh_of_a_coarse_box_keeps_the_box_and_says_at_which_edge() {
+    let d = Dir::new();
+    let obj = "v 0 0 0\nv 0.04 0 0\nv 0.04 0.1 0\nv 0 0.1 0\nv 0 0 0.04\nv 0.04 0 0.04\nv 0.04 0.1 0.04\nv 0 0.1 0.04\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 3 4 8 7\nf 2 3 7 6\nf 1 5 8 4\n";
+    let input = d.file("box.obj", obj.as_bytes());
+    let out = d.s("even.obj");
+    let o = softsculpt(&["remesh", &input, "--edge", "0.07", "--out", &out]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--edge 0.07 would have changed the shape") && stderr(&o).contains("remeshed at edge 0.0175 m"), "{}", stderr(&o));
+    let v = info_json(&out);
+    assert!(v["vertices"].as_u64().unwrap() > 8, "{v}");
+    assert!((v["volume"].as_f64().unwrap() / 1.6e-4 - 1.0).abs() < 1e-9, "{v}");
+}

@@ -142,16 +142,7 @@ fn an_open_mesh_keeps_its_border() {
 /// and its volume is exact (flat faces: projection is exact, and no crease is cut).
 #[test]
 fn creases_kept_keep_a_cubes_corners() {
-    let p = [[0., 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.], [0., 0., 1.], [1., 0., 1.], [1., 1., 1.], [0., 1., 1.]];
-    let quads = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [2, 3, 7, 6], [1, 2, 6, 5], [0, 4, 7, 3]];
-    let mut s = String::new();
-    for v in p {
-        s += &format!("v {} {} {}\n", v[0], v[1], v[2]);
-    }
-    for q in quads {
-        s += &format!("f {} {} {} {}\n", q[0] + 1, q[1] + 1, q[2] + 1, q[3] + 1);
-    }
-    let cube = load_obj(s.as_bytes()).unwrap().mesh;
+    let (cube, p) = box_mesh([1.0, 1.0, 1.0]);
     let out = remesh(&cube, 0.2, Some(30.0)).unwrap();
     assert!(out.is_closed());
     assert!((out.volume() - 1.0).abs() < 1e-9, "{}", out.volume());
@@ -203,10 +194,9 @@ fn a_remeshed_body_keeps_its_painted_masses_and_pins() {
     assert!(pins.iter().all(|&p| get(r.positions(), p)[1] < -0.9));
 }
 
-/// A 4 × 4 × 10 cm box (x, y up, z), 8 vertices and 12 triangles: the new-user trial's tower.
-fn tower_box() -> TriMesh {
-    let (w, h) = (0.04, 0.1);
-    let p = [[0., 0., 0.], [w, 0., 0.], [w, h, 0.], [0., h, 0.], [0., 0., w], [w, 0., w], [w, h, w], [0., h, w]];
+/// A box [0, w] × [0, h] × [0, d], 8 vertices and 12 triangles, and its corners.
+fn box_mesh([w, h, d]: [f64; 3]) -> (TriMesh, [[f64; 3]; 8]) {
+    let p = [[0., 0., 0.], [w, 0., 0.], [w, h, 0.], [0., h, 0.], [0., 0., d], [w, 0., d], [w, h, d], [0., h, d]];
     let quads = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [2, 3, 7, 6], [1, 2, 6, 5], [0, 4, 7, 3]];
     let mut s = String::new();
     for v in p {
@@ -215,7 +205,12 @@ fn tower_box() -> TriMesh {
     for q in quads {
         s += &format!("f {} {} {} {}\n", q[0] + 1, q[1] + 1, q[2] + 1, q[3] + 1);
     }
-    load_obj(s.as_bytes()).unwrap().mesh
+    (load_obj(s.as_bytes()).unwrap().mesh, p)
+}
+
+/// A 4 × 4 × 10 cm box (x, y up, z): the new-user trial's tower.
+fn tower_box() -> TriMesh {
+    box_mesh([0.04, 0.1, 0.04]).0
 }
 
 /// The new-user trial: the 4 × 4 × 10 cm box remeshed at its mean edge length (as the modeler's
