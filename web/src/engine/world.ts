@@ -9,7 +9,6 @@
 
 import { errorJson, raw, resultBytes, resultText, view, withArrays, withBytes } from './wasm';
 
-/** What the engine refused, and why: `kind` is one of the binding's error kinds. */
 /** What `ss_remesh` reports (lengths in m; `volume_change` relative, before the remesher's correction). */
 export interface RemeshReport {
   dropped_events: number;
@@ -26,6 +25,7 @@ export interface RemeshReport {
   volume_change: number;
 }
 
+/** What the engine refused, and why: `kind` is one of the binding's error kinds. */
 export class EngineError extends Error {
   readonly kind: 'mesh' | 'parameter' | 'step' | 'snapshot' | 'scene' | 'delta' | 'project' | 'usage';
   /** Every field of the engine's error JSON (time, step, line, parameter, unit, key, …). */
