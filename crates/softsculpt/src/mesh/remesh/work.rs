@@ -228,6 +228,18 @@ impl Work {
         if dot(n1, old) <= 0.5 * norm(n1) * norm(old) || dot(n2, old) <= 0.5 * norm(n2) * norm(old) {
             return false;
         }
+        // Nor a sliver (docs/meshing.md): the new pair's worst triangle at least half as good as the old pair's
+        // (quality |n| / l_max², twice the area over the longest edge squared: √3/2 equilateral,
+        // 0 for three points on a line). Valence alone flipped the quad of three collinear
+        // vertices on a box's flat top, kept with its creases, into a face of angles 0°, 180°,
+        // 0° (measured on the imported 8-vertex tower, sagged a little, at L/4 with creases).
+        let quality = |t: [u32; 3]| {
+            let longest = (0..3).map(|k| norm(sub(self.p(t[(k + 1) % 3]), self.p(t[k])))).fold(0.0, f64::max);
+            norm(self.face_normal(t)) / (longest * longest)
+        };
+        if quality(t1).min(quality(t2)) < 0.5 * quality(self.tris[f1 as usize]).min(quality(self.tris[f2 as usize])) {
+            return false;
+        }
         self.tris[f1 as usize] = t1;
         self.tris[f2 as usize] = t2;
         self.vf[b as usize].retain(|&x| x != f1);
