@@ -191,6 +191,27 @@ describe('worker service', () => {
     expect(f.positions.every(Number.isFinite)).toBe(true);
   });
 
+  it('raising the ground lifts the rooted mushroom with it, it keeps playing, and undo puts both back', async () => {
+    // A new-user trial: ground height 0.5 under the mushroom pinned at its foot failed the step
+    // and paused the page (at 0.1 its foot stayed buried, the stem crushed on the plane).
+    const h = await started();
+    const w = h.service.doc.world;
+    const lowest = () => { const x = w.body(0).positions; let lo = Infinity; for (let i = 1; i < x.length; i += 3) lo = Math.min(lo, x[i]); return lo; };
+    const x0 = w.body(0).positions.slice();
+    await h.send({ type: 'setParam', name: 'ground.height', value: 0.5 });
+    // Moved as one (a translation: 1e-12 m is rounding on 0.5 m).
+    const x1 = w.body(0).positions;
+    for (let i = 0; i < x0.length; i++) expect(Math.abs(x1[i] - x0[i] - (i % 3 === 1 ? 0.5 : 0))).toBeLessThan(1e-12);
+    for (let k = 0; k < 30; k++) { const f = h.tick(34); if (f) h.giveBack(f); }
+    expect(h.service.doc.settings.playing).toBe(true);
+    expect(h.replies.filter((r) => r.type === 'message' && r.kind === 'error')).toEqual([]);
+    // Its pinned foot stands on the raised plane (it rests: within 1e-9 m of it).
+    expect(Math.abs(lowest() - 0.5)).toBeLessThan(1e-9);
+    await h.send({ type: 'undo' });
+    expect(w.params(0)['ground.height']).toBe(0);
+    expect(Math.abs(lowest())).toBeLessThan(1e-9);
+  });
+
   it('imports a mesh, saves and reopens the project, and autosaves after operations', async () => {
     const h = await started();
     // Resting on y = 0: Y-up for sure, imported without a question.

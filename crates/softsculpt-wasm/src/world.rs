@@ -420,6 +420,19 @@ pub unsafe extern "C" fn ss_set_param(
     })
 }
 
+/// `World::move_ground`: the ground to `height` m, carrying the bodies standing on it; result
+/// `{"moved": n}` (bodies moved). Refused like `ss_set_param("ground.height")`.
+#[no_mangle]
+pub extern "C" fn ss_move_ground(w: u32, height: f64) -> i32 {
+    status(|| {
+        with_world(w, |h| {
+            let moved = h.world.move_ground(height).map_err(param_fail)?;
+            set_result(serde_json::json!({ "moved": moved }).to_string().into_bytes());
+            Ok(())
+        })
+    })
+}
+
 // ----- operations on a body --------------------------------------------------------------------
 
 /// Rest shape := current shape; `under_load` = 1 keeps carrying the weight, `keep_tension` = 1

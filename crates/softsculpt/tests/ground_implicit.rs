@@ -201,3 +201,70 @@ fn a_stiff_rubber_ball_flattening_on_the_ground_keeps_its_linear_solves_short() 
     }
     assert!(worst <= 40.0, "{worst:.0} CG iterations per Newton iteration in a step");
 }
+
+/// The modeler's mushroom as it opens: on the ground, its foot pinned (vertices within 1 cm of
+/// the ground), the `modeler` preset, settled for 2 s.
+fn rooted_mushroom() -> World {
+    let mut mesh = softsculpt::mesh::builtin::builtin("mushroom").unwrap();
+    let lo = mesh.positions.chunks_exact(3).map(|p| p[1]).fold(f64::MAX, f64::min);
+    for p in mesh.positions.chunks_exact_mut(3) {
+        p[1] -= lo;
+    }
+    let mut w = World::single(SoftBody::new(&mesh, 1.0, Material::default()).unwrap(), WorldSettings::default());
+    w.apply_preset(0, "modeler").unwrap();
+    for i in 0..w.bodies[0].vertex_count() {
+        if w.bodies[0].positions()[3 * i + 1] < 0.01 {
+            w.bodies[0].set_pinned(i, true).unwrap();
+        }
+    }
+    w.step_n(120).unwrap();
+    w
+}
+
+/// Raising the ground carries what stands on it (`World::move_ground`): before, the rooted
+/// mushroom's pinned foot stayed at y = 0 under a ground at 0.1 m, its lower stem crushed against
+/// the plane (elastic energy 1.8 → 7.0 J), and at 0.5 m the implicit step failed. Now the whole
+/// body moves with the plane: a translation, so every internal force and energy is the same —
+/// to rounding, 1e-12 of the energy — and it goes on resting (it moves no faster than before
+/// the move, within the settling's own wobble: 1 cm/s).
+#[test]
+fn raising_the_ground_lifts_a_rooted_body_with_it() {
+    let mut w = rooted_mushroom();
+    let (x0, e0) = (w.bodies[0].positions().to_vec(), w.stats(0).elastic_energy);
+    assert_eq!(w.move_ground(0.5).unwrap(), 1);
+    let x1 = w.bodies[0].positions();
+    for (k, (a, b)) in x0.iter().zip(x1).enumerate() {
+        assert_eq!(*b, if k % 3 == 1 { a + 0.5 } else { *a });
+    }
+    assert!((w.stats(0).elastic_energy - e0).abs() <= 1e-12 * e0, "elastic energy {e0} → {}", w.stats(0).elastic_energy);
+    let speed = w.bodies[0].max_speed();
+    w.step_n(60).unwrap();
+    assert!(w.bodies[0].max_speed() < speed + 0.01, "max speed {speed} → {} m/s", w.bodies[0].max_speed());
+    let lowest = w.bodies[0].positions().chunks_exact(3).map(|p| p[1]).fold(f64::MAX, f64::min);
+    assert!((lowest - 0.5).abs() < 1e-9, "lowest vertex at {lowest} m");
+    // And down again, below where it started.
+    assert_eq!(w.move_ground(-0.25).unwrap(), 1);
+    w.step_n(60).unwrap();
+    let lowest = w.bodies[0].positions().chunks_exact(3).map(|p| p[1]).fold(f64::MAX, f64::min);
+    assert!((lowest + 0.25).abs() < 1e-9, "lowest vertex at {lowest} m");
+}
+
+/// A body in the air stays where it is when the ground moves (it is not standing on it); with
+/// no ground the move is refused, nothing changed.
+#[test]
+fn the_ground_moves_alone_under_a_body_in_the_air_and_not_at_all_without_a_ground() {
+    let mut w = rooted_mushroom();
+    let mut air = softsculpt::mesh::builtin::builtin("sphere").unwrap();
+    for p in air.positions.chunks_exact_mut(3) {
+        p[1] += 5.0;
+    }
+    w.add_body(SoftBody::new(&air, 1.0, Material::default()).unwrap());
+    let up = w.bodies[1].positions().to_vec();
+    assert_eq!(w.move_ground(0.3).unwrap(), 1, "the mushroom, not the ball");
+    assert_eq!(w.bodies[1].positions(), &up[..]);
+    w.settings.ground = None;
+    let x = w.bodies[0].positions().to_vec();
+    let e = w.move_ground(1.0).unwrap_err();
+    assert!(e.to_string().contains("ground"), "{e}");
+    assert_eq!(w.bodies[0].positions(), &x[..]);
+}

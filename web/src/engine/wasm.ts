@@ -39,6 +39,7 @@ export interface RawEngine {
   ss_freeze(w: number, b: number, underLoad: number, keepTension: number): number;
   ss_reset(w: number, b: number): number;
   ss_subdivide(w: number, b: number): number;
+  ss_move_ground(w: number, height: number): number;
   ss_remesh(w: number, b: number, edge: number, underLoad: number): number;
   ss_quality(w: number, b: number): number;
   ss_scale_rest(w: number, b: number): number;

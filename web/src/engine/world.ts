@@ -322,6 +322,11 @@ export class World {
     return JSON.parse(resultText()) as FreezeReport;
   }
   reset(b: number): void { this.call((w) => raw().ss_reset(w, b)); }
+  /** The ground to `height` m, carrying every body standing on it (`World::move_ground`); returns how many moved. */
+  moveGround(height: number): number {
+    this.call((w) => raw().ss_move_ground(w, height));
+    return (JSON.parse(resultText()) as { moved: number }).moved;
+  }
   /** Loop subdivision of body `b`; returns how many of its pending scene events were dropped. */
   /** Replace body `b` by its isotropic remeshing to `edge` m (frozen, under load if asked); returns the dropped pending events. */
   remesh(b: number, edge: number, underLoad: boolean): number {

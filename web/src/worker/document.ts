@@ -329,7 +329,12 @@ export class Document {
   /** Change a parameter by its table id (undoable); a refused value is reported and leaves the old one. */
   setParam(id: string, value: ParamValue): boolean {
     if (id === 'ground' && value === true) this.groundUnderBody = this.belowGround();
-    const ok = this.edit(`set ${id}`, true, () => this.world.setParam(0, id, value), 'none');
+    // The ground's height moves the plane with what stands on it (the core's `move_ground`): a
+    // rooted mushroom rises with it instead of being buried at its pinned foot (a new-user
+    // trial: at 0.5 m the step failed). Undo puts the bodies back too ('all').
+    const ok = id === 'ground.height' && typeof value === 'number'
+      ? this.edit(`set ${id}`, true, () => this.world.moveGround(value), 'all')
+      : this.edit(`set ${id}`, true, () => this.world.setParam(0, id, value), 'none');
     if (ok) this.changes = [...this.changes.slice(-7), { id, value, time: this.stats().time }];
     if (ok && id === 'dt') this.settings.dt = value as number;
     // Another integrator gets a step it is stable at: 1/60 s implicit, else the explicit limit.
