@@ -128,6 +128,30 @@ test('the camera turns as a turntable, stops with the mouse, keeps the horizon l
   await page.context().close();
 });
 
+test('raising the ground lifts the rooted mushroom with it: it stands on the plane, whole, and keeps playing', async () => {
+  // A new-user trial: the ground at 0.1 m buried the mushroom's pinned foot and crushed its
+  // stem; at 0.5 m the step failed and the page paused.
+  const { page, errors } = await openModeler(suite.browser, suite.server.url);
+  await settle(page, 0.05, 30000);
+  const span = () => inspect(page, () => { const x = window.softsculpt.positions(); let lo = Infinity, hi = -Infinity; for (let i = 1; i < x.length; i += 3) { lo = Math.min(lo, x[i]); hi = Math.max(hi, x[i]); } return [lo, hi]; });
+  const [lo0, hi0] = await span();
+  await page.locator('.lil-title', { hasText: 'Gravity & ground' }).click();
+  const height = page.locator('.lil-controller', { hasText: 'ground height' }).locator('input').first();
+  await height.fill('0.5');
+  await height.press('Enter');
+  await page.waitForTimeout(2500);
+  const [lo1, hi1] = await span();
+  // On the raised plane to rounding (its pinned foot moved with it), and as tall as before: the
+  // mushroom was resting, and a translation changes no force (1 cm: the settle's own wobble).
+  assert.ok(Math.abs(lo1 - 0.5) < 1e-6, `lowest vertex at ${lo1} m`);
+  assert.ok(Math.abs((hi1 - lo1) - (hi0 - lo0)) < 0.01, `height ${hi1 - lo1} m, was ${hi0 - lo0} m`);
+  assert.equal(await inspect(page, () => window.softsculpt.playing()), true);
+  assert.deepEqual((await inspect(page, () => window.softsculpt.messages())).filter((m) => m.kind === 'error'), []);
+  await shot(page, '49-ground-raised');
+  assert.deepEqual(errors, []);
+  await page.context().close();
+});
+
 test('a blow-up is said once in the user\'s terms, and loading a model plays again', async () => {
   const { page, errors } = await openModeler(suite.browser, suite.server.url);
   await settle(page, 0.05, 30000);

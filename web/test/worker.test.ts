@@ -380,6 +380,29 @@ describe('worker service', () => {
     expect(h.service.doc.params()).toEqual(before);
   });
 
+  it('cloth on the closed mushroom sags at once, as its message says, and other presets hold the shape', async () => {
+    // A new-user trial: cloth left the mushroom at speed 0 for 3 s (its weight carried by the
+    // freeze under load, an unstable equilibrium of a gasless shell), then a small grab
+    // collapsed it (2.45 → 1.11 m³).
+    const run = async (name: string) => {
+      const h = await started();
+      const v0 = h.service.doc.stats().volume;
+      await h.send({ type: 'preset', name });
+      let fastest = 0;
+      for (let k = 0; k < 60; k++) { const f = h.tick(34); if (f) h.giveBack(f); fastest = Math.max(fastest, h.service.doc.stats().maxSpeed); }
+      return { v0, v: h.service.doc.stats().volume, fastest, message: h.messages().find((m) => m.startsWith('material')) };
+    };
+    const cloth = await run('cloth');
+    expect(cloth.message).toMatch(/no gas: a closed body sags under its weight/);
+    // Sagging within two seconds: moving (the old build: exactly 0 m/s), and a tenth of its
+    // volume gone (a gasless shell of 400 N/m under 1 kg: it folds onto its stem).
+    expect(cloth.fastest).toBeGreaterThan(0.05);
+    expect(cloth.v).toBeLessThan(0.9 * cloth.v0);
+    // Clay (gas kept) still holds where it stood: within 1 % of its volume, barely moving.
+    const clay = await run('clay');
+    expect(Math.abs(clay.v / clay.v0 - 1)).toBeLessThan(0.01);
+  });
+
   it('a scene: the other bodies follow the active one in the frame buffer, with obstacles', async () => {
     const h = await started();
     const text = readFileSync(new URL('../../scenes/fig4a_mushroom_press_wind.toml', import.meta.url), 'utf8');

@@ -369,10 +369,18 @@ export class Document {
     // softer or plastic material (clay) does not slump from where it stands; the gas keeps the
     // pressure difference P − P_ref it had (a frozen body's springs balance that), so a preset
     // with less gas does not crush a frozen body. P_ref ≥ 0: with no gas (cloth) it is 0.
+    // Except a closed body that the preset leaves without gas (cloth on the mushroom): its
+    // weight carried by the freeze held it exactly where it stood, an unstable equilibrium of a
+    // gasless shell, so it did not move until touched and then collapsed at once (a new-user
+    // trial: 3 s at speed 0, then a small grab took its volume from 2.45 to 1.11 m³). It is
+    // frozen plainly instead (the weight no longer carried), so it sags and drapes at once, as
+    // the message says.
     if (this.edit(`material ${name}`, true, () => {
-      if (this.world.params(0).gravity !== 0) this.world.freeze(0, true, false);
+      const gravity = this.world.params(0).gravity !== 0;
+      if (gravity) this.world.freeze(0, true, false);
       const before = this.stats().pressure - (this.world.params(0)['gas.ambient'] as number);
       this.world.applyPresetScaled(0, name, size);
+      if (gravity && this.world.params(0)['gas.amount'] === 0 && isClosed(this.world.body(0).triangles)) this.world.freeze(0, false, false);
       this.world.setParam(0, 'gas.ambient', Math.max(0, this.stats().pressure - before));
     })) {
       const gasless = this.world.params(0)['gas.amount'] === 0;
