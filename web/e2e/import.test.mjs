@@ -97,7 +97,7 @@ test('a file of two shells: the dialog counts them; largest only, or one body pe
   await page.context().close();
 });
 
-test('Remesh keeps an imported box a box: made at a shorter edge, its sharp edges kept, and says so', async () => {
+test('Remesh keeps an imported 8-vertex tower its shape: made at a shorter edge, its sharp edges kept, and says so', async () => {
   const { page, ctx, errors } = await openModeler(suite.browser, suite.server.url);
   await page.locator('input[data-picker=import]').setInputFiles(join(FIXTURES, 'zup-tower.stl'));
   await drawn(page, 'zup-tower.stl');
@@ -109,13 +109,13 @@ test('Remesh keeps an imported box a box: made at a shorter edge, its sharp edge
   const message = await inspect(page, () => window.softsculpt.lastMessage());
   assert.match(message, /remeshed: \d+ vertices.*made at edge [\d.]+ m, keeping its sharp edges, since the mean edge [\d.]+ m would have changed the shape/);
   // No sliver: the smallest angle after (the flips' guard: 0° before it, a face of three
-  // collinear vertices on the box's flat top; measured 23–32° since).
+  // collinear vertices on the tower's flat top; measured 23–32° since).
   assert.ok(Number(message.match(/smallest \d+° → (\d+)°/)[1]) >= 10, message);
   await page.waitForTimeout(1000);
   const after = await inspect(page, () => window.softsculpt.positions());
-  // Tolerance: the remesh keeps the box's corners exactly (its edges are kept as creases), so
-  // what is left is the 1 s the box stands under its own weight before and after (its 4 × 4 ×
-  // 10 cm of the default material sag by well under a millimetre): 2 mm allowed per side. The old
+  // Tolerance: the remesh keeps the tower's corners exactly (its edges are kept as creases), so
+  // what is left is the 1 s it stands under its own weight before and after (4 × 4 × 10 cm of
+  // the default material: it sags by well under a millimetre): 2 mm allowed per side. The old
   // remesh made a 5-vertex double pyramid 9.8 × 8.0 × 10 cm: 3–6 cm off.
   for (let d = 0; d < 3; d++) {
     const [a, b] = extent(before, d), [c, e] = extent(after, d);
