@@ -114,8 +114,8 @@ test('Remesh keeps an imported 8-vertex tower its shape: made at a shorter edge,
   await page.waitForTimeout(1000);
   const after = await inspect(page, () => window.softsculpt.positions());
   // Tolerance: the remesh keeps the tower's corners exactly (its edges are kept as creases), so
-  // what is left is the 1 s it stands under its own weight before and after (4 × 4 × 10 cm of
-  // the default material: it sags by well under a millimetre): 2 mm allowed per side. The old
+  // what is left is the 1 s it stands under its own weight before and after (10 cm tall on a
+  // 4 × 4 cm base: it sags by well under a millimetre): 2 mm allowed per side. The old
   // remesh made a 5-vertex double pyramid 9.8 × 8.0 × 10 cm: 3–6 cm off.
   for (let d = 0; d < 3; d++) {
     const [a, b] = extent(before, d), [c, e] = extent(after, d);
