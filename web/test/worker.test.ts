@@ -390,7 +390,7 @@ describe('worker service', () => {
       await h.send({ type: 'preset', name });
       let fastest = 0;
       for (let k = 0; k < 60; k++) { const f = h.tick(34); if (f) h.giveBack(f); fastest = Math.max(fastest, h.service.doc.stats().maxSpeed); }
-      return { v0, v: h.service.doc.stats().volume, fastest, message: h.messages().find((m) => m.startsWith('material')) };
+      return { h, v0, v: h.service.doc.stats().volume, fastest, message: h.messages().find((m) => m.startsWith('material')) };
     };
     const cloth = await run('cloth');
     expect(cloth.message).toMatch(/no gas: a closed body sags under its weight/);
@@ -398,6 +398,16 @@ describe('worker service', () => {
     // volume gone (a gasless shell of 400 N/m under 1 kg: it folds onto its stem).
     expect(cloth.fastest).toBeGreaterThan(0.05);
     expect(cloth.v).toBeLessThan(0.9 * cloth.v0);
+    // Undo takes the whole world back, the standing shape included (a new-user trial: the gas
+    // came back into the folded shell, which then would not step), and it goes on resting.
+    const h = cloth.h;
+    await h.send({ type: 'undo' });
+    expect(Math.abs(h.service.doc.stats().volume / cloth.v0 - 1)).toBeLessThan(1e-9);
+    expect(h.service.doc.params()['gas.nrt']).toBeGreaterThan(0);
+    for (let k = 0; k < 30; k++) { const f = h.tick(34); if (f) h.giveBack(f); }
+    expect(h.service.doc.settings.playing).toBe(true);
+    expect(h.replies.filter((r) => r.type === 'message' && r.kind === 'error')).toEqual([]);
+    expect(Math.abs(h.service.doc.stats().volume / cloth.v0 - 1)).toBeLessThan(0.01);
     // Clay (gas kept) still holds where it stood: within 1 % of its volume, barely moving.
     const clay = await run('clay');
     expect(Math.abs(clay.v / clay.v0 - 1)).toBeLessThan(0.01);

@@ -3,7 +3,7 @@
 //!
 //! `ss_mark(w)` remembers a copy of the world as it is now (replacing the last mark);
 //! `ss_delta(w, scope)` writes the bytes of the delta that takes the world back to the mark
-//! (`Delta::between(mark, world, scope)`, scope 0 none, 1 touched, 2 all) and keeps the mark;
+//! (`Delta::between(mark, world, scope)`, scope 0 none, 1 touched, 2 all; 3 whole: `Delta::whole(mark)`) and keeps the mark;
 //! `ss_apply_delta(w, ptr, len)` applies delta bytes (world untouched on error, kind `delta`) and
 //! writes the inverse delta's bytes (what redoes the change).
 //!
@@ -32,17 +32,19 @@ fn delta_fail(e: DeltaError) -> Fail {
 }
 
 /// The bytes of the delta that takes the world back to the mark, in the result (scope 0 none:
-/// positions and velocities are not kept, 1 touched: of the vertices whose state changed, 2 all).
+/// positions and velocities are not kept, 1 touched: of the vertices whose state changed, 2 all,
+/// 3 whole: the world as it was at the mark, whatever happens after — `Delta::whole`).
 #[no_mangle]
 pub extern "C" fn ss_delta(w: u32, scope: u32) -> i32 {
     status(|| {
         let scope = match scope {
-            0 => StateScope::None,
-            1 => StateScope::Touched,
-            2 => StateScope::All,
+            0 => Some(StateScope::None),
+            1 => Some(StateScope::Touched),
+            2 => Some(StateScope::All),
+            3 => None,
             _ => {
                 return Err(Fail::usage(format!(
-                    "scope {scope} is not 0 (none), 1 (touched) or 2 (all)"
+                    "scope {scope} is not 0 (none), 1 (touched), 2 (all) or 3 (whole)"
                 )))
             }
         };
@@ -51,7 +53,11 @@ pub extern "C" fn ss_delta(w: u32, scope: u32) -> i32 {
                 .mark
                 .as_ref()
                 .ok_or_else(|| Fail::usage("there is no mark (call ss_mark first)"))?;
-            set_result(Delta::between(mark, &h.world, scope).to_bytes());
+            let delta = match scope {
+                Some(scope) => Delta::between(mark, &h.world, scope),
+                None => Delta::whole(mark),
+            };
+            set_result(delta.to_bytes());
             Ok(())
         })
     })

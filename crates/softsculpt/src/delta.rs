@@ -379,6 +379,14 @@ impl Delta {
         diff(&snapshot::payload_v5(before), &snapshot::payload_v5(after), scope)
     }
 
+    /// What takes any later world back to `before` whole: every setting, mesh and the whole
+    /// state (positions, velocities, clock, events, loads), as of `before`. For an operation
+    /// whose effect unfolds over the steps after it (a material that makes the body fold), so
+    /// that undoing it also undoes what the steps since made of it.
+    pub fn whole(before: &World) -> Delta {
+        Delta { scope: StateScope::All, kind: Kind::Whole(before.snapshot()) }
+    }
+
     /// Take `world` back; returns the inverse (what takes it forward again). On error the world
     /// is left as it was.
     pub fn apply(&self, world: &mut World) -> Result<Delta, DeltaError> {

@@ -216,6 +216,30 @@ fn undoing_a_subdivision_brings_the_coarse_mesh_back() {
     assert!(w.snapshot() == fine);
 }
 
+/// A whole delta (`Delta::whole`, the modeler's material presets) takes a world back to the mark
+/// whatever happened after it: the change and the steps since (positions, clock) — not only what
+/// the operation itself changed, as `between` does — and its inverse forward again, bit for bit.
+#[test]
+fn a_whole_delta_undoes_what_the_steps_since_made_of_a_change() {
+    let mut w = balloon(2);
+    w.step_n(5).unwrap();
+    let mark = w.clone();
+    w.set_param(0, "stiffness", softsculpt::params::Value::Number(3.0)).unwrap();
+    let undo = Delta::whole(&mark);
+    let only_the_change = Delta::between(&mark, &w, StateScope::All);
+    w.step_n(40).unwrap();
+    let later = w.snapshot();
+    // `between`, taken right after the change, brings the stiffness back but leaves the shape the
+    // 40 steps made; the whole delta brings back the world as it was.
+    let mut partial = w.clone();
+    only_the_change.apply(&mut partial).unwrap();
+    assert!(partial.bodies[0].positions() != mark.bodies[0].positions());
+    let redo = undo.apply(&mut w).unwrap();
+    assert!(w.snapshot() == mark.snapshot());
+    redo.apply(&mut w).unwrap();
+    assert!(w.snapshot() == later);
+}
+
 /// Nothing changed: an empty delta, which changes nothing.
 #[test]
 fn a_delta_of_nothing_is_empty() {

@@ -122,11 +122,12 @@ export function animationGlb(times: Float64Array, tracks: { triangles: Uint32Arr
   return resultBytes();
 }
 
-export type DeltaScope = 'none' | 'touched' | 'all';
+/** What an undo delta keeps (crates/softsculpt/src/delta.rs): 'whole' is the world as it was at the mark, whatever the steps since did. */
+export type DeltaScope = 'none' | 'touched' | 'all' | 'whole';
 
 /** What a freeze leaves unbalanced (`softsculpt::body::FreezeReport`): forces in N. */
 export interface FreezeReport { residual: number; load: number; iterations: number; clamped: number }
-const SCOPES: Record<DeltaScope, number> = { none: 0, touched: 1, all: 2 };
+const SCOPES: Record<DeltaScope, number> = { none: 0, touched: 1, all: 2, whole: 3 };
 
 // Slots of the layout table (crates/softsculpt-wasm/src/views.rs).
 const L = {

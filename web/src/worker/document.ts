@@ -374,7 +374,9 @@ export class Document {
     // gasless shell, so it did not move until touched and then collapsed at once (a new-user
     // trial: 3 s at speed 0, then a small grab took its volume from 2.45 to 1.11 m³). It is
     // frozen plainly instead (the weight no longer carried), so it sags and drapes at once, as
-    // the message says.
+    // the message says. Undo takes the whole world back to before the preset ('whole'), the
+    // shape as it stood included: undoing cloth after it folded brought the gas back into the
+    // folded shell, which then would not step (a new-user trial: "waiting for a step").
     if (this.edit(`material ${name}`, true, () => {
       const gravity = this.world.params(0).gravity !== 0;
       if (gravity) this.world.freeze(0, true, false);
@@ -382,7 +384,7 @@ export class Document {
       this.world.applyPresetScaled(0, name, size);
       if (gravity && this.world.params(0)['gas.amount'] === 0 && isClosed(this.world.body(0).triangles)) this.world.freeze(0, false, false);
       this.world.setParam(0, 'gas.ambient', Math.max(0, this.stats().pressure - before));
-    })) {
+    }, 'whole')) {
       const gasless = this.world.params(0)['gas.amount'] === 0;
       this.hooks.message(`material: ${name.replace('_', ' ')}${gasless ? ' — no gas: a closed body sags under its weight (it suits open surfaces)' : ''}`);
     }
