@@ -31,9 +31,18 @@
 //!
 //! Values, each checked by `tests/presets.rs` on every built-in model and after two
 //! subdivisions with the implicit integrator at 1/60 s:
-//! - `balloon`: a soft skin (k 100 N/m) on 30 J of gas, lightly damped (c 0.5 1/s): bouncy.
+//! - `balloon`: a soft skin (k 100 N/m) on 30 J of gas, lightly damped (c 0.5 1/s), with
+//!   hinges of D = 0.02 J: bouncy. Why the hinges: without them a press's dent is a
+//!   snapped-through equilibrium of the skin, as for stiff rubber below — measured on the
+//!   modeler's rooted mushroom, a 15 cm dent (cosine, 35 cm radius) let go kept 12.6 cm after
+//!   12 s (a new-user trial: "keeps the dent", like clay); with D = 0.02 J, 0.1 mm. At 0.05 J
+//!   (the modeler's own) the subdivided octopus's first second did not converge (the tests below).
 //! - `jelly`: a softer skin (k 60 N/m) held round by 20 J of gas, little damping (c 0.3 1/s,
-//!   cs 0.05): wobbles a while after a push and springs back.
+//!   cs 0.05): wobbles a while after a push and springs back — but not from a deep dent, which it
+//!   keeps as the hinge-less balloon did (13.2 cm of 15 on the mushroom): with D = 0.02 J the
+//!   subdivided mushroom, with 0.05 J the subdivided octopus, had a step that did not converge
+//!   within the tests' first second (no splitting there). Open (issue #9: the solver's robustness
+//!   with hinges on a buckling body).
 //! - `clay`: a firm skin (k 300 N/m) on 20 J of gas, heavily damped (c 4 1/s, cs 0.5), plastic:
 //!   strain beyond 1 % flows into the rest lengths at 5 1/s (the excess halves every 0.14 s), so
 //!   a hard press leaves a dent (measured on the modeler's sphere on the ground: a 10 N press for
@@ -95,7 +104,7 @@ const fn material(k: f64, cs: f64, d: f64, c: f64, nrt: f64, yield_strain: f64, 
     ]
 }
 
-const BALLOON_VALUES: [(&str, Value); 8] = material(100.0, 0.1, 0.0, 0.5, 30.0, 0.0, 0.0);
+const BALLOON_VALUES: [(&str, Value); 8] = material(100.0, 0.1, 0.02, 0.5, 30.0, 0.0, 0.0);
 const JELLY_VALUES: [(&str, Value); 8] = material(60.0, 0.05, 0.0, 0.3, 20.0, 0.0, 0.0);
 const CLAY_VALUES: [(&str, Value); 8] = material(300.0, 0.5, 0.0, 4.0, 20.0, 0.01, 5.0);
 const CLOTH_VALUES: [(&str, Value); 8] = material(400.0, 0.2, 0.0, 1.0, 0.0, 0.0, 0.0);
