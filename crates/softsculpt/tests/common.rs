@@ -55,3 +55,21 @@ pub fn run(world: &mut World, dt: f64, steps: usize) {
 pub fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
 }
+
+/// The modeler's mushroom as it opens, not yet settled: standing on the ground (y = 0), its foot
+/// pinned (the vertices within 1 cm of the ground), the `modeler` preset.
+pub fn rooted_mushroom() -> World {
+    let mut mesh = builtin("mushroom").unwrap();
+    let lo = mesh.positions.chunks_exact(3).map(|p| p[1]).fold(f64::MAX, f64::min);
+    for p in mesh.positions.chunks_exact_mut(3) {
+        p[1] -= lo;
+    }
+    let mut w = World::single(SoftBody::new(&mesh, 1.0, Material::default()).unwrap(), WorldSettings::default());
+    w.apply_preset(0, "modeler").unwrap();
+    for i in 0..w.bodies[0].vertex_count() {
+        if w.bodies[0].positions()[3 * i + 1] < 0.01 {
+            w.bodies[0].set_pinned(i, true).unwrap();
+        }
+    }
+    w
+}

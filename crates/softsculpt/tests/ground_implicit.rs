@@ -2,6 +2,9 @@
 //! model's equilibrium, the one the explicit model comes to, and a step at rest has nothing left
 //! to solve.
 
+mod common;
+
+use common::rooted_mushroom;
 use softsculpt::body::{Material, SoftBody};
 use softsculpt::mesh::builtin::icosphere;
 use softsculpt::world::{Ground, Integrator, World, WorldSettings};
@@ -202,21 +205,9 @@ fn a_stiff_rubber_ball_flattening_on_the_ground_keeps_its_linear_solves_short() 
     assert!(worst <= 40.0, "{worst:.0} CG iterations per Newton iteration in a step");
 }
 
-/// The modeler's mushroom as it opens: on the ground, its foot pinned (vertices within 1 cm of
-/// the ground), the `modeler` preset, settled for 2 s.
-fn rooted_mushroom() -> World {
-    let mut mesh = softsculpt::mesh::builtin::builtin("mushroom").unwrap();
-    let lo = mesh.positions.chunks_exact(3).map(|p| p[1]).fold(f64::MAX, f64::min);
-    for p in mesh.positions.chunks_exact_mut(3) {
-        p[1] -= lo;
-    }
-    let mut w = World::single(SoftBody::new(&mesh, 1.0, Material::default()).unwrap(), WorldSettings::default());
-    w.apply_preset(0, "modeler").unwrap();
-    for i in 0..w.bodies[0].vertex_count() {
-        if w.bodies[0].positions()[3 * i + 1] < 0.01 {
-            w.bodies[0].set_pinned(i, true).unwrap();
-        }
-    }
+/// The modeler's mushroom as it opens (`common::rooted_mushroom`), settled for 2 s.
+fn settled_mushroom() -> World {
+    let mut w = rooted_mushroom();
     w.step_n(120).unwrap();
     w
 }
@@ -229,7 +220,7 @@ fn rooted_mushroom() -> World {
 /// the move, within the settling's own wobble: 1 cm/s).
 #[test]
 fn raising_the_ground_lifts_a_rooted_body_with_it() {
-    let mut w = rooted_mushroom();
+    let mut w = settled_mushroom();
     let (x0, e0) = (w.bodies[0].positions().to_vec(), w.stats(0).elastic_energy);
     assert_eq!(w.move_ground(0.5).unwrap(), 1);
     let x1 = w.bodies[0].positions();
@@ -253,7 +244,7 @@ fn raising_the_ground_lifts_a_rooted_body_with_it() {
 /// no ground the move is refused, nothing changed.
 #[test]
 fn the_ground_moves_alone_under_a_body_in_the_air_and_not_at_all_without_a_ground() {
-    let mut w = rooted_mushroom();
+    let mut w = settled_mushroom();
     let mut air = softsculpt::mesh::builtin::builtin("sphere").unwrap();
     for p in air.positions.chunks_exact_mut(3) {
         p[1] += 5.0;

@@ -1,6 +1,8 @@
 //! The material presets (`params/presets.rs`): each stable with the modeler's implicit steps on
 //! every built-in model and after two subdivisions, and the same at either resolution.
 
+mod common;
+
 use softsculpt::mesh::builtin::builtin;
 use softsculpt::params::presets::PRESETS;
 use softsculpt::{Material, SoftBody, TriMesh, World, WorldSettings};
@@ -114,18 +116,7 @@ fn scene_bodies_take_presets_and_plasticity() {
 /// the hinges 12.6 cm stayed, a snapped-through skin).
 #[test]
 fn a_dented_balloon_springs_back() {
-    let mut mesh = builtin("mushroom").unwrap();
-    let lo = mesh.positions.chunks_exact(3).map(|p| p[1]).fold(f64::MAX, f64::min);
-    for p in mesh.positions.chunks_exact_mut(3) {
-        p[1] -= lo;
-    }
-    let mut w = World::single(SoftBody::new(&mesh, 1.0, Material::default()).unwrap(), WorldSettings::default());
-    w.apply_preset(0, "modeler").unwrap();
-    for i in 0..w.bodies[0].vertex_count() {
-        if w.bodies[0].positions()[3 * i + 1] < 0.01 {
-            w.bodies[0].set_pinned(i, true).unwrap();
-        }
-    }
+    let mut w = common::rooted_mushroom();
     w.step_n(120).unwrap();
     w.freeze(0, softsculpt::body::FreezeOptions { under_load: true, keep_tension: false }).unwrap();
     w.apply_preset(0, "balloon").unwrap();
