@@ -6,7 +6,8 @@
 import type { ImportAnswer, ImportQuestion } from './import';
 
 const CSS = `
-.import-dialog { position: fixed; inset: 0; display: flex; align-items: center; justify-content: center; background: rgba(10, 12, 16, 0.55); z-index: 50; }
+/* Above the lil-gui panel (its z-index is 1001): the question is modal, the panel waits (a new-user trial remeshed the model behind the dialog). */
+.import-dialog { position: fixed; inset: 0; display: flex; align-items: center; justify-content: center; background: rgba(10, 12, 16, 0.55); z-index: 2000; }
 .import-dialog form { background: #2a3039; color: #e8ecf0; font: 13px/1.45 system-ui, sans-serif; padding: 16px 20px; border-radius: 8px; width: min(440px, 92vw); box-shadow: 0 8px 32px rgba(0,0,0,0.5); }
 .import-dialog h2 { margin: 0 0 6px; font-size: 15px; }
 .import-dialog fieldset { border: 1px solid #47505c; border-radius: 6px; margin: 10px 0; padding: 6px 10px; }
