@@ -41,7 +41,10 @@ pub fn run(a: RemeshArgs) -> Result<(), String> {
     // coarse for --edge is remeshed at a half or a quarter of it, and says so.
     let kept = remesh::remesh_keeping_shape(&loaded.mesh, a.edge, a.crease).map_err(|e| format!("{}: {e}", a.input))?;
     let (out, r) = (kept.mesh, kept.report);
-    let header = format!("SoftSculpt remesh {} --edge {}", a.input, r.edge);
+    // The header names what made the file (the edge and crease angle used), so the command it
+    // shows makes it again.
+    let crease = r.crease_deg.map(|c| format!(" --crease {c}")).unwrap_or_default();
+    let header = format!("SoftSculpt remesh {} --edge {}{crease}", a.input, r.edge);
     output::write_mesh(&a.out, format, &out, &header)?;
     let (q0, q1) = (quality(&loaded.mesh, Some(r.edge)), quality(&out, Some(r.edge)));
     if r.shortened() {

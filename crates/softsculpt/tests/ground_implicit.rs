@@ -233,6 +233,11 @@ fn raising_the_ground_lifts_a_rooted_body_with_it() {
     assert!(w.bodies[0].max_speed() < speed + 0.01, "max speed {speed} → {} m/s", w.bodies[0].max_speed());
     let lowest = w.bodies[0].positions().chunks_exact(3).map(|p| p[1]).fold(f64::MAX, f64::min);
     assert!((lowest - 0.5).abs() < 1e-9, "lowest vertex at {lowest} m");
+    // Reset (back to the frozen shape) puts it on the raised plane too, not 0.5 m under it.
+    w.bodies[0].reset();
+    let lowest = w.bodies[0].positions().chunks_exact(3).map(|p| p[1]).fold(f64::MAX, f64::min);
+    assert!((lowest - 0.5).abs() < 1e-9, "reset to a lowest vertex at {lowest} m");
+    w.step_n(30).unwrap();
     // And down again, below where it started.
     assert_eq!(w.move_ground(-0.25).unwrap(), 1);
     w.step_n(60).unwrap();
@@ -257,5 +262,13 @@ fn the_ground_moves_alone_under_a_body_in_the_air_and_not_at_all_without_a_groun
     let x = w.bodies[0].positions().to_vec();
     let e = w.move_ground(1.0).unwrap_err();
     assert!(e.to_string().contains("ground"), "{e}");
+    assert_eq!(w.bodies[0].positions(), &x[..]);
+    // A move out of the finite numbers (a rise of 3.4e308 m) is refused before anything changes.
+    w.settings.ground = Some(Ground::at(0.3));
+    assert_eq!(w.move_ground(-1.7e308).unwrap(), 1);
+    let x = w.bodies[0].positions().to_vec();
+    let e = w.move_ground(1.7e308).unwrap_err();
+    assert!(e.to_string().contains("out of range"), "{e}");
+    assert_eq!(w.settings.ground.unwrap().height, -1.7e308);
     assert_eq!(w.bodies[0].positions(), &x[..]);
 }

@@ -331,9 +331,11 @@ export class Document {
     if (id === 'ground' && value === true) this.groundUnderBody = this.belowGround();
     // The ground's height moves the plane with what stands on it (the core's `move_ground`): a
     // rooted mushroom rises with it instead of being buried at its pinned foot (a new-user
-    // trial: at 0.5 m the step failed). Undo puts the bodies back too ('all').
+    // trial: at 0.5 m the step failed). Undo takes the whole world back ('whole'): a delta of
+    // what the move changed holds only the y coordinates, and applied after the body has moved
+    // on it would mix old heights with new x and z.
     const ok = id === 'ground.height' && typeof value === 'number'
-      ? this.edit(`set ${id}`, true, () => this.world.moveGround(value), 'all')
+      ? this.edit(`set ${id}`, true, () => this.world.moveGround(value), 'whole')
       : this.edit(`set ${id}`, true, () => this.world.setParam(0, id, value), 'none');
     if (ok) this.changes = [...this.changes.slice(-7), { id, value, time: this.stats().time }];
     if (ok && id === 'dt') this.settings.dt = value as number;

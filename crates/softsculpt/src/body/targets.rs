@@ -94,6 +94,21 @@ impl SoftBody {
         Ok(())
     }
 
+    /// Move the body up by `dy` (m): its positions, its frozen shape (what Reset goes back to)
+    /// and its target springs' anchors — a translation, which changes no internal force.
+    pub(crate) fn lift(&mut self, dy: f64) {
+        for x in [&mut self.state.x, &mut self.frozen.x] {
+            for p in x.chunks_exact_mut(3) {
+                p[1] += dy;
+            }
+        }
+        let tg = &mut self.model.targets;
+        for t in &mut tg.list {
+            t.anchor[1] += dy;
+            tg.anchor[3 * t.vertex + 1] += dy;
+        }
+    }
+
     /// Remove every target spring.
     pub fn clear_targets(&mut self) {
         // An empty list is always valid.

@@ -51,37 +51,42 @@ pub const STANDING: f64 = 1e-3;
 
 impl super::World {
     /// Move the ground plane to `height` (m), carrying what stands on it: every body whose
-    /// lowest vertex is on the old plane or below it ([`STANDING`]) is moved up or down with it,
-    /// pins and all (a rooted mushroom's foot is pinned on the ground; a body resting on it has
-    /// its bottom held there), so raising the ground lifts the model instead of burying its
-    /// pinned foot and crushing the rest against the plane (measured before: the mushroom's
+    /// lowest vertex is on the old plane or below it ([`STANDING`]) is moved up or down with it —
+    /// its positions, pins, frozen shape (so Reset puts it back on the new plane) and grab anchors
+    /// (`SoftBody::lift`) — so raising the ground lifts the model instead of burying its pinned
+    /// foot and crushing the rest against the plane (measured before: the rooted mushroom's
     /// elastic energy 1.8 → 7.0 J at 0.1 m, a failed implicit step at 0.5 m). Bodies in the air
-    /// stay where they are. Returns how many bodies moved; a bad height, or no ground, is
-    /// refused as by [`crate::World::set_param`] ("ground.height") with nothing changed.
+    /// stay where they are, and so do obstacles; a body resting on another body that stands on
+    /// the ground is not carried (only what touches the plane is). Returns how many bodies moved.
+    /// A bad height, a move that would take a position out of the finite numbers, or no ground,
+    /// is refused as by [`crate::World::set_param`] ("ground.height") with nothing changed.
     pub fn move_ground(&mut self, height: f64) -> Result<usize, crate::params::ParamError> {
+        let fail = |message: String| crate::params::ParamError { id: "ground.height".into(), message };
         let old = self.settings.ground.map(|g| g.height);
-        self.set_param(0, "ground.height", crate::params::Value::Number(height))?;
-        let Some(old) = old else { return Ok(0) };
-        let rise = height - old;
-        let mut moved = 0;
-        for body in &mut self.bodies {
-            let x = body.positions();
-            let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
-            for p in x.chunks_exact(3) {
-                for d in 0..3 {
-                    lo[d] = lo[d].min(p[d]);
-                    hi[d] = hi[d].max(p[d]);
-                }
+        let rise = old.map_or(0.0, |h| height - h);
+        let standing: Vec<bool> = self
+            .bodies
+            .iter()
+            .map(|b| {
+                let x = b.positions();
+                let (lo, hi) = crate::mesh::bounds(x);
+                !x.is_empty() && old.is_some_and(|h| lo[1] <= h + STANDING * norm(sub(hi, lo)))
+            })
+            .collect();
+        let moves = standing.iter().any(|&s| s) && rise != 0.0;
+        if moves {
+            let lifted_finite = |b: &crate::SoftBody| b.positions().chunks_exact(3).all(|p| (p[1] + rise).is_finite());
+            if !rise.is_finite() || self.bodies.iter().zip(&standing).any(|(b, &s)| s && !lifted_finite(b)) {
+                return Err(fail(format!("moving the ground from {} m to {height} m would move the bodies on it out of range", old.unwrap_or(0.0))));
             }
-            let size = norm(sub(hi, lo));
-            if x.is_empty() || rise == 0.0 || lo[1] > old + STANDING * size {
-                continue;
-            }
-            let lifted: Vec<f64> = x.iter().enumerate().map(|(k, &q)| if k % 3 == 1 { q + rise } else { q }).collect();
-            let v = body.velocities().to_vec();
-            body.set_state(&lifted, &v).expect("a translation of finite positions is finite");
-            moved += 1;
         }
-        Ok(moved)
+        self.set_param(0, "ground.height", crate::params::Value::Number(height))?;
+        if !moves {
+            return Ok(0);
+        }
+        for (body, _) in self.bodies.iter_mut().zip(&standing).filter(|(_, &s)| s) {
+            body.lift(rise);
+        }
+        Ok(standing.iter().filter(|&&s| s).count())
     }
 }

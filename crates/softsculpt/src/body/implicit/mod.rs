@@ -423,8 +423,9 @@ impl Implicit {
     /// they do not change when every x_t moves by dt u and every v⁺ by u; gravity, user forces
     /// and kept loads are constant; the viscous damping −c m v changes by −c m u. So
     /// r_i(v⁺ + u) = r_i(v⁺) + (1 + dt c) m_i u exactly, and u = −Σ r_i / ((1 + dt c) Σ m_i)
-    /// gives Σ r_i = 0. It also only lowers ‖r‖_{M⁻¹} (the mass-weighted mean is projected out:
-    /// ‖r'‖² = ‖r‖² − |Σ r_i|² / Σ m_i for c = 0), so the step stays within the tolerance.
+    /// gives Σ r_i = 0. It also only lowers ‖r‖_{M⁻¹}: r'_i = r_i − m_i Σ r / Σ m (the (1 + dt c)
+    /// cancels), the mass-weighted mean projected out, ‖r'‖² = ‖r‖² − |Σ r_i|² / Σ m_i, so the
+    /// step stays within the tolerance.
     /// Pins, targets and a held ground take impulse from outside (momentum is not conserved
     /// there, and the correction would not be exact); the wind's force depends on v⁺ itself.
     fn keep_momentum(&mut self, fr: &Frame) {

@@ -63,6 +63,18 @@ impl Surface {
 
     /// The nearest point and the index of the triangle it lies on.
     pub fn nearest(&self, p: V3) -> (V3, usize) {
+        let (q, f, _) = self.search(p);
+        (q, f)
+    }
+
+    /// The distance from `p` to the surface (m): infinite if the search found no triangle (a
+    /// point farther than the grid's shells reach, or not finite), never 0 for want of one.
+    pub fn distance(&self, p: V3) -> f64 {
+        self.search(p).2
+    }
+
+    /// The nearest point, its triangle and its distance (p itself, 0, ∞ if none was found).
+    fn search(&self, p: V3) -> (V3, usize, f64) {
         let c = [0, 1, 2].map(|k| ((p[k] - self.lo[k]) / self.cell).floor() as i64);
         let (mut best, mut best_d, mut best_f) = (p, f64::INFINITY, 0usize);
         let max_r = *self.dims.iter().max().unwrap() as i64 + 1;
@@ -97,6 +109,6 @@ impl Surface {
                 break;
             }
         }
-        (best, best_f)
+        (best, best_f, best_d)
     }
 }

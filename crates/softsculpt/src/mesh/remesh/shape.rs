@@ -111,7 +111,9 @@ pub fn departure(input: &TriMesh, result: &TriMesh, raw_volume: f64) -> Departur
             return f64::INFINITY;
         }
         let surface = Surface::new(&to.positions, &to.triangles);
-        samples(from).map(|p| norm(sub(surface.project(p), p))).fold(0.0, f64::max)
+        // A sample the search cannot place (no triangle found, or NaN) counts as infinitely far:
+        // a result the check cannot measure does not keep the shape.
+        samples(from).map(|p| surface.distance(p)).fold(0.0, |a, d| if d.is_nan() { f64::INFINITY } else { a.max(d) })
     };
     let ((lo0, hi0), (lo1, hi1)) = (input.bounds(), result.bounds());
     let bounds_change = (0..3).map(|k| (lo1[k] - lo0[k]).abs().max((hi1[k] - hi0[k]).abs())).fold(0.0, f64::max);

@@ -195,7 +195,8 @@ impl Work {
     }
 
     /// Flip the interior edge (a, b) if that brings the four vertices' valences closer to their
-    /// targets and neither new face turns over. Returns whether it flipped.
+    /// targets, neither new face turns over, and the new pair's worst triangle is at least half
+    /// as good as the old pair's (no sliver). Returns whether it flipped.
     pub fn flip_if_better(&mut self, a: u32, b: u32) -> bool {
         if self.features.contains(&key(a, b)) {
             return false;
