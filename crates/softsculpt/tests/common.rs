@@ -73,3 +73,8 @@ pub fn rooted_mushroom() -> World {
     }
     w
 }
+
+/// Σ m_i |v_i| (kg·m/s): the scale a momentum error is measured against.
+pub fn momentum_scale(b: &SoftBody) -> f64 {
+    b.velocities().chunks_exact(3).zip(b.masses()).map(|(v, m)| m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()).sum()
+}

@@ -130,7 +130,7 @@ fn implicit_steps_with_hinges_keep_the_momentum() {
     let mut w = alone(sphere_body(3, 1.0, p), WorldSettings { integrator: Integrator::Implicit, tolerance: 1e-8, dt: 1.0 / 60.0, ..still() });
     swirl(&mut w.bodies[0], 1.0);
     let m0 = w.stats(0).momentum;
-    let scale: f64 = w.bodies[0].velocities().chunks_exact(3).zip(w.bodies[0].masses()).map(|(v, m)| m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()).sum();
+    let scale = momentum_scale(&w.bodies[0]);
     w.step_n(30).unwrap();
     let m1 = w.stats(0).momentum;
     for d in 0..3 {

@@ -328,7 +328,6 @@ export class World {
     this.call((w) => raw().ss_move_ground(w, height));
     return (JSON.parse(resultText()) as { moved: number }).moved;
   }
-  /** Loop subdivision of body `b`; returns how many of its pending scene events were dropped. */
   /** Replace body `b` by its isotropic remeshing to `edge` m (frozen, under load if asked); returns the dropped pending events. */
   remesh(b: number, edge: number, underLoad: boolean): number {
     return this.remeshReporting(b, edge, underLoad).dropped_events;
@@ -347,6 +346,7 @@ export class World {
     this.call((w) => raw().ss_quality(w, b));
     return JSON.parse(resultText());
   }
+  /** Loop subdivision of body `b`; returns how many of its pending scene events were dropped. */
   subdivide(b: number): number {
     this.call((w) => raw().ss_subdivide(w, b));
     return (JSON.parse(resultText()) as { dropped_events: number }).dropped_events;

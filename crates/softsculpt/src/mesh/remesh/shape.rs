@@ -55,8 +55,6 @@ pub struct Departure {
     /// The remesher's relative volume change before its volume correction (V_raw/V₀ − 1; 0 for
     /// an open mesh, which has no volume to keep).
     pub volume_change: f64,
-    /// The largest move of a side of the axis-aligned bounding box (m).
-    pub bounds_change: f64,
 }
 
 impl Departure {
@@ -115,15 +113,12 @@ pub fn departure(input: &TriMesh, result: &TriMesh, raw_volume: f64) -> Departur
         // a result the check cannot measure does not keep the shape.
         samples(from).map(|p| surface.distance(p)).fold(0.0, |a, d| if d.is_nan() { f64::INFINITY } else { a.max(d) })
     };
-    let ((lo0, hi0), (lo1, hi1)) = (input.bounds(), result.bounds());
-    let bounds_change = (0..3).map(|k| (lo1[k] - lo0[k]).abs().max((hi1[k] - hi0[k]).abs())).fold(0.0, f64::max);
     let v0 = input.volume();
     let closed = input.edge_counts().boundary == 0;
     Departure {
         input_to_result: one_way(input, result),
         result_to_input: one_way(result, input),
         volume_change: if closed && v0 != 0.0 { raw_volume / v0 - 1.0 } else { 0.0 },
-        bounds_change,
     }
 }
 
@@ -142,7 +137,7 @@ fn samples(m: &TriMesh) -> impl Iterator<Item = V3> + '_ {
 /// then (without `crease_deg`) at the shortest keeping creases sharper than [`CREASE`]; refuse if
 /// none keeps it. A result kept at the first try is exactly `remesh(mesh, edge, crease_deg)`.
 pub fn remesh_keeping_shape(mesh: &TriMesh, edge: f64, crease_deg: Option<f64>) -> Result<Remeshed, MeshError> {
-    check_edge_length(mesh, edge)?;
+    // (The edge asked for is checked by the first try's remesh: `check_edge_length`.)
     let (lo, hi) = mesh.bounds();
     let size = norm(sub(hi, lo));
     let mut plan: Vec<(f64, Option<f64>)> = (0..TRIES).map(|k| (edge * 0.5f64.powi(k as i32), crease_deg)).collect();
