@@ -61,6 +61,7 @@
 
 mod adjacency;
 mod aggregate;
+mod blocks;
 mod cg;
 mod ground;
 mod multigrid;
@@ -335,6 +336,11 @@ impl Implicit {
                 self.mg.assemble(&self.sys, m, &self.xt);
                 stale = false;
             }
+            // The products' blocks (hinged bodies, `blocks.rs`): summing them costs ~5 products
+            // and saves ~0.6 of each product after (measured on the 5,762-vertex mushroom
+            // released after a grab: 1.4× faster; a 10,242-vertex sphere at rest, one or two
+            // conjugate-gradient iterations per Newton iteration: even, within noise).
+            self.sys.prepare(th, m);
             it.linear += self.cg.solve(th, &self.sys, &mut self.mg, m, &self.r, eta, &mut self.delta);
             it.newton += 1;
             k += 1;

@@ -56,6 +56,7 @@
 //! the solution it converges to is the backward-Euler step with every force exact.
 
 use super::adjacency::{FaceRows, HingeRows, SpringRows};
+use super::blocks::{Blocks, Pieces};
 use super::super::hinges::{angle_and_gradient, excess, rate, Hinges};
 use std::sync::atomic::{AtomicU64, Ordering};
 use super::ground::GroundSet;
@@ -108,6 +109,9 @@ pub(crate) struct System {
     pub hf: Vec<f64>,
     pub hc: Vec<f64>,
     hp: HingeProducts,
+    /// The matrix as 3×3 blocks for the products of a hinged body (`blocks.rs`), summed by
+    /// [`System::prepare`] after each evaluation.
+    pub blocks: Blocks,
     /// Hinges take part (B > 0).
     pub hinged: bool,
     /// n_f = (x_b − x_a) × (x_c − x_a) per face (m², xyz).
@@ -185,6 +189,7 @@ impl System {
             hf: Vec::new(),
             hc: Vec::new(),
             hp: HingeProducts::default(),
+            blocks: Blocks::default(),
             hinged: false,
             nf: vec![0.0; 3 * nf],
             g: vec![0.0; 3 * n],
@@ -217,6 +222,34 @@ impl System {
             self.hc = vec![0.0; nh];
             self.hp = HingeProducts::new(nh);
         }
+        if !self.blocks.fits(m.mass.len(), self.hrows.entry.len()) {
+            self.blocks = Blocks::new(m.mass.len(), &self.edges, &self.bends, &self.hrows, &m.hinges.v);
+        }
+    }
+
+    /// The products' blocks from the last evaluation's pieces (`blocks.rs`), if the body is
+    /// hinged and they are not summed yet: call before the conjugate gradient. Without it the
+    /// products take the pieces themselves (the same matrix, slower).
+    pub fn prepare(&mut self, th: &Threads, m: &Model) {
+        if !self.hinged || self.blocks.ready {
+            return;
+        }
+        let pieces = Pieces {
+            edges: &self.edges,
+            bends: &self.bends,
+            ecoef: &self.ecoef,
+            bcoef: &self.bcoef,
+            bending: self.bending,
+            hrows: &self.hrows,
+            hcoef: &self.hcoef,
+            hg: &self.hg,
+            hc: &self.hc,
+            diag: &self.diag,
+            inv_mass: &m.inv_mass,
+        };
+        let mut slots = std::mem::take(&mut self.vslots);
+        self.blocks.assemble(th, VCHUNK, &pieces, &mut slots);
+        self.vslots = slots;
     }
 
     /// Forces at (x_t, v⁺), the residual r (into `r`), the matrix's coefficients and the
@@ -224,6 +257,7 @@ impl System {
     pub fn eval(&mut self, th: &Threads, fr: &Frame, vp: &[f64], xt: &[f64], r: &mut [f64]) -> Result<Eval, Fault> {
         let (p, w, m, dt) = (fr.p, fr.w, fr.m, fr.dt);
 
+        self.blocks.ready = false;
         // Springs: evaluated in the vertex pass (`gather_springs`).
         self.bending = p.bending_stiffness > 0.0;
         self.hinged = p.rigidity > 0.0 && !m.hinges.v.is_empty();
@@ -622,7 +656,7 @@ impl System {
     fn rows_pass<const SUB: bool>(&self, th: &Threads, m: &Model, p: &[f64], gg: f64, b: &[f64], out: &mut [f64], slots: &mut [[f64; 4]]) -> f64 {
         let n = m.mass.len();
         assert!(p.len() >= 3 * n && self.diag.len() >= n && self.g.len() >= 3 * n && m.inv_mass.len() >= n);
-        if self.hinged {
+        if self.hinged && !self.blocks.ready {
             // Per hinge c_h (∇θ · p), in as many ranges of hinges as there are vertex chunks
             // (each hinge's value is the same whatever the split).
             let (nh, nc) = (m.hinges.v.len(), slots.len());
@@ -678,19 +712,25 @@ impl System {
     fn product_rows_plain<const SUB: bool>(&self, m: &Model, vr: std::ops::Range<usize>, p: &[f64], gg: f64, b: &[f64], out: &mut [f64]) -> f64 {
         let mut pq = 0.0;
         let grounded = self.ground.active();
+        let blocks = self.hinged && self.blocks.ready;
         for (li, i) in vr.enumerate() {
             if m.inv_mass[i] == 0.0 {
                 out[3 * li..3 * li + 3].fill(0.0);
                 continue;
             }
             let pi = [p[3 * i], p[3 * i + 1], p[3 * i + 2]];
-            let dg = self.diag[i];
-            let mut q = [dg * pi[0], dg * pi[1], dg * pi[2]];
-            row_product(&self.edges, &self.ecoef, i, p, &pi, &mut q);
-            if self.bending {
-                row_product(&self.bends, &self.bcoef, i, p, &pi, &mut q);
+            let mut q;
+            if blocks {
+                q = self.blocks.row(i, p);
+            } else {
+                let dg = self.diag[i];
+                q = [dg * pi[0], dg * pi[1], dg * pi[2]];
+                row_product(&self.edges, &self.ecoef, i, p, &pi, &mut q);
+                if self.bending {
+                    row_product(&self.bends, &self.bcoef, i, p, &pi, &mut q);
+                }
             }
-            if self.hinged {
+            if self.hinged && !blocks {
                 let (k0, k1) = (self.hrows.start[i] as usize, self.hrows.start[i + 1] as usize);
                 for (&e, g) in self.hrows.entry[k0..k1].iter().zip(&self.hcoef[k0..k1]) {
                     let c = self.hp.get((e / 4) as usize);
