@@ -21,9 +21,10 @@
 //! self-contacts are applied by the product as before (`System::product`).
 //!
 //! Only for hinged bodies: without hinges a row's springs are already one compact pass (5
-//! numbers per spring against a block's 9). The blocks are summed on the first product after an
-//! evaluation (`System::prepare`, called by the Newton loop before the conjugate gradient), so
-//! a step that converges at its first evaluation (a body at rest) never pays for them.
+//! numbers per spring against a block's 9). The blocks are summed when a conjugate gradient
+//! runs long enough for them to pay (`System::prepare`, called by `Cg::solve`: see
+//! `cg::BLOCKS_FROM`), so a body at rest, whose solves take one or two iterations, never pays
+//! for them.
 
 use super::adjacency::{HingeRows, SpringRows};
 use crate::par::{chunk, Out, Threads};

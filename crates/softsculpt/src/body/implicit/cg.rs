@@ -14,6 +14,16 @@ use crate::par::{chunk, Out, Threads};
 
 /// Most conjugate-gradient iterations per Newton iteration.
 pub(crate) const LINEAR_MAX: u32 = 2000;
+/// The iteration (from 0) of a solve from which a hinged body's products take the matrix's blocks
+/// (`blocks.rs`), and the iterations of the last solve above which the Newton loop asks for
+/// them from the start. Summing the blocks costs ~15 block products (~6 of the pieces';
+/// measured at 10,242 vertices), and a block product is ~0.4 of one from the pieces, so they
+/// pay from ~3 iterations on (each iteration is up to 3 products: the CG's and the V-cycle's
+/// two residuals). At rest a solve takes about one iteration (the 10,242-vertex sphere: 30
+/// Newton and 32 CG iterations in 60 steps; with the blocks summed for every solve 13 % of its
+/// time went to summing them, 3–10 % slower steps); after a grab 12–26, where taking them
+/// from the first, the second or the fourth iteration measured the same (`BENCHMARKS.md`).
+pub(crate) const BLOCKS_FROM: u32 = 3;
 
 /// Vectors of the conjugate gradient (flat xyz), allocated once.
 #[derive(Debug, Clone, Default)]
@@ -31,8 +41,13 @@ impl Cg {
     }
 
     /// Solve A δ = −r to relative accuracy `eta`; δ into `delta`. Returns the iterations taken.
+    /// A hinged body's products switch to the matrix's blocks (`System::prepare`) from the
+    /// start if `upfront`, else from iteration [`BLOCKS_FROM`].
     #[allow(clippy::too_many_arguments)]
-    pub fn solve(&mut self, th: &Threads, sys: &System, mg: &mut Multigrid, m: &Model, r: &[f64], eta: f64, delta: &mut [f64]) -> u32 {
+    pub fn solve(&mut self, th: &Threads, sys: &mut System, mg: &mut Multigrid, m: &Model, r: &[f64], eta: f64, upfront: bool, delta: &mut [f64]) -> u32 {
+        if upfront {
+            sys.prepare(th, m);
+        }
         let n = m.mass.len();
         let Cg { res, z, p, q, slots } = self;
         // δ = 0, res = −r; rn = ‖res‖²_{M⁻¹}.
@@ -64,6 +79,9 @@ impl Cg {
         let gas = sys.gamma != 0.0;
         let mut gp = direction(th, sys, n, z, 0.0, p, slots);
         for it in 0..LINEAR_MAX {
+            if it == BLOCKS_FROM {
+                sys.prepare(th, m);
+            }
             let pq = sys.product(th, m, p, if gas { gp } else { 0.0 }, q, slots);
             if !(pq > 0.0 && pq.is_finite()) {
                 return it; // only rounding can do this: A is positive definite

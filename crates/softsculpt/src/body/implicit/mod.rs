@@ -271,6 +271,8 @@ impl Implicit {
         // CG iterations in 60 steps with the first iteration's coarse levels, 6,733 with these;
         // 8,527 with the held vertices' F A F as well, on another Newton path: BENCHMARKS.md).
         let mut stale = true;
+        // The last linear solve's iterations (the blocks' rule, `Cg::solve`).
+        let mut cg_last = 0;
         // The lowest relative residual so far and the iteration it was reached at (the stall
         // test, `WorldSettings::give_up`); from scratch when the ground's set changes (another
         // problem, another residual).
@@ -336,12 +338,11 @@ impl Implicit {
                 self.mg.assemble(&self.sys, m, &self.xt);
                 stale = false;
             }
-            // The products' blocks (hinged bodies, `blocks.rs`): summing them costs ~5 products
-            // and saves ~0.6 of each product after (measured on the 5,762-vertex mushroom
-            // released after a grab: 1.4× faster; a 10,242-vertex sphere at rest, one or two
-            // conjugate-gradient iterations per Newton iteration: even, within noise).
-            self.sys.prepare(th, m);
-            it.linear += self.cg.solve(th, &self.sys, &mut self.mg, m, &self.r, eta, &mut self.delta);
+            // The products' blocks (hinged bodies, `blocks.rs`) from the start of the solve if
+            // the last one was long, else from its iteration `BLOCKS_FROM` (`cg.rs`).
+            let upfront = k > 0 && cg_last > cg::BLOCKS_FROM;
+            cg_last = self.cg.solve(th, &mut self.sys, &mut self.mg, m, &self.r, eta, upfront, &mut self.delta);
+            it.linear += cg_last;
             it.newton += 1;
             k += 1;
             gyprev = self.conjugate(k, gyprev);
