@@ -1,7 +1,9 @@
 //! The preconditioned conjugate gradient on A δ = −r (A = M + dt D + dt² K, symmetric positive
 //! definite after the projections of `system.rs`). Preconditioner (`multigrid.rs`): the inverse
 //! of each vertex's 3×3 diagonal block (block Jacobi), or on large bodies an aggregation
-//! multigrid V-cycle. Matrix-free: A is applied row by row (`System::product`).
+//! multigrid V-cycle. A is applied row by row (`System::product`): matrix-free from the
+//! evaluation's pieces, or from 3×3 blocks summed once a hinged body's solve runs long
+//! ([`BLOCKS_AFTER`]).
 //!
 //! It stops when the mass-weighted norm of its residual ‖b − A δ‖_{M⁻¹} (with
 //! ‖y‖²_{M⁻¹} = Σ_i |y_i|² / m_i) is at most η ‖b‖_{M⁻¹} — the Newton loop chooses η — or after
@@ -14,16 +16,23 @@ use crate::par::{chunk, Out, Threads};
 
 /// Most conjugate-gradient iterations per Newton iteration.
 pub(crate) const LINEAR_MAX: u32 = 2000;
-/// The iteration (from 0) of a solve from which a hinged body's products take the matrix's blocks
-/// (`blocks.rs`), and the iterations of the last solve above which the Newton loop asks for
-/// them from the start. Summing the blocks costs ~15 block products (~6 of the pieces';
-/// measured at 10,242 vertices), and a block product is ~0.4 of one from the pieces, so they
-/// pay from ~3 iterations on (each iteration is up to 3 products: the CG's and the V-cycle's
-/// two residuals). At rest a solve takes about one iteration (the 10,242-vertex sphere: 30
-/// Newton and 32 CG iterations in 60 steps; with the blocks summed for every solve 13 % of its
-/// time went to summing them, 3–10 % slower steps); after a grab 12–26, where taking them
-/// from the first, the second or the fourth iteration measured the same (`BENCHMARKS.md`).
-pub(crate) const BLOCKS_FROM: u32 = 3;
+/// Fine products (`System::product`, and the V-cycle's two residuals per iteration) of a
+/// solve after which a hinged body's products take the matrix's blocks (`blocks.rs`), and the
+/// Newton loop asks for them from the start of the next solve when its last one ran that
+/// long. A rent-or-buy rule: summing the blocks costs ~6 products from the pieces (~15 block
+/// products; measured at 10,242 vertices) and each block product saves ~0.6 of one, so the
+/// blocks are summed once the pieces' products have cost about as much as summing them —
+/// after 4 iterations with the V-cycle (3 products each, and 2 before the first), 12 with block
+/// Jacobi (1 each: hinged bodies below `multigrid::HINGED_FROM`). (9, summing them from the
+/// fourth V-cycle iteration, measured the same; with it, the presets test's balloon on the
+/// twice-subdivided octopus met a step at t = 0.717 s that did not converge in 100 Newton
+/// iterations — a step on the edge, which main and 0 or 12 here converge: the products agree
+/// to 1e-16 there, only their rounding differs. See `BENCHMARKS.md`.) At rest a solve
+/// takes 1–5 iterations, 2.2 on average (the 10,242-vertex sphere: 64 CG in 29 Newton
+/// iterations over 60 steps; with the blocks summed for every solve 13 % of its time went to
+/// summing them, 3–10 % slower steps); after a grab 12–26 per Newton iteration, where taking
+/// them from the first, the second or the fourth iteration measured the same (`BENCHMARKS.md`).
+pub(crate) const BLOCKS_AFTER: u32 = 12;
 
 /// Vectors of the conjugate gradient (flat xyz), allocated once.
 #[derive(Debug, Clone, Default)]
@@ -40,11 +49,11 @@ impl Cg {
         Cg { res: vec![0.0; 3 * n], z: vec![0.0; 3 * n], p: vec![0.0; 3 * n], q: vec![0.0; 3 * n], slots: vec![[0.0; 4]; chunks] }
     }
 
-    /// Solve A δ = −r to relative accuracy `eta`; δ into `delta`. Returns the iterations taken.
-    /// A hinged body's products switch to the matrix's blocks (`System::prepare`) from the
-    /// start if `upfront`, else from iteration [`BLOCKS_FROM`].
+    /// Solve A δ = −r to relative accuracy `eta`; δ into `delta`. Returns the iterations taken
+    /// and the fine products made. A hinged body's products switch to the matrix's blocks
+    /// (`System::prepare`) from the start if `upfront`, else after [`BLOCKS_AFTER`] products.
     #[allow(clippy::too_many_arguments)]
-    pub fn solve(&mut self, th: &Threads, sys: &mut System, mg: &mut Multigrid, m: &Model, r: &[f64], eta: f64, upfront: bool, delta: &mut [f64]) -> u32 {
+    pub fn solve(&mut self, th: &Threads, sys: &mut System, mg: &mut Multigrid, m: &Model, r: &[f64], eta: f64, upfront: bool, delta: &mut [f64]) -> (u32, u32) {
         if upfront {
             sys.prepare(th, m);
         }
@@ -72,19 +81,24 @@ impl Cg {
         let mut rn = sum3(slots).1;
         let target = eta * eta * rn;
         if rn <= target || rn == 0.0 {
-            return 0;
+            return (0, 0);
         }
         // z = B res (the preconditioner), p = z; rz = res · z, gp = g · p.
         let mut rz = mg.apply(th, sys, m, res, z, slots);
         let gas = sys.gamma != 0.0;
         let mut gp = direction(th, sys, n, z, 0.0, p, slots);
+        // Fine products per iteration (the conjugate gradient's, the V-cycle's two residuals),
+        // and those made so far (the first V-cycle's).
+        let per = if mg.cycles(sys, n) { 3 } else { 1 };
+        let mut products = per - 1;
         for it in 0..LINEAR_MAX {
-            if it == BLOCKS_FROM {
+            if products >= BLOCKS_AFTER {
                 sys.prepare(th, m);
             }
+            products += per;
             let pq = sys.product(th, m, p, if gas { gp } else { 0.0 }, q, slots);
             if !(pq > 0.0 && pq.is_finite()) {
-                return it; // only rounding can do this: A is positive definite
+                return (it, products); // only rounding can do this: A is positive definite
             }
             let alpha = rz / pq;
             {
@@ -108,14 +122,14 @@ impl Cg {
             }
             rn = sum3(slots).1;
             if rn <= target || rn == 0.0 {
-                return it + 1;
+                return (it + 1, products);
             }
             let rz_new = mg.apply(th, sys, m, res, z, slots);
             let beta = rz_new / rz;
             rz = rz_new;
             gp = direction(th, sys, n, z, beta, p, slots);
         }
-        LINEAR_MAX
+        (LINEAR_MAX, products)
     }
 }
 

@@ -271,8 +271,8 @@ impl Implicit {
         // CG iterations in 60 steps with the first iteration's coarse levels, 6,733 with these;
         // 8,527 with the held vertices' F A F as well, on another Newton path: BENCHMARKS.md).
         let mut stale = true;
-        // The last linear solve's iterations (the blocks' rule, `Cg::solve`).
-        let mut cg_last = 0;
+        // The last linear solve's fine products (the blocks' rule, `Cg::solve`).
+        let mut products_last = 0;
         // The lowest relative residual so far and the iteration it was reached at (the stall
         // test, `WorldSettings::give_up`); from scratch when the ground's set changes (another
         // problem, another residual).
@@ -339,10 +339,10 @@ impl Implicit {
                 stale = false;
             }
             // The products' blocks (hinged bodies, `blocks.rs`) from the start of the solve if
-            // the last one was long, else from its iteration `BLOCKS_FROM` (`cg.rs`).
-            let upfront = k > 0 && cg_last > cg::BLOCKS_FROM;
-            cg_last = self.cg.solve(th, &mut self.sys, &mut self.mg, m, &self.r, eta, upfront, &mut self.delta);
-            it.linear += cg_last;
+            // this Newton solve's last one was long, else once it is (`cg::BLOCKS_AFTER`).
+            let upfront = products_last >= cg::BLOCKS_AFTER;
+            let (linear, products) = self.cg.solve(th, &mut self.sys, &mut self.mg, m, &self.r, eta, upfront, &mut self.delta);
+            (it.linear, products_last) = (it.linear + linear, products);
             it.newton += 1;
             k += 1;
             gyprev = self.conjugate(k, gyprev);

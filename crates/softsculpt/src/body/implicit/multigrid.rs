@@ -657,7 +657,7 @@ impl Multigrid {
 
     /// Whether the V-cycle preconditions this body of `n` vertices now (its hinges on or off:
     /// [`HINGED_FROM`]).
-    fn cycles(&self, sys: &System, n: usize) -> bool {
+    pub(crate) fn cycles(&self, sys: &System, n: usize) -> bool {
         !self.levels.is_empty() && (sys.hinged || n >= self.unhinged_from)
     }
 

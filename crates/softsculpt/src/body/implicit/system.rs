@@ -24,7 +24,8 @@
 //! - **hinge** (`body/hinges.rs`) f_v = −D w (θ − θ̄ + τ θ̇) ∇_v θ on its four vertices: the
 //!   Gauss–Newton part dt² D w ∇θ ∇θᵀ (positive semi-definite, rank one) and the damping's
 //!   dt τ D w ∇θ ∇θᵀ (exact but for ∇θ's dependence on x, dropped) enter the matrix,
-//!   applied as c_h ∇θ (∇θ · p) per hinge, never as a dense 12×12 block; the indefinite
+//!   applied as c_h ∇θ (∇θ · p) per hinge, or, once a conjugate gradient runs long, summed
+//!   with the springs into 3×3 blocks per coupled pair (`blocks.rs`, [`System::prepare`]); the indefinite
 //!   dt² D w (θ − θ̄) ∇²θ is dropped (it vanishes at the rest angle). Its diagonal 3×3 blocks go
 //!   into the block-Jacobi preconditioner and its rank-one blocks into the multigrid's coarse
 //!   levels (`multigrid.rs`).
@@ -110,7 +111,8 @@ pub(crate) struct System {
     pub hc: Vec<f64>,
     hp: HingeProducts,
     /// The matrix as 3×3 blocks for the products of a hinged body (`blocks.rs`), summed by
-    /// [`System::prepare`] after each evaluation.
+    /// [`System::prepare`] when the conjugate gradient asks (`cg::BLOCKS_AFTER`); every
+    /// evaluation marks them stale.
     pub blocks: Blocks,
     /// Hinges take part (B > 0).
     pub hinged: bool,
@@ -182,7 +184,9 @@ impl System {
             ecoef: vec![[0.0; 5]; 2 * m.springs.len()],
             bcoef: vec![[0.0; 5]; 2 * m.bending.len()],
             bending: false,
-            // The hinges' arrays (~230 B per hinge) wait for the first evaluation with D > 0.
+            // The hinges' arrays (~230 B per hinge, and the blocks' sparsity ~90 B per hinge)
+            // wait for the first evaluation with D > 0; the blocks themselves (~940 B per vertex)
+            // for the first sum (`blocks.rs`).
             hrows: HingeRows::default(),
             hg: Vec::new(),
             hcoef: Vec::new(),
@@ -228,8 +232,8 @@ impl System {
     }
 
     /// The products' blocks from the last evaluation's pieces (`blocks.rs`), if the body is
-    /// hinged and they are not summed yet: call before the conjugate gradient. Without it the
-    /// products take the pieces themselves (the same matrix, slower).
+    /// hinged and they are not summed yet (`Cg::solve` calls it once a solve runs long). Until
+    /// then the products take the pieces themselves: the same matrix up to rounding.
     pub fn prepare(&mut self, th: &Threads, m: &Model) {
         if !self.hinged || self.blocks.ready {
             return;
@@ -634,7 +638,8 @@ fn face_pass(th: &Threads, tris: &[[u32; 3]], x: &[f64], nf: &mut [f64], slots: 
     slots.iter().sum()
 }
 
-/// The matrix-free product and the preconditioner, for the conjugate gradient.
+/// The product and the preconditioner, for the conjugate gradient: matrix-free from the
+/// pieces, or from a hinged body's blocks once summed.
 impl System {
     /// out = A p, A = M + dt D + dt² K (see the module documentation); `gp` = g · p. Pinned
     /// rows are 0 (p is 0 there too), and so are the ground-held vertices' y rows (the callers'
@@ -721,7 +726,8 @@ impl System {
             let pi = [p[3 * i], p[3 * i + 1], p[3 * i + 2]];
             let mut q;
             if blocks {
-                q = self.blocks.row(i, p);
+                // SAFETY: `rows_pass` asserts p.len() ≥ 3 n.
+                q = unsafe { self.blocks.row(i, p) };
             } else {
                 let dg = self.diag[i];
                 q = [dg * pi[0], dg * pi[1], dg * pi[2]];
