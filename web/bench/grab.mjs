@@ -7,7 +7,7 @@
 //   node bench/grab.mjs [SUB=2] [DIST…]
 // (needs web/dist built; several builds, e.g. `dist /tmp/base-dist`, are measured side by side,
 // one page at a time, in the order given, ROUNDS times: env ROUNDS, default 1)
-import { launch, openModeler, shot, startServer, topVertex } from '../e2e/harness.mjs';
+import { drag, launch, openModeler, shot, startServer, topVertex } from '../e2e/harness.mjs';
 
 const sub = Number(process.argv[2] ?? 2);
 const dists = process.argv.length > 3 ? process.argv.slice(3) : ['dist'];
@@ -27,7 +27,7 @@ async function rate(page, ms, during) {
 console.log(`mushroom subdivided ${sub}×; simulated s per real s (1 = real time)`);
 console.log('build  vertices  at rest  pull+hold 4 s  released 0-5 s  released 5-10 s  vertex to cursor');
 for (let r = 0; r < rounds; r++) {
-  for (const { dist, url } of servers) {
+  for (const [k, { dist, url }] of servers.entries()) {
     const { page, ctx, errors } = await openModeler(browser, url);
     for (let s = 0; s < sub; s++) {
       const n = await page.evaluate(() => window.softsculpt.vertexCount());
@@ -39,21 +39,14 @@ for (let r = 0; r < rounds; r++) {
     const rest = await rate(page, 3000);
     const top = await topVertex(page);
     const from = top.screen, to = { x: from.x + 150, y: from.y - 100 };
-    const hold = await rate(page, 4000, async () => {
-      await page.mouse.move(from.x, from.y);
-      await page.mouse.down();
-      for (let i = 1; i <= 25; i++) {
-        await page.mouse.move(from.x + ((to.x - from.x) * i) / 25, from.y + ((to.y - from.y) * i) / 25);
-        await page.waitForTimeout(20);
-      }
-    });
+    const hold = await rate(page, 4000, () => drag(page, from, to, 25));
     const seen = await page.evaluate((i) => window.softsculpt.screenOf(i), top.index);
     const gap = Math.hypot(seen.x - to.x, seen.y - to.y);
-    await shot(page, `bench-grab-held-${servers.findIndex((s) => s.dist === dist)}`);
+    await shot(page, `bench-grab-held-${k}`);
     await page.mouse.up();
     const after1 = await rate(page, 5000);
     const after2 = await rate(page, 5000);
-    await shot(page, `bench-grab-after-${servers.findIndex((s) => s.dist === dist)}`);
+    await shot(page, `bench-grab-after-${k}`);
     console.log(`${dist}  ${nv}  ${rest.toFixed(3)}  ${hold.toFixed(3)}  ${after1.toFixed(3)}  ${after2.toFixed(3)}  cursor−vertex ${gap.toFixed(0)} px${errors.length ? `  errors: ${errors.join('; ')}` : ''}`);
     await ctx.close();
   }

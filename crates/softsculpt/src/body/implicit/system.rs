@@ -25,8 +25,8 @@
 //!   Gauss–Newton part dt² D w ∇θ ∇θᵀ (positive semi-definite, rank one) and the damping's
 //!   dt τ D w ∇θ ∇θᵀ (exact but for ∇θ's dependence on x, dropped) enter the matrix,
 //!   applied as c_h ∇θ (∇θ · p) per hinge, or, once a conjugate gradient runs long, summed
-//!   with the springs into 3×3 blocks per coupled pair (`blocks.rs`, [`System::prepare`]); the indefinite
-//!   dt² D w (θ − θ̄) ∇²θ is dropped (it vanishes at the rest angle). Its diagonal 3×3 blocks go
+//!   with the springs into 3×3 blocks per coupled pair (`blocks.rs`, [`System::prepare`]);
+//!   the indefinite dt² D w (θ − θ̄) ∇²θ is dropped (it vanishes at the rest angle). Its diagonal 3×3 blocks go
 //!   into the block-Jacobi preconditioner and its rank-one blocks into the multigrid's coarse
 //!   levels (`multigrid.rs`).
 //! - **viscous damping** −c m v: D += c m I (exact).
@@ -254,6 +254,12 @@ impl System {
         let mut slots = std::mem::take(&mut self.vslots);
         self.blocks.assemble(th, VCHUNK, &pieces, &mut slots);
         self.vslots = slots;
+    }
+
+    /// Whether the products take the summed blocks (a hinged body after `prepare`, until the
+    /// next evaluation) rather than the pieces.
+    fn block_products(&self) -> bool {
+        self.hinged && self.blocks.ready
     }
 
     /// Forces at (x_t, v⁺), the residual r (into `r`), the matrix's coefficients and the
@@ -661,7 +667,7 @@ impl System {
     fn rows_pass<const SUB: bool>(&self, th: &Threads, m: &Model, p: &[f64], gg: f64, b: &[f64], out: &mut [f64], slots: &mut [[f64; 4]]) -> f64 {
         let n = m.mass.len();
         assert!(p.len() >= 3 * n && self.diag.len() >= n && self.g.len() >= 3 * n && m.inv_mass.len() >= n);
-        if self.hinged && !self.blocks.ready {
+        if self.hinged && !self.block_products() {
             // Per hinge c_h (∇θ · p), in as many ranges of hinges as there are vertex chunks
             // (each hinge's value is the same whatever the split).
             let (nh, nc) = (m.hinges.v.len(), slots.len());
@@ -717,25 +723,25 @@ impl System {
     fn product_rows_plain<const SUB: bool>(&self, m: &Model, vr: std::ops::Range<usize>, p: &[f64], gg: f64, b: &[f64], out: &mut [f64]) -> f64 {
         let mut pq = 0.0;
         let grounded = self.ground.active();
-        let blocks = self.hinged && self.blocks.ready;
+        let blocks = self.block_products();
         for (li, i) in vr.enumerate() {
             if m.inv_mass[i] == 0.0 {
                 out[3 * li..3 * li + 3].fill(0.0);
                 continue;
             }
             let pi = [p[3 * i], p[3 * i + 1], p[3 * i + 2]];
-            let mut q;
-            if blocks {
+            let mut q = if blocks {
                 // SAFETY: `rows_pass` asserts p.len() ≥ 3 n.
-                q = unsafe { self.blocks.row(i, p) };
+                unsafe { self.blocks.row(i, p) }
             } else {
                 let dg = self.diag[i];
-                q = [dg * pi[0], dg * pi[1], dg * pi[2]];
+                let mut q = [dg * pi[0], dg * pi[1], dg * pi[2]];
                 row_product(&self.edges, &self.ecoef, i, p, &pi, &mut q);
                 if self.bending {
                     row_product(&self.bends, &self.bcoef, i, p, &pi, &mut q);
                 }
-            }
+                q
+            };
             if self.hinged && !blocks {
                 let (k0, k1) = (self.hrows.start[i] as usize, self.hrows.start[i + 1] as usize);
                 for (&e, g) in self.hrows.entry[k0..k1].iter().zip(&self.hcoef[k0..k1]) {
