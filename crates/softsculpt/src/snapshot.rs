@@ -9,7 +9,7 @@
 //! | 4 | format version (u32), [`VERSION`] |
 //! | 8 | payload length in bytes (u64) |
 //! | 4 | CRC-32 (IEEE) of the payload (u32) |
-//! | … | payload: [`WorldV5`] encoded with postcard (serde); version 4: [`WorldV4`]; version 3: [`WorldV3`]; version 2: [`WorldV2`]; version 1: [`WorldV1`] |
+//! | … | payload: [`WorldV6`] encoded with postcard (serde); version 5: [`WorldV5`]; version 4: [`WorldV4`]; version 3: [`WorldV3`]; version 2: [`WorldV2`]; version 1: [`WorldV1`] |
 //!
 //! The payload holds everything that carries over from one step to the next: every body's mesh
 //! (triangles), state, rest and bending rest lengths, masses, pins, prestress, user forces and
@@ -37,6 +37,10 @@
 //! Version 5 (the hinges' flexural rigidity) is the version-4 payload followed by `ExtensionV5`
 //! (`crate::snapshot_v5`): each body's `Material::rigidity`. Versions 1 to 4 read with rigidity 0.
 //!
+//! Version 6 (the implicit integrator's kept coarse levels) is the version-5 payload followed by
+//! `ExtensionV6` (`crate::snapshot_v6`): where each body's kept multigrid levels were assembled.
+//! Versions 1 to 5 read with none kept.
+//!
 //! Version policy: any change to the payload's types is a new version; this build reads the
 //! versions up to [`VERSION`] (a newer one is refused with a message saying so), and keeps the
 //! types of every older version it reads here, each with its conversion.
@@ -53,11 +57,13 @@ pub use crate::snapshot_v4::{ExtensionV4, WarmV4, WorldV4};
 pub(crate) use crate::snapshot_v4::{payload_v4, world_from_v4};
 pub use crate::snapshot_v5::{BodyV5, ExtensionV5, WorldV5};
 pub(crate) use crate::snapshot_v5::{payload_v5, world_from_v5};
+pub use crate::snapshot_v6::{ExtensionV6, KeptV6, WorldV6};
+pub(crate) use crate::snapshot_v6::{payload_v6, world_from_v6};
 
 /// The first bytes of every snapshot.
 pub const MAGIC: &[u8; 5] = b"SSNAP";
 /// The format version this build writes (and the newest it reads).
-pub const VERSION: u32 = 5;
+pub const VERSION: u32 = 6;
 /// The first version, still read.
 pub const V1: u32 = 1;
 /// The second version (the implicit integrator), still read.
@@ -66,6 +72,8 @@ pub const V2: u32 = 2;
 pub const V3: u32 = 3;
 /// The fourth version (the implicit warm start), still read.
 pub const V4: u32 = 4;
+/// The fifth version (the hinges' rigidity), still read.
+pub const V5: u32 = 5;
 /// Magic, version, payload length, checksum.
 pub const HEADER_LEN: usize = 5 + 4 + 8 + 4;
 
@@ -411,7 +419,7 @@ fn load_v1(l: &Load) -> LoadV1 {
 /// The snapshot of `w`: header and payload (see the module documentation).
 pub fn write(w: &World) -> Vec<u8> {
     // Plain numbers, vectors and enums: postcard cannot fail on them.
-    frame(VERSION, &postcard::to_stdvec(&payload_v5(w)).unwrap_or_default())
+    frame(VERSION, &postcard::to_stdvec(&payload_v6(w)).unwrap_or_default())
 }
 
 /// The version-1 part of `w`'s snapshot (also what `crate::delta` compares).
@@ -486,9 +494,11 @@ fn open(bytes: &[u8]) -> Result<(u32, &[u8]), SnapshotError> {
 pub fn read(bytes: &[u8]) -> Result<World, SnapshotError> {
     let (version, payload) = open(bytes)?;
     let undecodable = |e: postcard::Error| corrupted(format!("the payload does not decode ({e})"));
-    // Versions 1 to 4 take the later extensions' defaults (`ExtensionV5::default()`: rigidity 0).
-    let v5 = |v4: WorldV4| WorldV5 { v4, ext5: ExtensionV5::default() };
-    let (v5, rest): (WorldV5, &[u8]) = match version {
+    // Versions 1 to 5 take the later extensions' defaults (`ExtensionV5::default()`: rigidity 0;
+    // `ExtensionV6::default()`: no kept coarse levels).
+    let v6 = |v5: WorldV5| WorldV6 { v5, ext6: ExtensionV6::default() };
+    let v5 = |v4: WorldV4| v6(WorldV5 { v4, ext5: ExtensionV5::default() });
+    let (v6, rest): (WorldV6, &[u8]) = match version {
         V1 => {
             let (base, rest) = postcard::take_from_bytes(payload).map_err(undecodable)?;
             let ext = ExtensionV2 { implicit: false, tolerance: crate::params::TOLERANCE.number(), newton_iterations: crate::params::NEWTON_ITERATIONS.number() as u32, targets: Vec::new() };
@@ -506,12 +516,16 @@ pub fn read(bytes: &[u8]) -> Result<World, SnapshotError> {
             let (v4, rest) = postcard::take_from_bytes(payload).map_err(undecodable)?;
             (v5(v4), rest)
         }
+        V5 => {
+            let (v5, rest) = postcard::take_from_bytes(payload).map_err(undecodable)?;
+            (v6(v5), rest)
+        }
         _ => postcard::take_from_bytes(payload).map_err(undecodable)?,
     };
     if !rest.is_empty() {
         return Err(corrupted(format!("{} unread bytes at the end of the payload", rest.len())));
     }
-    world_from_v5(v5).map_err(corrupted)
+    world_from_v6(v6).map_err(corrupted)
 }
 
 /// A world from a whole payload (an empty target list means none on any body, an empty
@@ -674,7 +688,7 @@ fn body_from_v1(b: BodyV1) -> Result<SoftBody, String> {
         plastic_dissipation: 0.0,
     };
     let frozen = Frozen { x: b.frozen_x, rest: b.frozen_rest, bending_rest: b.frozen_bending_rest, gas: gas(b.frozen_gas)?, prestress: b.frozen_prestress };
-    let mut body = SoftBody { material, model, state: State { x: b.x, v: b.v, warm: Vec::new(), warm_dt: 0.0 }, work: Work::new(3 * n), frozen };
+    let mut body = SoftBody { material, model, state: State { x: b.x, v: b.v, warm: Vec::new(), warm_dt: 0.0, kept: crate::body::implicit::Kept::default() }, work: Work::new(3 * n), frozen };
     // The hinges' rest angles are the frozen shape's, recomputed as the springs are.
     body.hinges_to_frozen();
     Ok(body)

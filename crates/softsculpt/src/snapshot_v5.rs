@@ -70,7 +70,7 @@ pub(crate) fn apply_extension5(w: &mut World, ext: &ExtensionV5) -> Result<(), S
 mod tests {
     use super::payload_v5;
     use crate::mesh::builtin::icosphere;
-    use crate::snapshot::{frame, payload_v4, read, V4, VERSION};
+    use crate::snapshot::{frame, payload_v4, read, V4, V5, VERSION};
     use crate::{Material, SoftBody, World, WorldSettings};
 
     fn world(rigidity: f64) -> World {
@@ -115,7 +115,7 @@ mod tests {
         for bad in [-1.0, f64::NAN] {
             let mut p = payload_v5(&w);
             p.ext5.bodies[0].rigidity = bad;
-            let e = read(&frame(VERSION, &postcard::to_stdvec(&p).unwrap())).map(|_| ()).expect_err("refused").to_string();
+            let e = read(&frame(V5, &postcard::to_stdvec(&p).unwrap())).map(|_| ()).expect_err("refused").to_string();
             assert!(e.starts_with("the snapshot is corrupted: body 0: rigidity"), "{e}");
         }
     }

@@ -98,6 +98,10 @@ pub(crate) struct State {
     /// Carried from step to step, so it is state (snapshot version 4).
     pub warm: Vec<f64>,
     pub warm_dt: f64,
+    /// Where the implicit integrator's kept coarse levels were assembled
+    /// (`implicit/keep.rs`); empty: none. State for the same reason as the warm start
+    /// (snapshot version 6).
+    pub kept: implicit::Kept,
 }
 
 /// Scratch arrays, allocated once (the Runge–Kutta ones on first use), never inside a step.
@@ -211,7 +215,7 @@ impl SoftBody {
                 self_contacts: Default::default(),
                 plastic_dissipation: 0.0,
             },
-            state: State { v: vec![0.0; 3 * n], x, warm: Vec::new(), warm_dt: 0.0 },
+            state: State { v: vec![0.0; 3 * n], x, warm: Vec::new(), warm_dt: 0.0, kept: implicit::Kept::default() },
             work: Work::new(3 * n),
             frozen: Frozen { x: Vec::new(), rest: Vec::new(), bending_rest: Vec::new(), gas: GasReference { ambient_pressure: 0.0, reference_volume: 1.0 }, prestress: vec![0.0; 3 * n] },
             material,

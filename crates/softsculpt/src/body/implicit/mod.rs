@@ -42,6 +42,10 @@
 //! the residual at v⁺ = v. **Conjugate directions** ([`Implicit::conjugate`]) after
 //! [`CONJUGATE_FROM`] Newton iterations, against the zig-zag of a wrinkling membrane.
 //!
+//! **Kept coarse levels** (`keep.rs`): a step starting within [`keep::KEEP_WITHIN`] times the
+//! threshold reuses the multigrid levels of an earlier step made for the same problem; where they
+//! were assembled is state, so a restored world assembles the same ones.
+//!
 //! **Momentum** ([`Implicit::keep_momentum`]): a free body's accepted step is moved by the one
 //! uniform velocity that takes the net impulse out of its residual, so its momentum follows
 //! backward Euler's exactly at any tolerance.
@@ -64,8 +68,11 @@ mod aggregate;
 mod blocks;
 mod cg;
 mod ground;
+mod keep;
 mod multigrid;
 mod system;
+
+pub use keep::Kept;
 
 use super::forces::Fault;
 use super::{Material, Model, State};
@@ -150,6 +157,12 @@ pub(crate) struct Implicit {
     /// The last `newton` held a vertex on the ground at some iteration (if not, the retry
     /// without the ground's vertices would repeat it: `step`).
     held_any: bool,
+    /// What the multigrid's coarse levels were assembled from (`keep.rs`); None: unknown.
+    built: Option<Kept>,
+    /// The coarse levels were assembled afresh in this step (the accepted step keeps them).
+    assembled: bool,
+    /// This step's [`keep::inputs`], once computed.
+    inputs: Option<u64>,
 }
 
 impl Implicit {
@@ -159,7 +172,7 @@ impl Implicit {
         let chunks = sys.vslots.len();
         let mut mg = multigrid::Multigrid::new(&sys, n, multigrid::HINGED_FROM);
         mg.unhinged_from = multigrid::MULTIGRID_FROM;
-        Implicit { sys, mg, cg: cg::Cg::new(n, chunks), vp: vec![0.0; 3 * n], xt: vec![0.0; 3 * n], r: vec![0.0; 3 * n], delta: vec![0.0; 3 * n], zprev: vec![0.0; 3 * n], pprev: vec![0.0; 3 * n], warmed: false, held_any: false }
+        Implicit { sys, mg, cg: cg::Cg::new(n, chunks), vp: vec![0.0; 3 * n], xt: vec![0.0; 3 * n], r: vec![0.0; 3 * n], delta: vec![0.0; 3 * n], zprev: vec![0.0; 3 * n], pprev: vec![0.0; 3 * n], warmed: false, held_any: false, built: None, assembled: false, inputs: None }
     }
 
     /// Built for a body with `m`'s vertex, spring and face counts.
@@ -236,7 +249,7 @@ impl Implicit {
     /// Newton iterations from v⁺ = v, or from the warm start `warm` (Δv_w, dt / dt_w) if that
     /// has the smaller residual, until converged; iterations added to `it`. On success v⁺ is in
     /// `vp` and x + dt v⁺ in `xt`.
-    fn newton(&mut self, th: &Threads, fr: &Frame, warm: Option<(&[f64], f64)>, held: bool, it: &mut SolverIterations) -> Result<(), Fault> {
+    fn newton(&mut self, th: &Threads, fr: &Frame, (warm, kept): (Option<(&[f64], f64)>, &Kept), held: bool, it: &mut SolverIterations) -> Result<(), Fault> {
         let (w, m) = (fr.w, fr.m);
         // The ground's constraints from the step's start (`ground.rs`: the vertices resting on
         // it and those predicted to land in the step), their velocities in v⁺ (`held`; not for
@@ -255,6 +268,8 @@ impl Implicit {
         if !fr.p.self_collision {
             r0 = r0.max(weight_impulse(fr));
         }
+        // Nearly at rest: this solve's first assembly may be the kept one (`keep.rs`).
+        let mut may_keep = norm <= keep::KEEP_WITHIN * (w.tolerance * r0).max(noise);
         if let Some((dv, scale)) = warm {
             if norm > WARM_FROM * (w.tolerance * r0).max(noise) {
                 (norm, noise) = self.warm_start(th, fr, dv, scale, (norm, noise))?;
@@ -335,8 +350,19 @@ impl Implicit {
             }
             let eta = 0.1f64.min((rho * rho).max(0.5 * w.tolerance / rho));
             if stale {
-                self.mg.assemble(&self.sys, m, &self.xt);
-                stale = false;
+                if may_keep && self.keeps(fr, kept) {
+                    if self.built.as_ref() != Some(kept) {
+                        let rebuilt = self.rebuild(th, fr, kept).is_ok();
+                        // The current iterate's system again (the same bits as before).
+                        self.eval(th, fr)?;
+                        if !rebuilt {
+                            self.assemble(fr);
+                        }
+                    }
+                } else {
+                    self.assemble(fr);
+                }
+                (stale, may_keep) = (false, false);
             }
             // The products' blocks (hinged bodies, `blocks.rs`) from the start of the solve if
             // this Newton solve's last one was long, else once it is (`cg::BLOCKS_AFTER`).
@@ -413,6 +439,53 @@ impl Implicit {
         Ok(cold)
     }
 
+    /// This step's model inputs to the coarse levels' assembly (`keep::inputs`), computed once.
+    fn inputs(&mut self, fr: &Frame) -> u64 {
+        *self.inputs.get_or_insert_with(|| keep::inputs(fr))
+    }
+
+    /// The coarse levels afresh from the system at the current iterate (`self.xt`), recorded as
+    /// what the scratch levels now are.
+    fn assemble(&mut self, fr: &Frame) {
+        self.mg.assemble(&self.sys, fr.m, &self.xt);
+        if !self.mg.cycles(&self.sys, fr.m.mass.len()) {
+            return;
+        }
+        let inputs = self.inputs(fr);
+        let b = self.built.get_or_insert_with(Kept::default);
+        b.xt.clone_from(&self.xt);
+        b.held.clone_from(&self.sys.ground.list);
+        (b.absolute, b.inputs) = (self.sys.absolute, inputs);
+        self.assembled = true;
+    }
+
+    /// Whether this solve's problem is the one `kept` was assembled for (`keep.rs`, "Rule").
+    fn keeps(&mut self, fr: &Frame, kept: &Kept) -> bool {
+        let (p, m) = (fr.p, fr.m);
+        !kept.is_empty()
+            && kept.xt.len() == self.xt.len()
+            && self.mg.cycles(&self.sys, m.mass.len())
+            && !p.self_collision
+            && !m.targets.active()
+            && kept.absolute == self.sys.absolute
+            && kept.held == self.sys.ground.list
+            && kept.inputs == self.inputs(fr)
+    }
+
+    /// The coarse levels again from `kept` (a world whose scratch levels are not its state's:
+    /// restored, undone, cloned): the system evaluated at `kept.xt`, then assembled (`keeps`
+    /// has checked that the held vertices and the projection are this solve's, so only x_t
+    /// differs). Leaves the system's coefficients those of `kept.xt`: the caller evaluates the
+    /// current iterate again. On an error (not expected: that state was evaluated before) the
+    /// levels are unknown (`built` None) and the caller assembles afresh.
+    fn rebuild(&mut self, th: &Threads, fr: &Frame, kept: &Kept) -> Result<(), Fault> {
+        self.built = None;
+        self.sys.eval(th, fr, &self.vp, &kept.xt, &mut self.zprev)?;
+        self.mg.assemble(&self.sys, fr.m, &kept.xt);
+        self.built = Some(kept.clone());
+        Ok(())
+    }
+
     /// The accepted v⁺ moved by one uniform velocity u that takes the net impulse out of its
     /// residual (Σ_i r_i = 0), where the body's forces are those of a free body: no pinned
     /// vertex, no target springs, no vertex held by the ground, no wind.
@@ -472,14 +545,21 @@ impl Implicit {
         // (Only if the warm start was taken: otherwise the cold solve was the one that failed;
         // and only if the failed solve held a vertex on the ground: otherwise it was already
         // the solve without them.)
-        let mut solved = match self.newton(th, &fr, warm, true, &mut it) {
-            Err(_) if self.warmed => self.newton(th, &fr, None, true, &mut it),
+        (self.assembled, self.inputs) = (false, None);
+        let kept = &s.kept;
+        let mut solved = match self.newton(th, &fr, (warm, kept), true, &mut it) {
+            Err(_) if self.warmed => self.newton(th, &fr, (None, kept), true, &mut it),
             done => done,
         };
         if solved.is_err() && w.ground.is_some() && self.held_any {
-            solved = self.newton(th, &fr, None, false, &mut it);
+            solved = self.newton(th, &fr, (None, kept), false, &mut it);
         }
         solved?;
+        if self.assembled {
+            if let Some(b) = &self.built {
+                s.kept.clone_from(b);
+            }
+        }
         self.keep_momentum(&fr);
         // Accepted: x⁺ = x + dt v⁺ (already in x_t), v⁺.
         s.warm.resize(s.v.len(), 0.0);

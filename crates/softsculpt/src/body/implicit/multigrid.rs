@@ -2,8 +2,9 @@
 //! dt² K (`system.rs`), its coarse matrices built from the fine coefficients at the first
 //! Newton iteration of every solve and again when the fine matrix changes its kind in it (the
 //! ground releases vertices, compressed springs switch to the absolute value: `stale` in
-//! `Implicit::newton`). In between the fine coefficients move with each Newton iterate and the
-//! coarse ones lag: the preconditioner only has to be symmetric positive definite, not exact.
+//! `Implicit::newton`), or for a body nearly at rest kept from an earlier step (`keep.rs`). In
+//! between the fine coefficients move with each Newton iterate and the coarse ones lag: the
+//! preconditioner only has to be symmetric positive definite, not exact.
 //!
 //! **Why**: block Jacobi leaves every smooth error to the conjugate gradient, whose iterations
 //! then grow with √(dt² k / m) and the resolution (142 per step at 40,962 vertices of the
@@ -47,9 +48,10 @@
 //! correction; coarse levels, a forward block Gauss–Seidel sweep before and a backward one
 //! after (so the cycle is a symmetric positive definite operator, as the conjugate gradient
 //! needs); the coarsest level (≤ [`COARSEST`] nodes) solved by a dense Cholesky factor. The
-//! coarse matrices depend on the step's state only, so a restored snapshot continues with the
-//! same bits. Coarse levels run on the calling thread (a fixed
-//! order: the same bits for any thread count); the finest level's passes are chunked like the
+//! coarse matrices depend on the step's state only (kept ones on where they were assembled,
+//! which is state: `keep.rs`), so a restored snapshot continues with the same bits. Coarse
+//! levels run on the calling thread (a fixed order: the same bits for any thread count); the
+//! finest level's passes are chunked like the
 //! rest of the solver.
 
 use super::aggregate::{Graph, Shape};
