@@ -2,8 +2,9 @@
 //! as it was before the call — every body's state, the clock, the event cursor, the fired
 //! events' effects (frozen shapes, gas, pins, masses, wind…) and the loads.
 //!
-//! Cheaply: a step without an event changes only positions, velocities and the clock (the rest
-//! of what it touches is scratch) — and, for a plastic body, its rest lengths, gas reference and
+//! Cheaply: a step without an event changes only positions, velocities, the implicit
+//! integrator's warm start and kept coarse levels (`body/implicit/`) and the clock (the rest of
+//! what it touches is scratch) — and, for a plastic body, its rest lengths, gas reference and
 //! plastic dissipation (`body/plastic.rs`) — so those are copied at the start of each call, into
 //! buffers kept from call to call. Only before the first step of the call at which an event fires or a
 //! load ends (`Events::due`) is the rest copied too (a clone of the bodies, settings, events and
@@ -23,12 +24,15 @@ struct Full {
     load_sums: (Vec<Vec<f64>>, Vec<Vec<f64>>),
 }
 
-/// Positions and velocities of every body at the start of a call (flat xyz), reused; and what
-/// the plastic stage changes, of the plastic bodies.
+/// Positions and velocities of every body at the start of a call (flat xyz), its implicit warm
+/// start (Δv, dt) and kept coarse levels, reused; and what the plastic stage changes, of the
+/// plastic bodies.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Backup {
     x: Vec<Vec<f64>>,
     v: Vec<Vec<f64>>,
+    warm: Vec<(Vec<f64>, f64)>,
+    kept: Vec<crate::body::implicit::Kept>,
     plastic: Vec<Option<crate::body::PlasticState>>,
 }
 
@@ -51,11 +55,18 @@ impl World {
         let mut backup = std::mem::take(&mut self.backup);
         backup.x.resize_with(self.bodies.len(), Vec::new);
         backup.v.resize_with(self.bodies.len(), Vec::new);
+        backup.warm.resize_with(self.bodies.len(), Default::default);
+        backup.kept.resize_with(self.bodies.len(), Default::default);
         for (b, (x, v)) in self.bodies.iter().zip(backup.x.iter_mut().zip(backup.v.iter_mut())) {
             x.clear();
             x.extend_from_slice(b.positions());
             v.clear();
             v.extend_from_slice(b.velocities());
+        }
+        for (b, (warm, kept)) in self.bodies.iter().zip(backup.warm.iter_mut().zip(backup.kept.iter_mut())) {
+            warm.0.clone_from(&b.state.warm);
+            warm.1 = b.state.warm_dt;
+            kept.clone_from(&b.state.kept);
         }
         backup.plastic.clear();
         backup.plastic.extend(self.bodies.iter().map(|b| b.material.is_plastic().then(|| b.plastic_state())));
@@ -95,6 +106,11 @@ impl World {
         for (b, (x, v)) in self.bodies.iter_mut().zip(backup.x.iter().zip(&backup.v)) {
             b.state.x.copy_from_slice(x);
             b.state.v.copy_from_slice(v);
+        }
+        for (b, (warm, kept)) in self.bodies.iter_mut().zip(backup.warm.iter().zip(&backup.kept)) {
+            b.state.warm.clone_from(&warm.0);
+            b.state.warm_dt = warm.1;
+            b.state.kept.clone_from(kept);
         }
         for (b, p) in self.bodies.iter_mut().zip(&backup.plastic) {
             if let Some(p) = p {

@@ -351,7 +351,7 @@ impl Implicit {
             let eta = 0.1f64.min((rho * rho).max(0.5 * w.tolerance / rho));
             if stale {
                 if may_keep && self.keeps(fr, kept) {
-                    if self.built.as_ref() != Some(kept) {
+                    if !self.built.as_ref().is_some_and(|b| b.same(kept)) {
                         let rebuilt = self.rebuild(th, fr, kept).is_ok();
                         // The current iterate's system again (the same bits as before).
                         self.eval(th, fr)?;
@@ -445,10 +445,17 @@ impl Implicit {
     }
 
     /// The coarse levels afresh from the system at the current iterate (`self.xt`), recorded as
-    /// what the scratch levels now are.
+    /// what the scratch levels now are — except with target springs, whose stiffness is in the
+    /// system's diagonal (`system.rs`) but not in [`Kept`]: levels assembled with them are
+    /// never kept (`built` None: a later resting step assembles from the state's [`Kept`]
+    /// again, as a restored world would).
     fn assemble(&mut self, fr: &Frame) {
         self.mg.assemble(&self.sys, fr.m, &self.xt);
         if !self.mg.cycles(&self.sys, fr.m.mass.len()) {
+            return;
+        }
+        if fr.m.targets.active() {
+            self.built = None;
             return;
         }
         let inputs = self.inputs(fr);
