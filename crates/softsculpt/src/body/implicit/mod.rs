@@ -469,8 +469,7 @@ impl Implicit {
     /// Whether this solve's problem is the one `kept` was assembled for (`keep.rs`, "Rule").
     fn keeps(&mut self, fr: &Frame, kept: &Kept) -> bool {
         let (p, m) = (fr.p, fr.m);
-        !kept.is_empty()
-            && kept.xt.len() == self.xt.len()
+        kept.xt.len() == self.xt.len()
             && self.mg.cycles(&self.sys, m.mass.len())
             && !p.self_collision
             && !m.targets.active()
@@ -486,10 +485,11 @@ impl Implicit {
     /// current iterate again. On an error (not expected: that state was evaluated before) the
     /// levels are unknown (`built` None) and the caller assembles afresh.
     fn rebuild(&mut self, th: &Threads, fr: &Frame, kept: &Kept) -> Result<(), Fault> {
-        self.built = None;
+        let mut b = self.built.take().unwrap_or_default();
         self.sys.eval(th, fr, &self.vp, &kept.xt, &mut self.zprev)?;
         self.mg.assemble(&self.sys, fr.m, &kept.xt);
-        self.built = Some(kept.clone());
+        b.clone_from(kept);
+        self.built = Some(b);
         Ok(())
     }
 
