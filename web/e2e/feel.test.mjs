@@ -217,17 +217,24 @@ test('without a GPU the view is drawn within its pixel budget, the model sharp e
   assert.ok(Math.abs(low.w / low.h - low.cssW / low.cssH) < 0.01, 'the same aspect as the canvas');
   // The shaded body, the ground and the grid: many colours, not a blank or a flat fill.
   assert.ok(low.colours > 50, `the view shows the model: ${low.colours} colours in a 64 × 64 sample`);
-  await shot(page, '47-software-budget');
+  await shot(page, '50-software-budget');
+  // Paused, the view redraws only when something changes: the toggle must draw it again itself.
+  await page.keyboard.press('Space');
+  await page.waitForFunction(() => window.softsculpt.playing() === false);
   await page.locator('.lil-title', { hasText: 'View' }).click();
+  await page.waitForTimeout(500);
+  const still = await buffer();
+  await page.waitForTimeout(500);
+  assert.equal((await buffer()).renders, still.renders, 'paused and untouched, the view is not redrawn');
   await page.locator('.lil-controller', { hasText: 'full resolution' }).locator('input').click();
   await page.waitForFunction(() => window.softsculpt.drawing().full === true);
   await page.waitForTimeout(300);
   const full = await buffer();
   assert.equal(full.pixelRatio, 1);
   assert.deepEqual([full.w, full.h], [full.cssW, full.cssH], 'every CSS pixel drawn');
-  assert.ok(full.renders > low.renders, 'drawn again at full resolution');
+  assert.ok(full.renders > still.renders, 'drawn again at full resolution');
   assert.ok(full.colours > 50, `${full.colours} colours`);
-  await shot(page, '48-software-full');
+  await shot(page, '51-software-full');
   assert.deepEqual(errors, []);
   await page.context().close();
 });

@@ -4,7 +4,7 @@ import { describe, expect, it } from 'vitest';
 import { pixelRatio, SOFTWARE_PIXELS } from '../src/view/viewport';
 
 describe('the drawing buffer', () => {
-  it('keeps a software renderer within its pixel budget at any window size', () => {
+  it('keeps a software renderer within its pixel budget up to 4.8 Mpx windows', () => {
     for (const [w, h] of [[1280, 800], [1920, 1080], [2560, 1440], [800, 600]]) {
       const r = pixelRatio(true, 1, w, h);
       const pixels = w * r * (h * r);
@@ -23,6 +23,7 @@ describe('the drawing buffer', () => {
   });
 
   it('never goes below a quarter of a CSS pixel, nor breaks on an unsized canvas', () => {
+    // 10⁸ CSS pixels: the budget would need ratio 0.055; drawn at ¼ (6.25 Mpx) instead.
     expect(pixelRatio(true, 1, 10000, 10000)).toBe(0.25);
     expect(pixelRatio(true, 2, 0, 0)).toBe(2);
     expect(pixelRatio(true, 1, 320, 200)).toBe(1); // 64,000 pixels: within the budget already

@@ -212,8 +212,8 @@ export class Viewport {
  * the mushroom subdivided twice, a 25-step mouse drag of its top: 2.7 s for the page to take
  * it with multisampling at full resolution (the renderer had not been recognised as software),
  * 1.3–1.8 s without multisampling, 1.0–1.1 s at this budget as well; the simulation's own rate
- * about even. ~0.3 Mpx is a little more than 640 × 480: the outline stays clear, the shading
- * soft.
+ * about even. ~0.3 Mpx is a little less than 640 × 480: the outline stays clear, if
+ * stair-stepped. (A window above 4.8 Mpx, where the ratio would drop below 1/4, is drawn at 1/4.)
  */
 export const SOFTWARE_PIXELS = 300_000;
 
@@ -230,7 +230,8 @@ export function pixelRatio(capped: boolean, devicePixelRatio: number, w: number,
 /**
  * Whether WebGL runs without a GPU (SwiftShader, llvmpipe): a context that refuses a major
  * performance caveat cannot be had, or the renderer's name says so (Chromium's SwiftShader
- * enabled by --enable-unsafe-swiftshader reports no caveat).
+ * enabled by --enable-unsafe-swiftshader reports no caveat; Windows' WARP is the "Microsoft
+ * Basic Render Driver"). Without WEBGL_debug_renderer_info the masked name may not tell.
  */
 function isSoftwareRenderer(): boolean {
   const probe = document.createElement('canvas');
@@ -239,5 +240,5 @@ function isSoftwareRenderer(): boolean {
   const info = gl.getExtension('WEBGL_debug_renderer_info');
   const name = String(info ? gl.getParameter(info.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER));
   gl.getExtension('WEBGL_lose_context')?.loseContext();
-  return /swiftshader|llvmpipe|softpipe|software/i.test(name);
+  return /swiftshader|llvmpipe|softpipe|software|basic render driver/i.test(name);
 }
