@@ -163,8 +163,7 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
     'Colour each vertex by its springs\' stretch l/L − 1: blue compressed, white at rest, red stretched (full colour at ±10 %): what would spring back if released');
   if (app.viewport.software) {
     // Without a GPU the drawing shares the CPU with the simulation (viewport.ts, SOFTWARE_PIXELS).
-    const res = { full: app.viewport.fullResolution };
-    tip(display.add(res, 'full').name('full resolution (no GPU)').onChange((v: boolean) => { app.viewport.fullResolution = v; }),
+    tip(display.add(app.viewport, 'fullResolution').name('full resolution (no GPU)'),
       'WebGL runs without a GPU here, on the CPU the simulation needs: the view is drawn at a reduced resolution (about 640 × 480 pixels) so that the simulation runs faster. Tick to draw at the screen\'s full resolution');
   }
   tip(display.add({ f: () => app.hud.toggleHelp() }, 'f').name('help (?)'), 'Tools and shortcuts (?)');

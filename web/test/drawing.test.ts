@@ -1,5 +1,6 @@
 // The view's drawing buffer on a software renderer (view/viewport.ts `pixelRatio`): within the
-// pixel budget at any window size, the screen's own ratio with a GPU or when asked for.
+// pixel budget up to 4.8 Mpx windows (at 1/4 of a CSS pixel beyond), the screen's own ratio with
+// a GPU or when asked for.
 import { describe, expect, it } from 'vitest';
 import { pixelRatio, SOFTWARE_PIXELS } from '../src/view/viewport';
 

@@ -23,7 +23,7 @@ export class Viewport {
   private colors = new Float32Array(0);
   /** Something changed since the last render (a new frame, the camera, the overlay…). */
   private dirty = true;
-  /** WebGL runs in software here (no GPU): drawn without multisampling, which costs it most. */
+  /** WebGL runs in software here (no GPU): drawn without multisampling and within SOFTWARE_PIXELS (unless `fullResolution`). */
   readonly software = isSoftwareRenderer();
   /** Draw at the screen's full resolution even on a software renderer (the panel's View folder). */
   private full = false;

@@ -43,7 +43,7 @@ pub(crate) const KEEP_WITHIN: f64 = 10.0;
 
 /// Where the coarse levels a body's implicit steps keep were assembled (state; snapshot
 /// version 6). Empty `xt`: none kept.
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Default, PartialEq)]
 pub struct Kept {
     /// x_t = x + dt v⁺ at that assembly (m, flat xyz).
     pub xt: Vec<f64>,
@@ -54,6 +54,22 @@ pub struct Kept {
     pub absolute: bool,
     /// [`inputs`] then.
     pub inputs: u64,
+}
+
+/// By hand for `clone_from`, which keeps the buffers (the derived one allocates anew): the
+/// rollback's backup and [`super::Implicit::rebuild`] copy a `Kept` into the same record step
+/// after step.
+impl Clone for Kept {
+    fn clone(&self) -> Self {
+        Kept { xt: self.xt.clone(), held: self.held.clone(), absolute: self.absolute, inputs: self.inputs }
+    }
+
+    fn clone_from(&mut self, o: &Self) {
+        self.xt.clone_from(&o.xt);
+        self.held.clone_from(&o.held);
+        self.absolute = o.absolute;
+        self.inputs = o.inputs;
+    }
 }
 
 impl Kept {
