@@ -58,7 +58,7 @@
 
 use super::adjacency::{FaceRows, HingeRows, SpringRows};
 use super::blocks::{Blocks, Pieces};
-use super::super::hinges::{angle_and_gradient, excess, rate, Hinges};
+use super::super::hinges::{bend, rate, Hinges};
 use std::sync::atomic::{AtomicU64, Ordering};
 use super::ground::GroundSet;
 use super::super::{gas, Model};
@@ -591,9 +591,11 @@ impl Rows<'_> {
     }
 }
 
-/// Per hinge at (x_t, v⁺): ∇θ, the force scale −D w (θ − θ̄ + τ θ̇) and the matrix coefficient
-/// (dt² + dt τ) D w (`(b, tau)` = D in J, τ in s); a degenerate hinge (a face without area) gets
-/// zeros. The damping's dependence on x through ∇θ is dropped, as the springs' is.
+/// Per hinge at (x_t, v⁺): its bend's gradient ∇r, the force scale −D w (r + τ ṙ) and the
+/// matrix coefficient (dt² + dt τ) D w (`(b, tau)` = D in J, τ in s), with r = θ − θ̄ and
+/// ∇r = ∇θ, each × the fade Φ where a face is crushed (`hinges::bend`); a degenerate hinge (a
+/// face without area) gets zeros. The damping's dependence on x through ∇r is dropped, as the
+/// springs' is.
 fn hinge_pass(th: &Threads, hn: &Hinges, (b, tau): (f64, f64), dt: f64, (xt, vp): (&[f64], &[f64]), (hg, hf, hc): (&mut [[f64; 12]], &mut [f64], &mut [f64]), slots: &mut [f64]) {
     let nh = hn.v.len();
     let nch = chunks(nh, ECHUNK);
@@ -603,13 +605,13 @@ fn hinge_pass(th: &Threads, hn: &Hinges, (b, tau): (f64, f64), dt: f64, (xt, vp)
         // SAFETY: chunk c writes hinges hr only.
         let (hg, hf, hc) = unsafe { (go.range(hr.clone()), fo.range(hr.clone()), co.range(hr.clone())) };
         for (lh, h) in hr.enumerate() {
-            match angle_and_gradient(xt, &hn.v[h]) {
-                Some((theta, g)) => {
+            match bend(xt, &hn.v[h], hn.rest[h], hn.thin[h]) {
+                Some((r, g)) => {
                     let bw = b * hn.weight[h];
                     for (q, gq) in g.iter().enumerate() {
                         hg[lh][3 * q..3 * q + 3].copy_from_slice(gq);
                     }
-                    hf[lh] = -bw * (excess(theta, hn.rest[h]) + tau * rate(&g, &hn.v[h], vp));
+                    hf[lh] = -bw * (r + tau * rate(&g, &hn.v[h], vp));
                     hc[lh] = (dt * dt + dt * tau) * bw;
                 }
                 None => {
