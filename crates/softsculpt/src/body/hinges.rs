@@ -51,6 +51,10 @@
 //! The implicit integrator's matrix takes the Gauss–Newton part D w ∇θ ∇θᵀ of the Hessian
 //! (positive semi-definite, rank one per hinge, `implicit/system.rs`) and drops
 //! D w (θ − θ̄) ∇²θ, which is indefinite and vanishes at the rest angle.
+//!
+//! A face crushed below half its frozen height over the edge fades its hinge's force and matrix
+//! part out (× Ψ, [`bend`]): there ∇θ and ∇²θ grow as 1/h and 1/h², and Newton could not finish
+//! a step.
 
 use crate::mesh::topology;
 use crate::vec3::{cross, dot, get, norm, scale, sub, V3};
@@ -124,8 +128,10 @@ pub fn fade(x: &[f64], h: &[u32; 4], thin: [f64; 2]) -> Option<f64> {
 /// ground, did not converge within 100 Newton iterations (at step 5, and taking its
 /// Gauss–Newton part into the matrix, at step 20). Without it the force at a crushed face is
 /// bounded (Ψ |∇θ| ≤ 3 / (u₀ |e|) as h → 0), goes to 0 with the face, and still sums to zero
-/// with no moment (a scalar times ∇θ). What a crushed face's hinge may then gain or lose is at
-/// most its energy ½ D w (θ − θ̄)², and only while a face is crushed.
+/// with no moment (a scalar times ∇θ). The work the left-out term would have done is
+/// −∫ ½ D w (θ − θ̄)² dΨ: each passage of a face into or out of its fade gains or loses at most
+/// the hinge's largest ½ D w (θ − θ̄)² on the way (Ψ changes by at most 1), and nothing while
+/// no face is crushed.
 #[inline(always)]
 pub fn bend(x: &[f64], h: &[u32; 4], rest: f64, thin: [f64; 2]) -> Option<(f64, [V3; 4])> {
     let (theta, g) = angle_and_gradient(x, h)?;
