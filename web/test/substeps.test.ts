@@ -6,7 +6,7 @@
 import { beforeAll, describe, expect, it } from 'vitest';
 import { AnchorPath, TRAVEL_MAX } from '../src/worker/anchorpath';
 import { BRACE_STEPS, GRAB_PIECES, LOW_STEPS, MAX_PIECES, Pace, stepPaced, type Anchors } from '../src/worker/pace';
-import { loadEngine, openedDocument } from './setup';
+import { loadEngine, openedDocument, topVertex, vertexAt } from './setup';
 import type { Vec3 } from '../src/protocol';
 import { makeStroke, type StrokeBody } from '../src/worker/strokes';
 
@@ -209,9 +209,8 @@ describe('the document’s substeps (real engine)', () => {
     const dt = doc.settings.dt;
     for (let i = 0; i < 30; i++) doc.advance(dt, 1);
     const x = doc.world.body(0).positions;
-    let top = 0;
-    for (let i = 0; i < x.length / 3; i++) if (x[3 * i + 1] > x[3 * top + 1]) top = i;
-    const p: Vec3 = [x[3 * top], x[3 * top + 1], x[3 * top + 2]];
+    const top = topVertex(x);
+    const p = vertexAt(x, top);
     doc.strokeStart({ tool: 'grab', point: p, radius: 0.35, strength: 600, inverted: false });
     expect(doc.pace.pieces).toBe(GRAB_PIECES);
     doc.strokeMove([p[0], p[1] + 0.4, p[2]], false);
@@ -238,9 +237,8 @@ describe('the document’s substeps (real engine)', () => {
     doc.world.sync();
     const v0 = doc.world.body(0).stats.volume;
     const x = doc.world.body(0).positions;
-    let top = 0;
-    for (let i = 0; i < x.length / 3; i++) if (x[3 * i + 1] > x[3 * top + 1]) top = i;
-    const p: Vec3 = [x[3 * top], x[3 * top + 1], x[3 * top + 2]];
+    const top = topVertex(x);
+    const p = vertexAt(x, top);
     const aim: Vec3 = [p[0] + 0.3, p[1] + 0.45, p[2]];
     doc.strokeStart({ tool: 'grab', point: p, radius: 0.35, strength: 600, inverted: false, mirror: { axes: [true, false, false], centre: [0, 0, 0] } });
     for (let i = 0; i < 60; i++) {
@@ -267,46 +265,40 @@ describe('the document’s substeps (real engine)', () => {
     // no Newton solve finished even at dt/64. A crushed face now fades its hinges' force
     // (`hinges::bend`); this drag paused the document before that. (Dragged 0.9 or 1.1 m aside
     // instead, the same pull still pauses it: BENCHMARKS.md.)
-    for (const dx of [-0.6]) {
-      const { doc, messages } = opened();
-      const dt = doc.settings.dt;
-      const mirror = { axes: [true, false, false] as [boolean, boolean, boolean], centre: [0, 0, 0] as Vec3 };
-      for (let i = 0; i < 120; i++) expect(doc.advance(dt, 1)).toBe(true);
-      const top = (): number => {
-        const x = doc.world.body(0).positions;
-        let t = 0;
-        for (let i = 0; i < x.length / 3; i++) if (x[3 * i + 1] > x[3 * t + 1]) t = i;
-        return t;
-      };
-      const at = (i: number): Vec3 => { const x = doc.world.body(0).positions; return [x[3 * i], x[3 * i + 1], x[3 * i + 2]]; };
-      // First the default pull (ω = 600 1/s), 0.4 m up and aside for 2 s, let go for 3 s: as the e2e test does.
-      let t = top(), p = at(t);
-      doc.strokeStart({ tool: 'grab', point: p, radius: 0.35, strength: 600, inverted: false, mirror });
-      for (let i = 0; i < 120; i++) {
-        const s = Math.min(1, i / 15);
-        doc.strokeMove([p[0] + 0.23 * s, p[1] + 0.33 * s, p[2]], false);
-        doc.updateStroke(dt);
-        expect(doc.advance(dt, 1)).toBe(true);
-      }
-      doc.strokeEnd();
-      for (let i = 0; i < 180; i++) expect(doc.advance(dt, 1)).toBe(true);
-      // Then the strongest (ω = 3000 1/s), dragged 0.6 m up and dx aside in 1/3 s and held 1 s.
-      t = top(); p = at(t);
-      const aim: Vec3 = [p[0] + dx, p[1] + 0.6, p[2]];
-      doc.strokeStart({ tool: 'grab', point: p, radius: 0.35, strength: 3000, inverted: false, mirror });
-      for (let i = 0; i < 80; i++) {
-        const s = Math.min(1, (i + 1) / 20);
-        doc.strokeMove([p[0] + dx * s, p[1] + 0.6 * s, p[2]], false);
-        doc.updateStroke(dt);
-        const ok = doc.advance(dt, 1);
-        if (!ok) throw new Error(`dx = ${dx}: paused at step ${i} of the pull: ${messages.join(' | ')}`);
-      }
-      // The top is on the cursor: within 2 cm (the target springs at ω = 3000 hold it to mm).
-      const y = at(t);
-      expect(Math.hypot(y[0] - aim[0], y[1] - aim[1], y[2] - aim[2])).toBeLessThan(0.02);
-      doc.strokeEnd();
-      for (let i = 0; i < 120; i++) expect(doc.advance(dt, 1)).toBe(true);
-      expect(Array.from(doc.world.body(0).positions).every(Number.isFinite)).toBe(true);
+    const dx = -0.6;
+    const { doc, messages } = opened();
+    const dt = doc.settings.dt;
+    const mirror = { axes: [true, false, false] as [boolean, boolean, boolean], centre: [0, 0, 0] as Vec3 };
+    for (let i = 0; i < 120; i++) expect(doc.advance(dt, 1)).toBe(true);
+    const top = (): number => topVertex(doc.world.body(0).positions);
+    const at = (i: number): Vec3 => vertexAt(doc.world.body(0).positions, i);
+    // First the default pull (ω = 600 1/s), 0.4 m up and aside for 2 s, let go for 3 s: as the e2e test does.
+    let t = top(), p = at(t);
+    doc.strokeStart({ tool: 'grab', point: p, radius: 0.35, strength: 600, inverted: false, mirror });
+    for (let i = 0; i < 120; i++) {
+      const s = Math.min(1, i / 15);
+      doc.strokeMove([p[0] + 0.23 * s, p[1] + 0.33 * s, p[2]], false);
+      doc.updateStroke(dt);
+      expect(doc.advance(dt, 1)).toBe(true);
     }
+    doc.strokeEnd();
+    for (let i = 0; i < 180; i++) expect(doc.advance(dt, 1)).toBe(true);
+    // Then the strongest (ω = 3000 1/s), dragged 0.6 m up and dx aside in 1/3 s and held 1 s.
+    t = top(); p = at(t);
+    const aim: Vec3 = [p[0] + dx, p[1] + 0.6, p[2]];
+    doc.strokeStart({ tool: 'grab', point: p, radius: 0.35, strength: 3000, inverted: false, mirror });
+    for (let i = 0; i < 80; i++) {
+      const s = Math.min(1, (i + 1) / 20);
+      doc.strokeMove([p[0] + dx * s, p[1] + 0.6 * s, p[2]], false);
+      doc.updateStroke(dt);
+      const ok = doc.advance(dt, 1);
+      if (!ok) throw new Error(`dx = ${dx}: paused at step ${i} of the pull: ${messages.join(' | ')}`);
+    }
+    // The top is on the cursor: within 2 cm (the target springs at ω = 3000 hold it to mm).
+    const y = at(t);
+    expect(Math.hypot(y[0] - aim[0], y[1] - aim[1], y[2] - aim[2])).toBeLessThan(0.02);
+    doc.strokeEnd();
+    for (let i = 0; i < 120; i++) expect(doc.advance(dt, 1)).toBe(true);
+    expect(Array.from(doc.world.body(0).positions).every(Number.isFinite)).toBe(true);
   }, 300_000);
 });

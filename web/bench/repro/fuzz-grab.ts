@@ -1,18 +1,12 @@
+// Seeded strongest-grab drags on the worker's Document (README.md: copy into web/test/ to run).
 import { beforeAll, it } from 'vitest';
-import { openedDocument } from './setup';
-import { readFileSync } from 'node:fs';
-import { initEngine } from '../src/engine/wasm';
-const loadEngine = async () => { await initEngine(readFileSync(process.env.WASM ?? 'public/softsculpt.wasm')); };
-import type { Vec3 } from '../src/protocol';
 import { writeFileSync } from 'node:fs';
+import { loadEngineFrom, openedDocument, topVertex, vertexAt } from './setup';
+import type { Vec3 } from '../src/protocol';
 
-beforeAll(loadEngine);
-function top(doc: any): number {
-  const x = doc.world.body(0).positions; let t = 0;
-  for (let i = 0; i < x.length / 3; i++) if (x[3 * i + 1] > x[3 * t + 1]) t = i;
-  return t;
-}
-const P = (doc: any, i: number): Vec3 => { const x = doc.world.body(0).positions; return [x[3 * i], x[3 * i + 1], x[3 * i + 2]]; };
+beforeAll(() => loadEngineFrom(process.env.WASM ?? 'public/softsculpt.wasm'));
+const top = (doc: any): number => topVertex(doc.world.body(0).positions);
+const P = (doc: any, i: number): Vec3 => vertexAt(doc.world.body(0).positions, i);
 let seed = Number(process.env.SEED ?? 1);
 const rnd = () => { seed = (seed * 16807) % 2147483647; return seed / 2147483647; };
 // GRID=1: instead of random drags, the grid of 18 at ω = 3000 (dx × dy × frames, one step per tick).

@@ -76,7 +76,7 @@ pub struct Hinges {
 }
 
 /// A face thinner over a hinge's edge than this fraction of its frozen height fades the hinge
-/// out ([`fade`], [`bend`]). Why: θ is the angle of a face about the edge, so ∇_k θ = −n̂₁ / h₁
+/// out ([`fade_of`], [`bend`]). Why: θ is the angle of a face about the edge, so ∇_k θ = −n̂₁ / h₁
 /// and its curvature D w (θ − θ̄) ∇²θ grow as 1 / h₁² as the face collapses towards its edge:
 /// measured on the modeler's mushroom pulled a metre by the strongest grab (BENCHMARKS.md), a
 /// face crushed to h / |e| = 7e-4 under hinges bent by 1.8 rad made every Newton direction
@@ -98,24 +98,20 @@ fn root_smoothstep(u: f64, u0: f64) -> f64 {
     s * (3.0 - 2.0 * s).sqrt()
 }
 
-/// A hinge's fade Φ = φ(u₁) φ(u₂) at `x` ([`root_smoothstep`] of each face's height over the
-/// edge relative to the edge, u = h / |e| = |n| / |e|², against `thin`), or `None` where
-/// neither face is thinner than its `thin` (Φ = 1) or the edge has no length.
+/// A hinge's fade Φ = φ(u₁) φ(u₂) from each face's height over the edge relative to the edge,
+/// `u` = h / |e| = |n| / |e|² ([`angle_gradient_heights`]), against `thin` ([`root_smoothstep`]),
+/// or `None` where neither face is thinner than its `thin` (Φ = 1).
 #[inline(always)]
-pub fn fade(x: &[f64], h: &[u32; 4], thin: [f64; 2]) -> Option<f64> {
-    let [xi, xj, xk, xl] = h.map(|v| get(x, v as usize));
-    let e = sub(xj, xi);
-    let e2 = dot(e, e);
-    let (u1, u2) = (norm(cross(e, sub(xk, xi))) / e2, norm(cross(sub(xl, xi), e)) / e2);
-    if !(e2 > 0.0) || !(u1 < thin[0] || u2 < thin[1]) {
+fn fade_of(u: [f64; 2], thin: [f64; 2]) -> Option<f64> {
+    if !(u[0] < thin[0] || u[1] < thin[1]) {
         return None;
     }
-    Some(root_smoothstep(u1, thin[0]) * root_smoothstep(u2, thin[1]))
+    Some(root_smoothstep(u[0], thin[0]) * root_smoothstep(u[1], thin[1]))
 }
 
 /// A hinge's bend r (rad) and the gradient g (1/m) its force and matrix use, at its four
 /// vertices, or `None` where a face or the edge has no extent: r = θ − θ̄ and g = ∇θ
-/// ([`angle_and_gradient`], [`excess`]), each × the fade Φ where a face is crushed ([`fade`]).
+/// ([`angle_and_gradient`], [`excess`]), each × the fade Φ where a face is crushed ([`fade_of`]).
 /// The hinge's force is −D w (r + τ ṙ) g with ṙ = g · v, i.e. −D w Ψ (θ − θ̄ + τ θ̇) ∇θ with
 /// Ψ = Φ², and the implicit matrix's part D w g gᵀ = D w Ψ ∇θ ∇θᵀ, its Gauss–Newton part; its
 /// energy is reported as ½ D w r².
@@ -134,9 +130,9 @@ pub fn fade(x: &[f64], h: &[u32; 4], thin: [f64; 2]) -> Option<f64> {
 /// no face is crushed.
 #[inline(always)]
 pub fn bend(x: &[f64], h: &[u32; 4], rest: f64, thin: [f64; 2]) -> Option<(f64, [V3; 4])> {
-    let (theta, g) = angle_and_gradient(x, h)?;
+    let (theta, g, u) = angle_gradient_heights(x, h)?;
     let ex = excess(theta, rest);
-    Some(match fade(x, h, thin) {
+    Some(match fade_of(u, thin) {
         None => (ex, g),
         Some(phi) => (phi * ex, g.map(|gq| scale(gq, phi))),
     })
@@ -146,6 +142,13 @@ pub fn bend(x: &[f64], h: &[u32; 4], rest: f64, thin: [f64; 2]) -> Option<(f64, 
 /// face or the edge has no extent.
 #[inline(always)]
 pub fn angle_and_gradient(x: &[f64], h: &[u32; 4]) -> Option<(f64, [V3; 4])> {
+    angle_gradient_heights(x, h).map(|(theta, g, _)| (theta, g))
+}
+
+/// [`angle_and_gradient`], and each face's height over the edge relative to the edge,
+/// u = |n| / |e|² (for [`fade_of`]; from the same normals).
+#[inline(always)]
+fn angle_gradient_heights(x: &[f64], h: &[u32; 4]) -> Option<(f64, [V3; 4], [f64; 2])> {
     let [xi, xj, xk, xl] = h.map(|v| get(x, v as usize));
     let e = sub(xj, xi);
     let e2 = dot(e, e);
@@ -163,7 +166,7 @@ pub fn angle_and_gradient(x: &[f64], h: &[u32; 4]) -> Option<(f64, [V3; 4])> {
     let tl = dot(sub(xl, xi), e) / e2;
     let gi = [-(1.0 - tk) * gk[0] - (1.0 - tl) * gl[0], -(1.0 - tk) * gk[1] - (1.0 - tl) * gl[1], -(1.0 - tk) * gk[2] - (1.0 - tl) * gl[2]];
     let gj = [-tk * gk[0] - tl * gl[0], -tk * gk[1] - tl * gl[1], -tk * gk[2] - tl * gl[2]];
-    Some((theta, [gi, gj, gk, gl]))
+    Some((theta, [gi, gj, gk, gl], [a1.sqrt() / e2, a2.sqrt() / e2]))
 }
 
 /// θ̇ = Σ_u ∇_u θ · v_u (rad/s) from the gradient `g` and the velocities `v` (flat xyz).
@@ -209,13 +212,13 @@ impl Hinges {
         for (h, hv) in self.v.iter().enumerate() {
             let [xi, xj, xk, xl] = hv.map(|v| get(x, v as usize));
             let e = sub(xj, xi);
-            let area = 0.5 * (crate::vec3::norm(cross(e, sub(xk, xi))) + crate::vec3::norm(cross(sub(xl, xi), e)));
-            let w = dot(e, e) / area;
+            let e2 = dot(e, e);
+            // |n| of each face: twice its area.
+            let n = [norm(cross(e, sub(xk, xi))), norm(cross(sub(xl, xi), e))];
+            let w = e2 / (0.5 * (n[0] + n[1]));
             self.weight[h] = if w.is_finite() { w } else { 0.0 };
             self.rest[h] = angle_and_gradient(x, hv).map_or(0.0, |(t, _)| t);
-            let e2 = dot(e, e);
-            let u = [norm(cross(e, sub(xk, xi))) / e2, norm(cross(sub(xl, xi), e)) / e2];
-            self.thin[h] = u.map(|u| if u.is_finite() { FADE_BELOW * u } else { 0.0 });
+            self.thin[h] = n.map(|n| n / e2).map(|u| if u.is_finite() { FADE_BELOW * u } else { 0.0 });
         }
     }
 
@@ -252,6 +255,11 @@ impl Hinges {
 mod tests {
     use super::*;
     use crate::vec3::add;
+
+    /// Φ of hinge `h` at `x` (`bend`'s fade), `None` where it does not fade or has no angle.
+    fn fade(x: &[f64], h: &[u32; 4], thin: [f64; 2]) -> Option<f64> {
+        angle_gradient_heights(x, h).and_then(|(_, _, u)| fade_of(u, thin))
+    }
 
     /// A bent, skewed hinge (no symmetry to hide a sign or a swapped vertex).
     fn hinge_x() -> Vec<f64> {
@@ -353,7 +361,6 @@ mod tests {
     /// 10 N (moments: × positions of order 1 m) round to ~1e-14, so 1e-12 there too.
     #[test]
     fn a_crushed_face_scales_its_hinges_force_down_and_keeps_it_bounded() {
-
         let (hn, x) = crushed(0.7);
         assert!(hn.thin[0][0] > 0.05 && hn.thin[0][1] > 0.05, "{:?}", hn.thin[0]);
         assert!(fade(&hinge_x(), &hn.v[0], hn.thin[0]).is_none() && fade(&x, &hn.v[0], hn.thin[0]).is_none());
