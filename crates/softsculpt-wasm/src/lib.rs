@@ -43,6 +43,8 @@
 //! | `ss_clear(w)` | drop bodies, events and loads, forget the open scene; keep settings |
 //! | `ss_step(w, n)` | `World::step_n`: n steps or none (the whole world rolls back; `step` error with `time`) |
 //! | `ss_step_splitting(w, n, stalled, most)` | `World::step_n_splitting`: as `ss_step`, each Newton solve giving up after `stalled` iterations without progress or `most` in all |
+//! | `ss_step_relaxed(w, n, stalled, most)` | `World::step_n_with`: as `ss_step_splitting` (`stalled` 0: no early give-up), a step no solve of the model finishes retried with hinges let go (`WorldSettings::relax`) |
+//! | `ss_body_relaxed(w, b)` | what of the hinges body b's last step let go of: 0 nothing, 1 crushed faces', 2 all (`Relaxed`) |
 //! | `ss_sync(w)` | refresh every body's f32 render positions, pins and stats |
 //! | `ss_body_count(w)`, `ss_body_views(w, b) -> ptr` | bodies; body b's layout table (`views.rs`) |
 //! | `ss_param_table()` | result: the parameter table JSON (`softsculpt::params::table_json`) |

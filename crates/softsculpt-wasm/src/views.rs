@@ -147,6 +147,13 @@ pub extern "C" fn ss_body_newton_iterations(w: u32, b: u32) -> i32 {
     })
 }
 
+/// What of the hinges body `b`'s last step let go of to finish (`Relaxed`: 0 nothing, 1 the
+/// crushed faces' hinges, 2 every hinge), or −1 (error set).
+#[no_mangle]
+pub extern "C" fn ss_body_relaxed(w: u32, b: u32) -> i32 {
+    crate::index(|| with_world(w, |h| Ok(h.world.bodies[h.body(b)?].solver_iterations().relaxed.level() as usize)))
+}
+
 /// Body `b`'s layout table (see the module documentation), or 0 (error set).
 #[no_mangle]
 pub extern "C" fn ss_body_views(w: u32, b: u32) -> *const u32 {

@@ -333,6 +333,14 @@ pub extern "C" fn ss_step_splitting(w: u32, n: u32, stalled: u32, most: u32) -> 
     status(|| with_world(w, |h| h.world.step_n_splitting(n as u64, GiveUp { stalled, most }).map_err(step_fail)))
 }
 
+/// `ss_step_splitting` with the relaxed retry on (`World::step_n_with`, `WorldSettings::relax`):
+/// a step no solve of the model finishes is taken with hinges let go before it is refused
+/// (`ss_body_relaxed` tells). `stalled` = 0: no early give-up (the caller's last split).
+#[no_mangle]
+pub extern "C" fn ss_step_relaxed(w: u32, n: u32, stalled: u32, most: u32) -> i32 {
+    status(|| with_world(w, |h| h.world.step_n_with(n as u64, (stalled > 0).then_some(GiveUp { stalled, most }), true).map_err(step_fail)))
+}
+
 // ----- parameters -----------------------------------------------------------------------------
 
 /// Every body and world parameter of body `b` and its world, as a JSON object in the result

@@ -3,6 +3,9 @@
 //! `web/bench/repro/` (the document's engine calls wrapped to save the world before each).
 //!
 //!   cargo run --release -p softsculpt --example replay -- /tmp/fail-*.bin
+//!
+//! With `RELAX=1` the step is taken as the modeler's last split takes it (`World::step_n_with`,
+//! the relaxed retry on), and the line says what it let go of.
 use softsculpt::world::World;
 
 fn main() {
@@ -21,7 +24,8 @@ fn main() {
                 continue;
             }
         };
-        match w.step() {
+        let relax = std::env::var("RELAX").is_ok_and(|v| v == "1");
+        match w.step_n_with(1, None, relax) {
             Ok(()) => println!("{path}: {:?}", w.bodies[0].solver_iterations()),
             Err(e) => println!("{path}: refused: {e}"),
         }

@@ -32,7 +32,7 @@ pub mod vec3;
 pub mod workload;
 pub mod world;
 
-pub use body::{Material, SoftBody, SolverIterations, Stats, Target, VolumeMode, GAS_CONSTANT};
+pub use body::{Material, Relaxed, SoftBody, SolverIterations, Stats, Target, VolumeMode, GAS_CONSTANT};
 pub use world::{Ground, Integrator, StepError, World, WorldSettings};
 pub use error::{MeshError, SimError};
 pub use mesh::{prepare, LoadedMesh, MeshReport, TriMesh};

@@ -588,6 +588,7 @@ fn settings_from_v1(s: SettingsV1) -> Result<WorldSettings, String> {
         tolerance: crate::params::TOLERANCE.number(),
         newton_iterations: crate::params::NEWTON_ITERATIONS.number() as u32,
         give_up: None,
+        relax: false,
         contact: ContactSettings { thickness: s.contact_thickness, friction: s.contact_friction, edge_contact: s.edge_contact },
     };
     settings.validate().map_err(|e| e.to_string())?;

@@ -1,7 +1,7 @@
 //! Helpers shared by the physics tests.
 #![allow(dead_code)]
 
-use softsculpt::body::{Material, SoftBody};
+use softsculpt::body::{Material, SoftBody, Target};
 use softsculpt::mesh::builtin::{builtin, icosphere};
 use softsculpt::world::{Integrator, World, WorldSettings};
 
@@ -77,4 +77,24 @@ pub fn rooted_mushroom() -> World {
 /// Σ m_i |v_i| (kg·m/s): the scale a momentum error is measured against.
 pub fn momentum_scale(b: &SoftBody) -> f64 {
     b.velocities().chunks_exact(3).zip(b.masses()).map(|(v, m)| m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()).sum()
+}
+
+/// The modeler's 642-vertex sphere (`modeler` preset, implicit steps at tolerance 1e-3, no
+/// gravity) and its hard pull: the targets at step s, the top pulled 2 m aside and 1 m up over
+/// 24 steps (0.4 s) and a band round the equator 2 m the other way, at ω = 600 1/s (k_t = m ω²).
+pub fn pulled_sphere() -> (World, impl Fn(usize) -> Vec<Target>) {
+    let body = sphere_body(2, 1.0, Material::default());
+    let mut a = alone(body, WorldSettings { integrator: Integrator::Implicit, tolerance: 1e-3, ..still() });
+    a.apply_preset(0, "modeler").unwrap();
+    let n = a.bodies[0].vertex_count();
+    let k = (1.0 / n as f64) * 600.0f64.powi(2);
+    let x0 = a.bodies[0].positions().to_vec();
+    let top: Vec<usize> = (0..n).filter(|&i| x0[3 * i + 1] > 0.8).collect();
+    let band: Vec<usize> = (0..n).filter(|&i| x0[3 * i + 1].abs() < 0.3 && x0[3 * i] > 0.8).collect();
+    let pull = move |s: usize| {
+        let t = (s as f64 / 24.0).min(1.0);
+        let at = |i: usize, d: [f64; 3]| Target { vertex: i, anchor: [x0[3 * i] + t * d[0], x0[3 * i + 1] + t * d[1], x0[3 * i + 2]], stiffness: k, damping: 0.0 };
+        top.iter().map(|&i| at(i, [2.0, 1.0, 0.0])).chain(band.iter().map(|&i| at(i, [-2.0, 0.0, 0.0]))).collect()
+    };
+    (a, pull)
 }

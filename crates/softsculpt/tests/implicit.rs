@@ -521,14 +521,7 @@ fn a_step_that_will_not_converge_is_given_up_early_and_a_converging_one_is_untou
     // faces' velocities and normals is not in the matrix (`system.rs`), and against a force that
     // strong Newton does not converge (at 50 m/s and drag 5 this pulled body's step did) — the
     // step to refuse.
-    let body = sphere_body(2, 1.0, Material::default());
-    let mut a = alone(body, implicit(1e-3));
-    a.apply_preset(0, "modeler").unwrap();
-    let n = a.bodies[0].vertex_count();
-    let k = (1.0 / n as f64) * 600.0f64.powi(2);
-    let x0 = a.bodies[0].positions().to_vec();
-    let top: Vec<usize> = (0..n).filter(|&i| x0[3 * i + 1] > 0.8).collect();
-    let band: Vec<usize> = (0..n).filter(|&i| x0[3 * i + 1].abs() < 0.3 && x0[3 * i] > 0.8).collect();
+    let (mut a, pull) = pulled_sphere();
     let give_up = GiveUp { stalled: 12, most: 48 };
     let iterations = |e: &StepError| match e.error {
         SimError::NotConverged { iterations, .. } => iterations,
@@ -539,10 +532,7 @@ fn a_step_that_will_not_converge_is_given_up_early_and_a_converging_one_is_untou
         if s == 40 {
             (a.settings.wind, a.settings.wind_drag) = ([100.0, 0.0, 0.0], 10.0);
         }
-        let t = (s as f64 / 24.0).min(1.0);
-        let at = |i: usize, d: [f64; 3]| Target { vertex: i, anchor: [x0[3 * i] + t * d[0], x0[3 * i + 1] + t * d[1], x0[3 * i + 2]], stiffness: k, damping: 0.0 };
-        let targets: Vec<Target> = top.iter().map(|&i| at(i, [2.0, 1.0, 0.0])).chain(band.iter().map(|&i| at(i, [-2.0, 0.0, 0.0]))).collect();
-        a.bodies[0].set_targets(&targets).unwrap();
+        a.bodies[0].set_targets(&pull(s)).unwrap();
         let (x, v) = (a.bodies[0].positions().to_vec(), a.bodies[0].velocities().to_vec());
         let mut b = a.clone();
         let quick = b.step_n_splitting(1, give_up);

@@ -27,10 +27,12 @@ export interface RawEngine {
   ss_clear(w: number): number;
   ss_step(w: number, n: number): number;
   ss_step_splitting(w: number, n: number, stalled: number, most: number): number;
+  ss_step_relaxed(w: number, n: number, stalled: number, most: number): number;
   ss_sync(w: number): number;
   ss_body_count(w: number): number;
   ss_body_views(w: number, b: number): number;
   ss_body_newton_iterations(w: number, b: number): number;
+  ss_body_relaxed(w: number, b: number): number;
   ss_param_table(): number;
   ss_material_presets(): number;
   ss_params(w: number, b: number): number;

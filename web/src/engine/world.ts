@@ -284,11 +284,15 @@ export class World {
   body(i: number): BodyView { return new BodyView(this, i); }
   /** Newton iterations of body `b`'s last step (0 after an explicit one). */
   newtonIterations(b: number): number { return check(raw().ss_body_newton_iterations(this.handle, b)); }
+  /** What of the hinges body `b`'s last step let go of to finish: 0 nothing, 1 the crushed faces', 2 all. */
+  relaxed(b: number): number { return check(raw().ss_body_relaxed(this.handle, b)); }
 
   /** `n` steps or none: on a blow-up the whole world is rolled back and this throws (kind 'step'). */
   step(n = 1): void { this.call((w) => raw().ss_step(w, n)); }
   /** `step` for a caller that splits refused steps: an implicit step's Newton solve gives up after `stalled` iterations without progress or `most` in all. */
   stepSplitting(n: number, stalled: number, most: number): void { this.call((w) => raw().ss_step_splitting(w, n, stalled, most)); }
+  /** `stepSplitting` that, rather than refuse a step, lets go of hinges (crushed faces', then all) for it; `stalled` 0: no early give-up. */
+  stepRelaxed(n: number, stalled = 0, most = 0): void { this.call((w) => raw().ss_step_relaxed(w, n, stalled, most)); }
   /** Refresh every body's render positions, pins and stats. */
   sync(): void { this.call((w) => raw().ss_sync(w)); }
 

@@ -227,6 +227,7 @@ export class Document {
   /** A model built in the world (an import): its name, the settings from the world's dt, its file's frame. */
   adopt(model: string, frame: ImportFrame): void {
     this.splitFrames = 0;
+    this.relaxedSteps = 0;
     this.pace.reset();
     this.paceSaid = false;
     this.settings.dt = this.world.params(0).dt as number;
@@ -243,6 +244,7 @@ export class Document {
     if (this.pausedByError) { this.pausedByError = false; this.settings.playing = true; }
     const dt = useDefaults(this.world, 0);
     this.splitFrames = 0;
+    this.relaxedSteps = 0;
     this.pace.reset();
     this.paceSaid = false;
     this.settings.dt = dt;
@@ -694,13 +696,30 @@ export class Document {
   /**
    * `n` steps of `h` (s), the world's dt back to the settings' after a split step. A Newton
    * solve that stalls or runs long gives up early and the step is split (`pace.ts`), except at
-   * the last split (`last`), where only the engine's cap refuses it.
+   * the last split (`last`), where only the engine's cap refuses it. Before a step is refused,
+   * the engine takes it with the hinges of crushed faces let go, then with none (the relaxed
+   * retry, `body/implicit/mod.rs` `Relaxed`): measured on the bunny's strongest drags
+   * (BENCHMARKS.md), 8 of 18 paused the page without it, none with it, and a retry at every
+   * split rather than only the last took the worst frame from 5–9 s to under 1 s.
    */
   private stepAt(h: number, n: number, last = false): void {
-    const step = () => last ? this.world.step(n) : this.world.stepSplitting(n, NEWTON_STALLED, NEWTON_MOST);
-    if (h === this.settings.dt) { step(); return; }
-    this.world.setParam(0, 'dt', h);
-    try { step(); } finally { this.world.setParam(0, 'dt', this.settings.dt); }
+    const step = () => last ? this.world.stepRelaxed(n) : this.world.stepRelaxed(n, NEWTON_STALLED, NEWTON_MOST);
+    if (h === this.settings.dt) { step(); } else {
+      this.world.setParam(0, 'dt', h);
+      try { step(); } finally { this.world.setParam(0, 'dt', this.settings.dt); }
+    }
+    this.noteRelaxed();
+  }
+
+  /** Steps that let go of hinges to finish (since the model was loaded: `relaxed`). */
+  relaxedSteps = 0;
+  /** After a step that may have been relaxed (`World.stepRelaxed`): count it, and say so once. */
+  private noteRelaxed(): void {
+    const r = Math.max(0, ...this.everyBody.map((b) => this.world.relaxed(b)));
+    if (r === 0 || ++this.relaxedSteps !== 1) return;
+    this.synced();
+    this.hooks.message(`a step at t = ${fmt(this.world.body(0).stats.time)} s could not be finished with the surface's bending where faces are crushed flat; ` +
+      `it was taken with ${r === 1 ? "those faces' bending" : 'all bending'} let go for that step, so the simulation goes on (a crushed fold may keep its crease).`, 'warn');
   }
 
   /** Frames whose implicit step had to be split (since the model was loaded). */

@@ -128,12 +128,17 @@ fn fade_of(u: [f64; 2], thin: [f64; 2]) -> Option<f64> {
 /// −∫ ½ D w (θ − θ̄)² dΨ: each passage of a face into or out of its fade gains or loses at most
 /// the hinge's largest ½ D w (θ − θ̄)² on the way (Ψ changes by at most 1), and nothing while
 /// no face is crushed.
+///
+/// `let_go`: a hinge with a crushed face gives nothing at all (`None`, as a degenerate one),
+/// instead of its faded force: the implicit integrator's relaxed retry of a step it could not
+/// finish (`implicit/mod.rs`, [`crate::world::WorldSettings::relax`]).
 #[inline(always)]
-pub fn bend(x: &[f64], h: &[u32; 4], rest: f64, thin: [f64; 2]) -> Option<(f64, [V3; 4])> {
+pub fn bend(x: &[f64], h: &[u32; 4], rest: f64, thin: [f64; 2], let_go: bool) -> Option<(f64, [V3; 4])> {
     let (theta, g, u) = angle_gradient_heights(x, h)?;
     let ex = excess(theta, rest);
     Some(match fade_of(u, thin) {
         None => (ex, g),
+        Some(_) if let_go => return None,
         Some(phi) => (phi * ex, g.map(|gq| scale(gq, phi))),
     })
 }
@@ -227,7 +232,7 @@ impl Hinges {
     pub fn energy(&self, b: f64, x: &[f64]) -> f64 {
         let mut sum = 0.0;
         for (h, hv) in self.v.iter().enumerate() {
-            if let Some((r, _)) = bend(x, hv, self.rest[h], self.thin[h]) {
+            if let Some((r, _)) = bend(x, hv, self.rest[h], self.thin[h], false) {
                 sum += self.weight[h] * r * r;
             }
         }
@@ -239,7 +244,7 @@ impl Hinges {
     /// in s.
     pub fn add_forces(&self, b: f64, tau: f64, x: &[f64], v: &[f64], f: &mut [f64]) {
         for (h, hv) in self.v.iter().enumerate() {
-            if let Some((r, g)) = bend(x, hv, self.rest[h], self.thin[h]) {
+            if let Some((r, g)) = bend(x, hv, self.rest[h], self.thin[h], false) {
                 let s = -b * self.weight[h] * (r + tau * rate(&g, hv, v));
                 for (q, &v) in hv.iter().enumerate() {
                     for d in 0..3 {

@@ -44,7 +44,7 @@ pub use gas::GasReference;
 pub use plastic::PlasticState;
 pub use material::{Material, VolumeMode, DEFAULT_TEMPERATURE, GAS_CONSTANT};
 pub use springs::Springs;
-pub use implicit::SolverIterations;
+pub use implicit::{Relaxed, SolverIterations};
 pub use stats::Stats;
 pub use targets::Target;
 

@@ -106,6 +106,7 @@ pub fn build(spec: &SceneSpec, text: &str, resolve: Resolver) -> Result<Built, S
         tolerance: w.tolerance,
         newton_iterations: w.newton_iterations,
         give_up: None,
+        relax: false,
         contact: ContactSettings { thickness: w.contact_thickness, friction: w.contact_friction, ..ContactSettings::default() },
     };
 

@@ -41,9 +41,17 @@ impl World {
     /// modeler): each implicit step's Newton solve gives up as `give_up` says
     /// ([`WorldSettings::give_up`]). The setting is back as it was after the call.
     pub fn step_n_splitting(&mut self, n: u64, give_up: GiveUp) -> Result<(), StepError> {
-        let was = self.settings.give_up.replace(give_up);
+        self.step_n_with(n, Some(give_up), false)
+    }
+
+    /// [`World::step_n`] with the caller's choices for these steps only: when an implicit
+    /// step's Newton solve gives up (`give_up`, [`WorldSettings::give_up`]) and whether a step
+    /// no solve of the model finishes is retried with hinges let go (`relax`,
+    /// [`WorldSettings::relax`]). The settings are back as they were after the call.
+    pub fn step_n_with(&mut self, n: u64, give_up: Option<GiveUp>, relax: bool) -> Result<(), StepError> {
+        let was = (std::mem::replace(&mut self.settings.give_up, give_up), std::mem::replace(&mut self.settings.relax, relax));
         let out = self.step_n(n);
-        self.settings.give_up = was;
+        (self.settings.give_up, self.settings.relax) = was;
         out
     }
 

@@ -113,6 +113,12 @@ pub struct WorldSettings {
     /// snapshots; [`World::step_n_splitting`] sets it for its steps): when a Newton solve gives
     /// up before the cap (`body/implicit/mod.rs`). `None`: only at the cap.
     pub give_up: Option<GiveUp>,
+    /// Implicit integrator only, the caller's choice for a run (not saved in scenes or
+    /// snapshots; [`World::step_n_with`] sets it for its steps): a step that no solve of the
+    /// model finishes is tried again with the hinges of crushed faces let go, then with no hinges
+    /// for that step (`body::implicit::Relaxed`), before it is refused. Off: refused (the CLI and
+    /// scenes); the modeler turns it on for its steps rather than pause the user's work.
+    pub relax: bool,
     /// Contact between bodies and self-collision.
     pub contact: ContactSettings,
 }
@@ -147,6 +153,7 @@ impl Default for WorldSettings {
             tolerance: table::TOLERANCE.number(),
             newton_iterations: table::NEWTON_ITERATIONS.number() as u32,
             give_up: None,
+            relax: false,
             contact: ContactSettings::default(),
         }
     }

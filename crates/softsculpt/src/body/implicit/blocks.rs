@@ -239,7 +239,7 @@ mod tests {
     fn evaluated(body: &SoftBody, p: &Material, w: &WorldSettings, absolute: bool) -> Implicit {
         let m = &body.model;
         let mut imp = Implicit::new(m);
-        let fr = Frame { p, w, m, x: &body.state.x, v: &body.state.v, dt: 1.0 / 60.0 };
+        let fr = Frame { p, w, m, x: &body.state.x, v: &body.state.v, dt: 1.0 / 60.0, relax: crate::Relaxed::No };
         imp.sys.ground.find(m, w.ground.as_ref(), fr.x, fr.v, fr.dt);
         imp.vp.copy_from_slice(fr.v);
         imp.sys.ground.prescribe(&mut imp.vp);
@@ -346,7 +346,7 @@ mod tests {
         }
         let m = &body.model;
         let n = m.mass.len();
-        let fr = Frame { p: &p, w: &w, m, x: &body.state.x, v: &body.state.v, dt: 1.0 / 60.0 };
+        let fr = Frame { p: &p, w: &w, m, x: &body.state.x, v: &body.state.v, dt: 1.0 / 60.0, relax: crate::Relaxed::No };
         imp.vp.copy_from_slice(fr.v);
         imp.eval(&Threads::single(), &fr).unwrap();
         assert!(!imp.sys.blocks.ready, "an evaluation left the blocks ready");

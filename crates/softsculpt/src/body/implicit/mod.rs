@@ -81,11 +81,43 @@ use crate::world::WorldSettings;
 use system::{Frame, System};
 
 /// Iterations of the last step: Newton iterations and conjugate-gradient iterations (summed
-/// over the Newton iterations). Zero for the explicit integrators.
+/// over the Newton iterations, over every attempt). Zero for the explicit integrators.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct SolverIterations {
     pub newton: u32,
     pub linear: u32,
+    /// What of the hinges the step let go of to finish ([`Relaxed`]; only where the world's
+    /// `relax` allows it).
+    pub relaxed: Relaxed,
+}
+
+/// What of the model's bending a step let go of to finish, when the world allows a relaxed
+/// retry (`WorldSettings::relax`, the modeler's steps): `No`, the model as it is; `Crushed`,
+/// the hinges of faces crushed below `hinges::FADE_BELOW` of their frozen height over the
+/// hinge's edge (which the model fades out anyway: `hinges::bend`) give nothing for this step;
+/// `Unbent`, no hinge at all for this step (rigidity D taken as 0).
+///
+/// Why: the strongest grab crushes faces against their edges under hinges bent by ~2 rad
+/// (BENCHMARKS.md, the 20th–22nd sessions). There ∇θ grows as 1/h and the curvature the
+/// Gauss–Newton matrix drops, D w (θ − θ̄) ∇²θ, as 1/h²; Newton's directions overshoot along
+/// those vertices and the step is refused even at dt/64, so the modeler paused. The same steps
+/// replayed with the crushed hinges cut finished in 2–4 Newton iterations (7 of 8 at the fade
+/// below 0.5), and with D = 0 all of them in 2–3. The hinge of a face squashed flat onto its
+/// edge has no meaningful angle; dropping it for one step of ≤ 1/60 s changes the shape by the
+/// bending impulse of that step only, while a refusal stops the user's work.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Relaxed {
+    #[default]
+    No,
+    Crushed,
+    Unbent,
+}
+
+impl Relaxed {
+    /// 0, 1, 2 (for the bindings).
+    pub fn level(self) -> u32 {
+        self as u32
+    }
 }
 
 /// Most trials of the line search after the full step.
@@ -454,7 +486,7 @@ impl Implicit {
         if !self.mg.cycles(&self.sys, fr.m.mass.len()) {
             return;
         }
-        if fr.m.targets.active() {
+        if fr.m.targets.active() || fr.relax != Relaxed::No {
             self.built = None;
             return;
         }
@@ -473,6 +505,7 @@ impl Implicit {
             && self.mg.cycles(&self.sys, m.mass.len())
             && !p.self_collision
             && !m.targets.active()
+            && fr.relax == Relaxed::No
             && kept.absolute == self.sys.absolute
             && kept.held == self.sys.ground.list
             && kept.inputs == self.inputs(fr)
@@ -539,7 +572,7 @@ impl Implicit {
 
     /// One backward-Euler step of `dt` (s): the state is replaced only on success.
     pub fn step(&mut self, th: &Threads, p: &Material, w: &WorldSettings, m: &Model, s: &mut State, dt: f64) -> Result<SolverIterations, Fault> {
-        let fr = Frame { p, w, m, x: &s.x, v: &s.v, dt };
+        let fr = Frame { p, w, m, x: &s.x, v: &s.v, dt, relax: Relaxed::No };
         let mut it = SolverIterations::default();
         let warm = (s.warm.len() == s.v.len() && s.warm_dt > 0.0).then(|| (&s.warm[..], dt / s.warm_dt));
         // A warm-started solve that fails (the guess can lead Newton on this non-convex problem
@@ -560,6 +593,18 @@ impl Implicit {
         };
         if solved.is_err() && w.ground.is_some() && self.held_any {
             solved = self.newton(th, &fr, (None, kept), false, &mut it);
+        }
+        // Where the caller allows it (`WorldSettings::relax`) and the body has hinges: the step
+        // again, cold, with the crushed faces' hinges let go, then with none ([`Relaxed`]). The
+        // faithful model is tried first, always; the iterations record what was let go.
+        if solved.is_err() && w.relax && p.rigidity > 0.0 && !m.hinges.is_empty() {
+            for relax in [Relaxed::Crushed, Relaxed::Unbent] {
+                solved = self.newton(th, &Frame { relax, ..fr }, (None, kept), true, &mut it);
+                if solved.is_ok() {
+                    it.relaxed = relax;
+                    break;
+                }
+            }
         }
         solved?;
         if self.assembled {

@@ -861,7 +861,7 @@ mod tests {
         let m = &body.model;
         let mut imp = Implicit::new(m);
         imp.mg = Multigrid::new(&imp.sys, m.mass.len(), 0);
-        let fr = Frame { p, w, m, x: &body.state.x, v: &body.state.v, dt: 1.0 / 60.0 };
+        let fr = Frame { p, w, m, x: &body.state.x, v: &body.state.v, dt: 1.0 / 60.0, relax: crate::Relaxed::No };
         imp.sys.ground.find(m, w.ground.as_ref(), fr.x, fr.v, fr.dt);
         imp.vp.copy_from_slice(fr.v);
         imp.sys.ground.prescribe(&mut imp.vp);

@@ -57,6 +57,7 @@
 //! the solution it converges to is the backward-Euler step with every force exact.
 
 use super::adjacency::{FaceRows, HingeRows, SpringRows};
+use super::Relaxed;
 use super::blocks::{Blocks, Pieces};
 use super::super::hinges::{bend, rate, Hinges};
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -75,6 +76,7 @@ pub(crate) const VCHUNK: usize = 2048;
 const ECHUNK: usize = 4096;
 
 /// What a step holds fixed: material, settings, model, the state at the step's start, dt.
+#[derive(Clone, Copy)]
 pub(crate) struct Frame<'a> {
     pub p: &'a Material,
     pub w: &'a WorldSettings,
@@ -82,6 +84,8 @@ pub(crate) struct Frame<'a> {
     pub x: &'a [f64],
     pub v: &'a [f64],
     pub dt: f64,
+    /// What of the hinges this solve lets go of (the relaxed retry of a step: `mod.rs`).
+    pub relax: Relaxed,
 }
 
 /// Everything the Newton iterations of one body need, allocated once.
@@ -270,10 +274,11 @@ impl System {
         self.blocks.ready = false;
         // Springs: evaluated in the vertex pass (`gather_springs`).
         self.bending = p.bending_stiffness > 0.0;
-        self.hinged = p.rigidity > 0.0 && !m.hinges.v.is_empty();
+        self.hinged = p.rigidity > 0.0 && !m.hinges.v.is_empty() && fr.relax != Relaxed::Unbent;
         if self.hinged {
             self.ensure_hinges(m);
-            hinge_pass(th, &m.hinges, (p.rigidity, p.retardation_time()), dt, (xt, vp), (&mut self.hg, &mut self.hf, &mut self.hc), &mut self.hslots);
+            let let_go = fr.relax == Relaxed::Crushed;
+            hinge_pass(th, &m.hinges, (p.rigidity, p.retardation_time(), let_go), dt, (xt, vp), (&mut self.hg, &mut self.hf, &mut self.hc), &mut self.hslots);
         }
 
         // Faces and gas: n_f per face and 6V (per-chunk sums in chunk order), then P.
@@ -594,9 +599,9 @@ impl Rows<'_> {
 /// Per hinge at (x_t, v⁺): its bend's gradient ∇r, the force scale −D w (r + τ ṙ) and the
 /// matrix coefficient (dt² + dt τ) D w (`(b, tau)` = D in J, τ in s), with r = θ − θ̄ and
 /// ∇r = ∇θ, each × the fade Φ where a face is crushed (`hinges::bend`); a degenerate hinge (a
-/// face without area) gets zeros. The damping's dependence on x through ∇r is dropped, as the
+/// face without area), or with `let_go` a hinge with a crushed face, gets zeros. The damping's dependence on x through ∇r is dropped, as the
 /// springs' is.
-fn hinge_pass(th: &Threads, hn: &Hinges, (b, tau): (f64, f64), dt: f64, (xt, vp): (&[f64], &[f64]), (hg, hf, hc): (&mut [[f64; 12]], &mut [f64], &mut [f64]), slots: &mut [f64]) {
+fn hinge_pass(th: &Threads, hn: &Hinges, (b, tau, let_go): (f64, f64, bool), dt: f64, (xt, vp): (&[f64], &[f64]), (hg, hf, hc): (&mut [[f64; 12]], &mut [f64], &mut [f64]), slots: &mut [f64]) {
     let nh = hn.v.len();
     let nch = chunks(nh, ECHUNK);
     let (go, fo, co) = (Out::new(hg), Out::new(hf), Out::new(hc));
@@ -605,7 +610,7 @@ fn hinge_pass(th: &Threads, hn: &Hinges, (b, tau): (f64, f64), dt: f64, (xt, vp)
         // SAFETY: chunk c writes hinges hr only.
         let (hg, hf, hc) = unsafe { (go.range(hr.clone()), fo.range(hr.clone()), co.range(hr.clone())) };
         for (lh, h) in hr.enumerate() {
-            match bend(xt, &hn.v[h], hn.rest[h], hn.thin[h]) {
+            match bend(xt, &hn.v[h], hn.rest[h], hn.thin[h], let_go) {
                 Some((r, g)) => {
                     let bw = b * hn.weight[h];
                     for (q, gq) in g.iter().enumerate() {
