@@ -201,6 +201,44 @@ test('a grab while paused says why nothing happens and adds no undo step', async
   await page.context().close();
 });
 
+test('without a GPU the view is drawn within its pixel budget, the model sharp enough to see; "full resolution" draws every pixel', async () => {
+  const { page, errors } = await openModeler(suite.browser, suite.server.url);
+  await settle(page, 0.05, 30000);
+  const buffer = () => inspect(page, () => {
+    const c = document.querySelector('#view');
+    return { w: c.width, h: c.height, cssW: c.clientWidth, cssH: c.clientHeight, ...window.softsculpt.drawing(), colours: window.softsculpt.pixels() };
+  });
+  const low = await buffer();
+  // Chromium here draws WebGL with SwiftShader (--enable-unsafe-swiftshader), which reports no
+  // performance caveat: the renderer's name must give it away.
+  assert.equal(low.software, true, 'SwiftShader is recognised as a software renderer');
+  // SOFTWARE_PIXELS (viewport.ts) is 300,000; the buffer's sides are rounded down to whole pixels.
+  assert.ok(low.w * low.h <= 300000 && low.w * low.h > 280000, `drawn at ${low.w} × ${low.h} for a ${low.cssW} × ${low.cssH} canvas`);
+  assert.ok(Math.abs(low.w / low.h - low.cssW / low.cssH) < 0.01, 'the same aspect as the canvas');
+  // The shaded body, the ground and the grid: many colours, not a blank or a flat fill.
+  assert.ok(low.colours > 50, `the view shows the model: ${low.colours} colours in a 64 × 64 sample`);
+  await shot(page, '50-software-budget');
+  // Paused, the view redraws only when something changes: the toggle must draw it again itself.
+  await page.keyboard.press('Space');
+  await page.waitForFunction(() => window.softsculpt.playing() === false);
+  await page.locator('.lil-title', { hasText: 'View' }).click();
+  await page.waitForTimeout(500);
+  const still = await buffer();
+  await page.waitForTimeout(500);
+  assert.equal((await buffer()).renders, still.renders, 'paused and untouched, the view is not redrawn');
+  await page.locator('.lil-controller', { hasText: 'full resolution' }).locator('input').click();
+  await page.waitForFunction(() => window.softsculpt.drawing().full === true);
+  await page.waitForTimeout(300);
+  const full = await buffer();
+  assert.equal(full.pixelRatio, 1);
+  assert.deepEqual([full.w, full.h], [full.cssW, full.cssH], 'every CSS pixel drawn');
+  assert.ok(full.renders > still.renders, 'drawn again at full resolution');
+  assert.ok(full.colours > 50, `${full.colours} colours`);
+  await shot(page, '51-software-full');
+  assert.deepEqual(errors, []);
+  await page.context().close();
+});
+
 test('the ? hint never covers the readout, in a narrow window too', async () => {
   // At 1000 px the hint (top right, left of the panel) starts where the readout's first line
   // ends; a slow-motion line is longer still (the 12th and 13th sessions' trials: cut off).

@@ -48,6 +48,8 @@ export function inspector(app: App) {
     busy: () => app.busy,
     helpVisible: () => app.hud.helpVisible,
     camera: () => app.viewport.camera.position.toArray(),
+    /** The view's drawing: the buffer's pixel ratio (on a software renderer below 1 in a window above 0.3 Mpx, unless `full`), whether WebGL runs without a GPU, renders so far. */
+    drawing: () => ({ pixelRatio: app.viewport.resolution, software: app.viewport.software, full: app.viewport.fullResolution, renders: app.viewport.renders }),
     /** The camera controls: mode, target, and the camera's up and right axes (a level horizon: right.y = 0). */
     view: () => {
       const c = app.viewport.camera;

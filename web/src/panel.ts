@@ -161,6 +161,11 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   const strain = { on: false };
   tip(display.add(strain, 'on').name('strain view').onChange((v: boolean) => app.setStrainView(v)),
     'Colour each vertex by its springs\' stretch l/L − 1: blue compressed, white at rest, red stretched (full colour at ±10 %): what would spring back if released');
+  if (app.viewport.software) {
+    // Without a GPU the drawing shares the CPU with the simulation (viewport.ts, SOFTWARE_PIXELS).
+    tip(display.add(app.viewport, 'fullResolution').name('full resolution (no GPU)'),
+      'WebGL runs without a GPU here, on the CPU the simulation needs: the view is drawn at a reduced resolution (about 640 × 480 pixels) so that the simulation runs faster. Tick to draw at the screen\'s full resolution');
+  }
   tip(display.add({ f: () => app.hud.toggleHelp() }, 'f').name('help (?)'), 'Tools and shortcuts (?)');
 
 

@@ -23,12 +23,13 @@ export class Viewport {
   private colors = new Float32Array(0);
   /** Something changed since the last render (a new frame, the camera, the overlay…). */
   private dirty = true;
-  /** WebGL runs in software here (no GPU): drawn without multisampling, which costs it most. */
+  /** WebGL runs in software here (no GPU): drawn without multisampling and within SOFTWARE_PIXELS (unless `fullResolution`). */
   readonly software = isSoftwareRenderer();
+  /** Draw at the screen's full resolution even on a software renderer (the panel's View folder). */
+  private full = false;
 
   constructor(readonly canvas: HTMLCanvasElement) {
     this.renderer = new THREE.WebGLRenderer({ canvas, antialias: !this.software, preserveDrawingBuffer: true });
-    this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
     this.scene.background = new THREE.Color(0x20252c);
     this.scene.add(new THREE.HemisphereLight(0xdde8ff, 0x303030, 1.6));
     const sun = new THREE.DirectionalLight(0xffffff, 2.2);
@@ -54,6 +55,7 @@ export class Viewport {
   resize(): void {
     const w = this.canvas.clientWidth || window.innerWidth;
     const h = this.canvas.clientHeight || window.innerHeight;
+    this.renderer.setPixelRatio(pixelRatio(this.software && !this.full, window.devicePixelRatio, w, h));
     this.renderer.setSize(w, h, false);
     this.invalidate();
     this.camera.aspect = w / h;
@@ -183,17 +185,60 @@ export class Viewport {
     return ray;
   }
 
+  /** Whether the view is drawn at the screen's full resolution (always, with a GPU). */
+  get fullResolution(): boolean { return !this.software || this.full; }
+  set fullResolution(on: boolean) {
+    this.full = on;
+    this.resize();
+  }
+
+  /** The drawing buffer's size as a fraction of the canvas's CSS size (1 with a GPU on a standard screen). */
+  get resolution(): number { return this.renderer.getPixelRatio(); }
+
+  /** Renders so far (three.js counts them). */
+  get renders(): number { return this.renderer.info.render.frame; }
+
   dispose(): void {
     this.rig.dispose();
     this.renderer.dispose();
   }
 }
 
-/** Whether WebGL would run without a GPU (SwiftShader, llvmpipe): a context that refuses a major performance caveat cannot be had. */
+/**
+ * Pixels of the drawing buffer at most on a software renderer. There the drawing runs on the
+ * CPU cores the simulation's worker and the page's own thread need: in Chromium here
+ * (SwiftShader, 2 cores, 1280 × 800) its two threads took ~1 core while a body landed, and the
+ * page answered the mouse late. Measured (BENCHMARKS.md, "The view on a software renderer"),
+ * the mushroom subdivided twice, a 25-step mouse drag of its top: 2.7 s for the page to take
+ * it with multisampling at full resolution (the renderer had not been recognised as software),
+ * 1.3–1.8 s without multisampling, 1.0–1.1 s at this budget as well; the simulation's own rate
+ * about even. ~0.3 Mpx is a little less than 640 × 480: the outline stays clear, if
+ * stair-stepped. (A window above 4.8 Mpx, where the ratio would drop below 1/4, is drawn at 1/4.)
+ */
+export const SOFTWARE_PIXELS = 300_000;
+
+/**
+ * The renderer's pixel ratio: the screen's (at most 2), or on a software renderer (`capped`) at
+ * most what keeps a w × h CSS-pixel canvas within SOFTWARE_PIXELS (and at least 1/4).
+ */
+export function pixelRatio(capped: boolean, devicePixelRatio: number, w: number, h: number): number {
+  const screen = Math.min(devicePixelRatio || 1, 2);
+  if (!capped || !(w > 0 && h > 0)) return screen;
+  return Math.max(0.25, Math.min(screen, Math.sqrt(SOFTWARE_PIXELS / (w * h))));
+}
+
+/**
+ * Whether WebGL runs without a GPU (SwiftShader, llvmpipe): a context that refuses a major
+ * performance caveat cannot be had, or the renderer's name says so (Chromium's SwiftShader
+ * enabled by --enable-unsafe-swiftshader reports no caveat; Windows' WARP is the "Microsoft
+ * Basic Render Driver"). Without WEBGL_debug_renderer_info the masked name may not tell.
+ */
 function isSoftwareRenderer(): boolean {
   const probe = document.createElement('canvas');
   const gl = probe.getContext('webgl2', { failIfMajorPerformanceCaveat: true });
   if (!gl) return true;
+  const info = gl.getExtension('WEBGL_debug_renderer_info');
+  const name = String(info ? gl.getParameter(info.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER));
   gl.getExtension('WEBGL_lose_context')?.loseContext();
-  return false;
+  return /swiftshader|llvmpipe|softpipe|software|basic render driver/i.test(name);
 }
