@@ -221,6 +221,7 @@ export class Document {
     this.settings.opened = Math.max((this.settings.opened ?? 0) + 1, Date.now());
     this.changes = [];
     this.groundUnderBody = false;
+    this.relaxedSteps = 0;
     if (this.pausedByError) { this.pausedByError = false; this.settings.playing = true; }
   }
 
@@ -697,10 +698,11 @@ export class Document {
    * `n` steps of `h` (s), the world's dt back to the settings' after a split step. A Newton
    * solve that stalls or runs long gives up early and the step is split (`pace.ts`), except at
    * the last split (`last`), where only the engine's cap refuses it. Before a step is refused,
-   * the engine takes it with the hinges of crushed faces let go, then with none (the relaxed
-   * retry, `body/implicit/mod.rs` `Relaxed`): measured on the bunny's strongest drags
-   * (BENCHMARKS.md), 8 of 18 paused the page without it, none with it, and a retry at every
-   * split rather than only the last took the worst frame from 5–9 s to under 1 s.
+   * the engine takes it with the hinges of crushed faces let go, then with none, if one of its
+   * iterates crushed a face (the relaxed retry, `body/implicit/mod.rs` `Relaxed`): measured on
+   * the bunny's strongest drags (BENCHMARKS.md), 8 of 18 paused the page without it, none with
+   * it, and a retry at every split rather than only the last took the worst frame from 2–11 s
+   * to 0.5–1.8 s.
    */
   private stepAt(h: number, n: number, last = false): void {
     const step = () => last ? this.world.stepRelaxed(n) : this.world.stepRelaxed(n, NEWTON_STALLED, NEWTON_MOST);
@@ -719,7 +721,7 @@ export class Document {
     if (r === 0 || ++this.relaxedSteps !== 1) return;
     this.synced();
     this.hooks.message(`a step at t = ${fmt(this.world.body(0).stats.time)} s could not be finished with the surface's bending where faces are crushed flat; ` +
-      `it was taken with ${r === 1 ? "those faces' bending" : 'all bending'} let go for that step, so the simulation goes on (a crushed fold may keep its crease).`, 'warn');
+      `it was taken with ${r === 1 ? "those faces' bending" : 'all hinge bending'} let go for that step, so the simulation goes on (a crushed fold may keep its crease).`, 'warn');
   }
 
   /** Frames whose implicit step had to be split (since the model was loaded). */

@@ -35,7 +35,8 @@ export const GRAB_PIECES = 4;
 export const BRACE_STEPS = 10;
 /**
  * A substep's Newton solve gives up after NEWTON_STALLED iterations without a new lowest
- * residual or NEWTON_MOST in all (the engine's `GiveUp`), and the substep is split: a step that
+ * residual or NEWTON_MOST in all (the engine's `GiveUp`), and the substep is split (unless the
+ * relaxed retry takes it, where an iterate crushed a face: `Relaxed` in the engine): a step that
  * will not converge is found out in a few iterations instead of the cap (100), in each of its
  * attempts (warm start, cold, without the ground's vertices if it held some). Not at the last
  * split (`split.ts`): a step that converges slowly there beats a refusal the user sees. Measured (BENCHMARKS.md, "A step that will

@@ -128,19 +128,26 @@ fn fade_of(u: [f64; 2], thin: [f64; 2]) -> Option<f64> {
 /// −∫ ½ D w (θ − θ̄)² dΨ: each passage of a face into or out of its fade gains or loses at most
 /// the hinge's largest ½ D w (θ − θ̄)² on the way (Ψ changes by at most 1), and nothing while
 /// no face is crushed.
-///
-/// `let_go`: a hinge with a crushed face gives nothing at all (`None`, as a degenerate one),
-/// instead of its faded force: the implicit integrator's relaxed retry of a step it could not
-/// finish (`implicit/mod.rs`, [`crate::world::WorldSettings::relax`]).
 #[inline(always)]
-pub fn bend(x: &[f64], h: &[u32; 4], rest: f64, thin: [f64; 2], let_go: bool) -> Option<(f64, [V3; 4])> {
-    let (theta, g, u) = angle_gradient_heights(x, h)?;
+pub fn bend(x: &[f64], h: &[u32; 4], rest: f64, thin: [f64; 2]) -> Option<(f64, [V3; 4])> {
+    bend_crushed(x, h, rest, thin, false).0
+}
+
+/// [`bend`], and whether a face of the hinge is crushed (below its `thin`: the hinge fades).
+/// `let_go`: a hinge with a crushed face gives nothing at all (`None`, as a degenerate one)
+/// instead of its faded force: the implicit integrator's relaxed retry of a step it could not
+/// finish (`implicit/mod.rs` `Relaxed`, [`crate::world::WorldSettings::relax`]).
+#[inline(always)]
+pub fn bend_crushed(x: &[f64], h: &[u32; 4], rest: f64, thin: [f64; 2], let_go: bool) -> (Option<(f64, [V3; 4])>, bool) {
+    let Some((theta, g, u)) = angle_gradient_heights(x, h) else {
+        return (None, false);
+    };
     let ex = excess(theta, rest);
-    Some(match fade_of(u, thin) {
-        None => (ex, g),
-        Some(_) if let_go => return None,
-        Some(phi) => (phi * ex, g.map(|gq| scale(gq, phi))),
-    })
+    match fade_of(u, thin) {
+        None => (Some((ex, g)), false),
+        Some(_) if let_go => (None, true),
+        Some(phi) => (Some((phi * ex, g.map(|gq| scale(gq, phi)))), true),
+    }
 }
 
 /// A hinge's angle θ (rad) and its gradient ∇θ at its four vertices (1/m), or `None` where a
@@ -232,7 +239,7 @@ impl Hinges {
     pub fn energy(&self, b: f64, x: &[f64]) -> f64 {
         let mut sum = 0.0;
         for (h, hv) in self.v.iter().enumerate() {
-            if let Some((r, _)) = bend(x, hv, self.rest[h], self.thin[h], false) {
+            if let Some((r, _)) = bend(x, hv, self.rest[h], self.thin[h]) {
                 sum += self.weight[h] * r * r;
             }
         }
@@ -244,7 +251,7 @@ impl Hinges {
     /// in s.
     pub fn add_forces(&self, b: f64, tau: f64, x: &[f64], v: &[f64], f: &mut [f64]) {
         for (h, hv) in self.v.iter().enumerate() {
-            if let Some((r, g)) = bend(x, hv, self.rest[h], self.thin[h], false) {
+            if let Some((r, g)) = bend(x, hv, self.rest[h], self.thin[h]) {
                 let s = -b * self.weight[h] * (r + tau * rate(&g, hv, v));
                 for (q, &v) in hv.iter().enumerate() {
                     for d in 0..3 {

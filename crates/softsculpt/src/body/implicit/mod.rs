@@ -92,19 +92,21 @@ pub struct SolverIterations {
 }
 
 /// What of the model's bending a step let go of to finish, when the world allows a relaxed
-/// retry (`WorldSettings::relax`, the modeler's steps): `No`, the model as it is; `Crushed`,
-/// the hinges of faces crushed below `hinges::FADE_BELOW` of their frozen height over the
-/// hinge's edge (which the model fades out anyway: `hinges::bend`) give nothing for this step;
-/// `Unbent`, no hinge at all for this step (rigidity D taken as 0).
+/// retry (`WorldSettings::relax`, the modeler's steps; only for a step one of whose faithful
+/// iterates crushed a face): `No`, the model as it is; `Crushed`, the hinges of faces squashed
+/// below `hinges::FADE_BELOW` of their frozen height over the hinge's edge (where the model
+/// fades them, `hinges::bend`; cut at once, so from 0.5 down a hinge loses even a nearly
+/// unfaded force) give nothing for this step; `Unbent`, no hinge at all for this step
+/// (rigidity D taken as 0; bending springs stay).
 ///
 /// Why: the strongest grab crushes faces against their edges under hinges bent by ~2 rad
 /// (BENCHMARKS.md, the 20th–22nd sessions). There ∇θ grows as 1/h and the curvature the
 /// Gauss–Newton matrix drops, D w (θ − θ̄) ∇²θ, as 1/h²; Newton's directions overshoot along
-/// those vertices and the step is refused even at dt/64, so the modeler paused. The same steps
-/// replayed with the crushed hinges cut finished in 2–4 Newton iterations (7 of 8 at the fade
-/// below 0.5), and with D = 0 all of them in 2–3. The hinge of a face squashed flat onto its
-/// edge has no meaningful angle; dropping it for one step of ≤ 1/60 s changes the shape by the
-/// bending impulse of that step only, while a refusal stops the user's work.
+/// those vertices and the step is refused even at dt/64, so the modeler paused. Replayed
+/// (BENCHMARKS.md, 23rd session): the 8 bunny steps that paused main all finish `Crushed`
+/// (2–32 Newton iterations); of two mushroom steps, one `Crushed`, one only `Unbent`. Dropping
+/// those hinges for one step of ≤ 1/60 s changes the shape by that step's bending impulse only
+/// (a force with no net force or moment), while a refusal stops the user's work.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub enum Relaxed {
     #[default]
@@ -195,6 +197,8 @@ pub(crate) struct Implicit {
     assembled: bool,
     /// This step's [`keep::inputs`], once computed.
     inputs: Option<u64>,
+    /// Some evaluation of this step met a hinge with a crushed face (`System::crushed`).
+    crushed: bool,
 }
 
 impl Implicit {
@@ -204,7 +208,7 @@ impl Implicit {
         let chunks = sys.vslots.len();
         let mut mg = multigrid::Multigrid::new(&sys, n, multigrid::HINGED_FROM);
         mg.unhinged_from = multigrid::MULTIGRID_FROM;
-        Implicit { sys, mg, cg: cg::Cg::new(n, chunks), vp: vec![0.0; 3 * n], xt: vec![0.0; 3 * n], r: vec![0.0; 3 * n], delta: vec![0.0; 3 * n], zprev: vec![0.0; 3 * n], pprev: vec![0.0; 3 * n], warmed: false, held_any: false, built: None, assembled: false, inputs: None }
+        Implicit { sys, mg, cg: cg::Cg::new(n, chunks), vp: vec![0.0; 3 * n], xt: vec![0.0; 3 * n], r: vec![0.0; 3 * n], delta: vec![0.0; 3 * n], zprev: vec![0.0; 3 * n], pprev: vec![0.0; 3 * n], warmed: false, held_any: false, built: None, assembled: false, inputs: None, crushed: false }
     }
 
     /// Built for a body with `m`'s vertex, spring and face counts.
@@ -217,7 +221,9 @@ impl Implicit {
         for ((xt, &x), &vp) in self.xt.iter_mut().zip(fr.x).zip(&self.vp) {
             *xt = x + fr.dt * vp;
         }
-        let e = self.sys.eval(th, fr, &self.vp, &self.xt, &mut self.r)?;
+        let e = self.sys.eval(th, fr, &self.vp, &self.xt, &mut self.r);
+        self.crushed |= self.sys.crushed;
+        let e = e?;
         Ok((e.res2.sqrt(), e.noise2.sqrt()))
     }
 
@@ -585,7 +591,7 @@ impl Implicit {
         // (Only if the warm start was taken: otherwise the cold solve was the one that failed;
         // and only if the failed solve held a vertex on the ground: otherwise it was already
         // the solve without them.)
-        (self.assembled, self.inputs) = (false, None);
+        (self.assembled, self.inputs, self.crushed) = (false, None, false);
         let kept = &s.kept;
         let mut solved = match self.newton(th, &fr, (warm, kept), true, &mut it) {
             Err(_) if self.warmed => self.newton(th, &fr, (None, kept), true, &mut it),
@@ -594,14 +600,15 @@ impl Implicit {
         if solved.is_err() && w.ground.is_some() && self.held_any {
             solved = self.newton(th, &fr, (None, kept), false, &mut it);
         }
-        // Where the caller allows it (`WorldSettings::relax`) and the body has hinges: the step
-        // again, cold, with the crushed faces' hinges let go, then with none ([`Relaxed`]). The
-        // faithful model is tried first, always; the iterations record what was let go.
-        if solved.is_err() && w.relax && p.rigidity > 0.0 && !m.hinges.is_empty() {
+        // Where the caller allows it (`WorldSettings::relax`), the faithful solves did not
+        // converge and one of their iterates crushed a face under a hinge: the step again, cold,
+        // with the crushed faces' hinges let go, then with none ([`Relaxed`]). The faithful
+        // model is tried first, always; the iterations record what was let go. If neither
+        // converges, the faithful solve's refusal is what the caller hears (it may split).
+        if matches!(solved, Err(Fault::NotConverged { .. })) && w.relax && self.crushed && p.rigidity > 0.0 {
             for relax in [Relaxed::Crushed, Relaxed::Unbent] {
-                solved = self.newton(th, &Frame { relax, ..fr }, (None, kept), true, &mut it);
-                if solved.is_ok() {
-                    it.relaxed = relax;
+                if self.newton(th, &Frame { relax, ..fr }, (None, kept), true, &mut it).is_ok() {
+                    (solved, it.relaxed) = (Ok(()), relax);
                     break;
                 }
             }

@@ -59,7 +59,7 @@
 use super::adjacency::{FaceRows, HingeRows, SpringRows};
 use super::Relaxed;
 use super::blocks::{Blocks, Pieces};
-use super::super::hinges::{bend, rate, Hinges};
+use super::super::hinges::{bend_crushed, rate, Hinges};
 use std::sync::atomic::{AtomicU64, Ordering};
 use super::ground::GroundSet;
 use super::super::{gas, Model};
@@ -142,6 +142,9 @@ pub(crate) struct System {
     /// Reduction slots, one per chunk.
     pub vslots: Vec<[f64; 4]>,
     hslots: Vec<f64>,
+    /// The last evaluation met a hinge with a crushed face (`hinges::bend_crushed`): what
+    /// makes a refused step a candidate for the relaxed retry (`mod.rs`).
+    pub crushed: bool,
     fslots: Vec<f64>,
 }
 
@@ -210,6 +213,7 @@ impl System {
             absolute: false,
             vslots: vec![[0.0; 4]; chunks(n, VCHUNK)],
             hslots: vec![0.0; chunks(m.hinges.len(), ECHUNK)],
+            crushed: false,
             fslots: vec![0.0; chunks(nf, ECHUNK)],
         }
     }
@@ -275,10 +279,11 @@ impl System {
         // Springs: evaluated in the vertex pass (`gather_springs`).
         self.bending = p.bending_stiffness > 0.0;
         self.hinged = p.rigidity > 0.0 && !m.hinges.v.is_empty() && fr.relax != Relaxed::Unbent;
+        self.crushed = false;
         if self.hinged {
             self.ensure_hinges(m);
             let let_go = fr.relax == Relaxed::Crushed;
-            hinge_pass(th, &m.hinges, (p.rigidity, p.retardation_time(), let_go), dt, (xt, vp), (&mut self.hg, &mut self.hf, &mut self.hc), &mut self.hslots);
+            self.crushed = hinge_pass(th, &m.hinges, (p.rigidity, p.retardation_time(), let_go), dt, (xt, vp), (&mut self.hg, &mut self.hf, &mut self.hc), &mut self.hslots);
         }
 
         // Faces and gas: n_f per face and 6V (per-chunk sums in chunk order), then P.
@@ -599,18 +604,22 @@ impl Rows<'_> {
 /// Per hinge at (x_t, v⁺): its bend's gradient ∇r, the force scale −D w (r + τ ṙ) and the
 /// matrix coefficient (dt² + dt τ) D w (`(b, tau)` = D in J, τ in s), with r = θ − θ̄ and
 /// ∇r = ∇θ, each × the fade Φ where a face is crushed (`hinges::bend`); a degenerate hinge (a
-/// face without area), or with `let_go` a hinge with a crushed face, gets zeros. The damping's dependence on x through ∇r is dropped, as the
+/// face without area), or with `let_go` a hinge with a crushed face, gets zeros. Returns
+/// whether any hinge has a crushed face. The damping's dependence on x through ∇r is dropped, as the
 /// springs' is.
-fn hinge_pass(th: &Threads, hn: &Hinges, (b, tau, let_go): (f64, f64, bool), dt: f64, (xt, vp): (&[f64], &[f64]), (hg, hf, hc): (&mut [[f64; 12]], &mut [f64], &mut [f64]), slots: &mut [f64]) {
+fn hinge_pass(th: &Threads, hn: &Hinges, (b, tau, let_go): (f64, f64, bool), dt: f64, (xt, vp): (&[f64], &[f64]), (hg, hf, hc): (&mut [[f64; 12]], &mut [f64], &mut [f64]), slots: &mut [f64]) -> bool {
     let nh = hn.v.len();
     let nch = chunks(nh, ECHUNK);
     let (go, fo, co) = (Out::new(hg), Out::new(hf), Out::new(hc));
-    th.each(&mut slots[..nch], |c, _| {
+    th.each(&mut slots[..nch], |c, slot| {
         let hr = chunk(c, ECHUNK, nh);
         // SAFETY: chunk c writes hinges hr only.
         let (hg, hf, hc) = unsafe { (go.range(hr.clone()), fo.range(hr.clone()), co.range(hr.clone())) };
+        let mut crushed = false;
         for (lh, h) in hr.enumerate() {
-            match bend(xt, &hn.v[h], hn.rest[h], hn.thin[h], let_go) {
+            let (bent, flat) = bend_crushed(xt, &hn.v[h], hn.rest[h], hn.thin[h], let_go);
+            crushed |= flat;
+            match bent {
                 Some((r, g)) => {
                     let bw = b * hn.weight[h];
                     for (q, gq) in g.iter().enumerate() {
@@ -626,7 +635,9 @@ fn hinge_pass(th: &Threads, hn: &Hinges, (b, tau, let_go): (f64, f64, bool), dt:
                 }
             }
         }
+        *slot = if crushed { 1.0 } else { 0.0 };
     });
+    slots[..nch].iter().any(|&c| c != 0.0)
 }
 
 /// Per face n_f into `nf`; returns 6V = Σ x_a · n_f (per-chunk sums added in chunk order).
