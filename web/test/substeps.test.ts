@@ -180,6 +180,26 @@ describe('a grab after a rewind', () => {
   });
 });
 
+/**
+ * The e2e test's first grab, before its strongest: 2 s at rest, then the default pull
+ * (ω = 600 1/s) of the top vertex 0.4 m up and aside for 2 s, let go for 3 s; every step taken.
+ */
+function afterTheDefaultPull(doc: ReturnType<typeof openedDocument>['doc'], mirror?: { axes: [boolean, boolean, boolean]; centre: Vec3 }): void {
+  const dt = doc.settings.dt;
+  for (let i = 0; i < 120; i++) expect(doc.advance(dt, 1)).toBe(true);
+  const x = doc.world.body(0).positions;
+  const p = vertexAt(x, topVertex(x));
+  doc.strokeStart({ tool: 'grab', point: p, radius: 0.35, strength: 600, inverted: false, mirror });
+  for (let i = 0; i < 120; i++) {
+    const s = Math.min(1, i / 15);
+    doc.strokeMove([p[0] + 0.23 * s, p[1] + 0.33 * s, p[2]], false);
+    doc.updateStroke(dt);
+    expect(doc.advance(dt, 1)).toBe(true);
+  }
+  doc.strokeEnd();
+  for (let i = 0; i < 180; i++) expect(doc.advance(dt, 1)).toBe(true);
+}
+
 describe('the document’s substeps (real engine)', () => {
   beforeAll(loadEngine);
 
@@ -271,22 +291,12 @@ describe('the document’s substeps (real engine)', () => {
     const { doc, messages } = opened();
     const dt = doc.settings.dt;
     const mirror = { axes: [true, false, false] as [boolean, boolean, boolean], centre: [0, 0, 0] as Vec3 };
-    for (let i = 0; i < 120; i++) expect(doc.advance(dt, 1)).toBe(true);
     const top = (): number => topVertex(doc.world.body(0).positions);
     const at = (i: number): Vec3 => vertexAt(doc.world.body(0).positions, i);
-    // First the default pull (ω = 600 1/s), 0.4 m up and aside for 2 s, let go for 3 s: as the e2e test does.
-    let t = top(), p = at(t);
-    doc.strokeStart({ tool: 'grab', point: p, radius: 0.35, strength: 600, inverted: false, mirror });
-    for (let i = 0; i < 120; i++) {
-      const s = Math.min(1, i / 15);
-      doc.strokeMove([p[0] + 0.23 * s, p[1] + 0.33 * s, p[2]], false);
-      doc.updateStroke(dt);
-      expect(doc.advance(dt, 1)).toBe(true);
-    }
-    doc.strokeEnd();
-    for (let i = 0; i < 180; i++) expect(doc.advance(dt, 1)).toBe(true);
+    // First the default pull, as the e2e test does.
+    afterTheDefaultPull(doc, mirror);
     // Then the strongest (ω = 3000 1/s), dragged 0.6 m up and dx aside in 1/3 s and held 1 s.
-    t = top(); p = at(t);
+    const t = top(), p = at(t);
     const aim: Vec3 = [p[0] + dx, p[1] + 0.6, p[2]];
     doc.strokeStart({ tool: 'grab', point: p, radius: 0.35, strength: 3000, inverted: false, mirror });
     for (let i = 0; i < 80; i++) {
@@ -313,21 +323,11 @@ describe('the document’s substeps (real engine)', () => {
     const { doc, messages } = opened();
     doc.loadBuiltin('bunny', false);
     const dt = doc.settings.dt;
-    for (let i = 0; i < 120; i++) expect(doc.advance(dt, 1)).toBe(true);
-    const top = (): number => topVertex(doc.world.body(0).positions);
     const at = (i: number): Vec3 => vertexAt(doc.world.body(0).positions, i);
-    let t = top(), p = at(t);
-    // The e2e test's default pull first (ω = 600 1/s, 0.4 m up and aside for 2 s, 3 s let go).
-    doc.strokeStart({ tool: 'grab', point: p, radius: 0.35, strength: 600, inverted: false });
-    for (let i = 0; i < 120; i++) {
-      doc.strokeMove([p[0] + 0.23 * Math.min(1, i / 15), p[1] + 0.33 * Math.min(1, i / 15), p[2]], false);
-      doc.updateStroke(dt);
-      expect(doc.advance(dt, 1)).toBe(true);
-    }
-    doc.strokeEnd();
-    for (let i = 0; i < 180; i++) expect(doc.advance(dt, 1)).toBe(true);
+    // The e2e test's default pull first.
+    afterTheDefaultPull(doc);
     expect(doc.relaxedSteps).toBe(0);
-    t = top(); p = at(t);
+    const t = topVertex(doc.world.body(0).positions), p = at(t);
     const aim: Vec3 = [p[0] - 1.1, p[1] + 0.4, p[2]];
     doc.strokeStart({ tool: 'grab', point: p, radius: 0.35, strength: 3000, inverted: false });
     for (let f = 1; f <= 90; f++) {

@@ -228,7 +228,6 @@ export class Document {
   /** A model built in the world (an import): its name, the settings from the world's dt, its file's frame. */
   adopt(model: string, frame: ImportFrame): void {
     this.splitFrames = 0;
-    this.relaxedSteps = 0;
     this.pace.reset();
     this.paceSaid = false;
     this.settings.dt = this.world.params(0).dt as number;
@@ -245,7 +244,6 @@ export class Document {
     if (this.pausedByError) { this.pausedByError = false; this.settings.playing = true; }
     const dt = useDefaults(this.world, 0);
     this.splitFrames = 0;
-    this.relaxedSteps = 0;
     this.pace.reset();
     this.paceSaid = false;
     this.settings.dt = dt;
@@ -705,7 +703,7 @@ export class Document {
    * to 0.5–1.8 s.
    */
   private stepAt(h: number, n: number, last = false): void {
-    const step = () => last ? this.world.stepRelaxed(n) : this.world.stepRelaxed(n, NEWTON_STALLED, NEWTON_MOST);
+    const step = () => this.world.stepRelaxed(n, last ? 0 : NEWTON_STALLED, last ? 0 : NEWTON_MOST);
     if (h === this.settings.dt) { step(); } else {
       this.world.setParam(0, 'dt', h);
       try { step(); } finally { this.world.setParam(0, 'dt', this.settings.dt); }
@@ -713,7 +711,7 @@ export class Document {
     this.noteRelaxed();
   }
 
-  /** Steps that let go of hinges to finish (since the model was loaded: `relaxed`). */
+  /** Steps that let go of hinges to finish (since the model was opened: reset in `newModel`). */
   relaxedSteps = 0;
   /** After a step that may have been relaxed (`World.stepRelaxed`): count it, and say so once. */
   private noteRelaxed(): void {
