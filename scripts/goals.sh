@@ -19,6 +19,8 @@ for tol in "" 1e-3; do
     "$bin" bench --levels 4,5,6,7 --steps 10 --reps 2 --integrator implicit --dt "$dt" --threads "$t" ${tol:+--tolerance "$tol"}
   done
 done
+# wasm-bench.mjs times the native one-thread step again beside each wasm run: the ratio comes
+# from one pair, the loop above gives the thread comparison.
 echo "== implicit wasm vs native, one thread"
 (cd web && node bench/wasm-bench.mjs 4,5,6,7 10 implicit && node bench/wasm-bench.mjs 4,5,6,7 10 implicit:1e-3)
 echo "== explicit vs the C++ loop"
@@ -28,6 +30,7 @@ for t in 2 1; do
 done
 if [ "${1:-}" = browser ]; then
   echo "== Chromium, the modeler's defaults (simulated s per real s), 2-7 s and 80-90 s after the import"
-  (cd web && npx vite build >/dev/null && SETTLE=2 MEASURE=5 node bench/realtime.mjs 3,4,5 default && SETTLE=80 MEASURE=10 node bench/realtime.mjs 5 default)
+  [ -f web/dist/index.html ] || { echo "error: web/dist is missing: make web" >&2; exit 1; }
+  (cd web && SETTLE=2 MEASURE=5 node bench/realtime.mjs 3,4,5 default && SETTLE=80 MEASURE=10 node bench/realtime.mjs 5 default)
 fi
 date; uptime
