@@ -348,7 +348,7 @@ export class App implements ToolContext {
     this.hud.tick(f !== null);
     if (m.ready) {
       // How fast the simulation goes comes first (the drawing's fps can be high while it crawls).
-      const pace = paceText({ playing: m.settings.playing, busy: this.busyLabel !== null, slowMotion: m.slowMotion, realTimeFraction: m.realTimeFraction, sinceFrameMs: performance.now() - this.frameArrived });
+      const pace = paceText({ playing: m.settings.playing, busy: this.busyLabel !== null, slowMotion: m.slowMotion, realTimeFraction: m.realTimeFraction, accuracy: m.accuracy, sinceFrameMs: performance.now() - this.frameArrived });
       this.hud.show([
         `simulation: ${pace}   ${m.simMs.toFixed(1)} ms of steps/frame   ${viewText(this.hud.fps, this.hud.shapesPerSecond, m.slowMotion)}` +
           (m.recording ? `   ● REC ${m.recording.frames} frames, ${m.recording.seconds.toFixed(1)} s` : ''),

@@ -3,6 +3,7 @@
 // a crash) is replaced by a new one that opens the last autosave; the page says so plainly.
 
 import type { Command, Reply } from './protocol';
+import { interrupts } from './protocol';
 
 export interface ClientEvents {
   reply(r: Reply): void;
@@ -16,6 +17,8 @@ const MAX_RESTARTS = 3;
 export class SimulationClient {
   private worker: Worker | null = null;
   private restarts: number[] = [];
+  /** Interrupting commands sent [0] and taken by the worker [1] (`interrupts` in protocol.ts); null where memory cannot be shared (not cross-origin isolated). */
+  private counters: Int32Array | null = null;
 
   constructor(private readonly wasmUrl: string, private readonly events: ClientEvents) {}
 
@@ -30,11 +33,15 @@ export class SimulationClient {
     // A reply that could not be read: ask for everything again rather than draw half a state.
     w.onmessageerror = () => this.send({ type: 'resync' });
     this.worker = w;
-    this.send({ type: 'init', wasmUrl: this.wasmUrl, restore });
+    const shared = (globalThis as { crossOriginIsolated?: boolean }).crossOriginIsolated && typeof SharedArrayBuffer !== 'undefined' ? new SharedArrayBuffer(8) : undefined;
+    this.counters = shared ? new Int32Array(shared) : null;
+    this.send({ type: 'init', wasmUrl: this.wasmUrl, restore, ...(shared ? { interrupts: shared } : {}) });
   }
 
   send(cmd: Command, transfer: Transferable[] = []): void {
-    this.worker?.postMessage(cmd, transfer);
+    if (!this.worker) return;
+    if (this.counters && interrupts(cmd)) Atomics.add(this.counters, 0, 1);
+    this.worker.postMessage(cmd, transfer);
   }
 
   /** Replace a failed worker by a new one that opens the last autosave. */

@@ -14,6 +14,9 @@ const NO_STATS: Stats = {
 
 const NO_STRAIN = new Float32Array(0);
 
+/** How long the HUD keeps showing a time-limited step's accuracy after the last such frame (ms). */
+export const ACCURACY_HOLD_MS = 1000;
+
 export class Mirror implements BodyView {
   /** The first frame of a model has been drawn. */
   ready = false;
@@ -31,6 +34,13 @@ export class Mirror implements BodyView {
   simMs = 0;
   slowMotion = false;
   realTimeFraction = 1;
+  /**
+   * The accuracy the last time-limited steps reached (relative residual, `Frame.accuracy`),
+   * held for ACCURACY_HOLD_MS after the last frame that reported one (so the HUD does not
+   * flicker between frames that converged and frames that did not); 0: converged.
+   */
+  accuracy = 0;
+  private accuracyAt = -Infinity;
   scene: SceneInfo | null = null;
   /** Every parameter of the active body and the world by table id (an object the panel may bind to: updated in place). */
   readonly params: Params = {};
@@ -78,6 +88,8 @@ export class Mirror implements BodyView {
     this.simMs = f.simMs;
     this.slowMotion = f.slowMotion;
     this.realTimeFraction = f.realTimeFraction;
+    const now = performance.now();
+    if (f.accuracy > 0) { this.accuracy = f.accuracy; this.accuracyAt = now; } else if (now - this.accuracyAt > ACCURACY_HOLD_MS) this.accuracy = 0;
     this.scene = f.scene;
     this.recording = f.recording ?? null;
     return old;

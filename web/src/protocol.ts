@@ -67,9 +67,20 @@ export interface SceneInfo { name: string; time: number; duration: number; bodie
 
 // ----- main → worker ----------------------------------------------------------------------------
 
+/**
+ * Commands that a running step makes way for: the page counts them as it sends them and the
+ * worker as it takes them (two Int32 counters in a SharedArrayBuffer, `init.interrupts`, where
+ * the page is cross-origin isolated); while they differ the engine abandons the step in
+ * progress, the world as before it (`WorldSettings::interrupt`), so Undo, a new model or a
+ * parameter change never waits for a slow step. Strokes do not: they act through the steps.
+ */
+const INTERRUPTING: ReadonlySet<string> = new Set(['loadBuiltin', 'import', 'setUp', 'importAnswer', 'openProject', 'openScene',
+  'restartScene', 'freeze', 'reset', 'subdivide', 'remesh', 'undo', 'redo', 'step', 'setParam', 'setMass', 'preset', 'settings', 'sketch']);
+export function interrupts(cmd: { type: string }): boolean { return INTERRUPTING.has(cmd.type); }
+
 export type Command =
   /** Load the engine from `wasmUrl`, then open the autosave (if `restore` and there is one) or the mushroom. */
-  | { type: 'init'; wasmUrl: string; restore: boolean }
+  | { type: 'init'; wasmUrl: string; restore: boolean; interrupts?: SharedArrayBuffer }
   | { type: 'loadBuiltin'; name: string }
   /** A model file (OBJ, PLY, STL, glTF/GLB); `data` is transferred. */
   /** `upAnswers`: the user's last up axis per format (io/upaxis.ts), used when the file's own guess is unsure. */
@@ -165,6 +176,12 @@ export interface Frame {
   /** The simulation could not keep up with the clock; `realTimeFraction` of real time is simulated. */
   slowMotion: boolean;
   realTimeFraction: number;
+  /**
+   * The largest relative residual an implicit step since the last frame was accepted at when
+   * the frame's solve budget stopped it short of the tolerance (the anytime step); 0: every
+   * step converged.
+   */
+  accuracy: number;
   scene: SceneInfo | null;
   topology?: Topology;
   /** Masses (kg) and pins (0/1) per vertex of the active body, when they changed. */

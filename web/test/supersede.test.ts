@@ -3,7 +3,7 @@ import { supersede } from '../src/supersede';
 import type { Frame } from '../src/protocol';
 
 const frame = (extra: Partial<Frame> = {}): Frame => ({
-  positions: new Float32Array(3), stats: {} as Frame['stats'], simMs: 0, slowMotion: false, realTimeFraction: 1, scene: null, ...extra,
+  positions: new Float32Array(3), stats: {} as Frame['stats'], simMs: 0, slowMotion: false, realTimeFraction: 1, accuracy: 0, scene: null, ...extra,
 });
 
 describe('a frame superseded before it was drawn', () => {

@@ -147,6 +147,20 @@ pub extern "C" fn ss_body_newton_iterations(w: u32, b: u32) -> i32 {
     })
 }
 
+/// The relative residual ‖r‖/‖r_0‖ body `b`'s last implicit step was accepted at (0 for the
+/// explicit integrators; above the tolerance when its deadline stopped it: the anytime step),
+/// or −1 (error set).
+#[no_mangle]
+pub extern "C" fn ss_body_accuracy(w: u32, b: u32) -> f64 {
+    match with_world(w, |h| Ok(h.world.bodies[h.body(b)?].solver_iterations().residual)) {
+        Ok(r) => r,
+        Err(e) => {
+            crate::fail(e);
+            -1.0
+        }
+    }
+}
+
 /// What of the hinges body `b`'s last step let go of to finish (`Relaxed`: 0 nothing, 1 the
 /// crushed faces' hinges, 2 every hinge), or −1 (error set).
 #[no_mangle]

@@ -10,7 +10,7 @@ use softsculpt::mesh::{self, builtin, LoadedMesh, ObjData, TriMesh};
 use softsculpt::params::{self, ParamError, Scope, Value};
 use softsculpt::snapshot::SnapshotError;
 use softsculpt::{
-    world::GiveUp, Material, MeshError, SimError, SoftBody, StepError, Target, World, WorldSettings,
+    world::{Budget, Deadline, GiveUp, Interrupt}, Material, MeshError, SimError, SoftBody, StepError, Target, World, WorldSettings,
 };
 use std::cell::RefCell;
 
@@ -129,6 +129,10 @@ pub fn sim_fail(e: SimError) -> Fail {
             .with("time", *time)
             .with("converged", false)
             .with("cause", "not_converged"),
+        SimError::Interrupted { step, time } => Fail::new("step", e.to_string())
+            .with("step", *step)
+            .with("time", *time)
+            .with("cause", "interrupted"),
     }
 }
 
@@ -158,6 +162,7 @@ fn step_fail(e: StepError) -> Fail {
         SimError::NotConverged { .. } => f = f.with("converged", false).with("cause", "not_converged"),
         SimError::NonFinite { .. } => f = f.with("cause", "non_finite"),
         SimError::Collapsed { volume, .. } => f = f.with("cause", "collapsed").with("volume", volume),
+        SimError::Interrupted { .. } => f = f.with("cause", "interrupted"),
         _ => {}
     }
     if let Some(l) = e.line {
@@ -339,6 +344,89 @@ pub extern "C" fn ss_step_splitting(w: u32, n: u32, stalled: u32, most: u32) -> 
 #[no_mangle]
 pub extern "C" fn ss_step_relaxed(w: u32, n: u32, stalled: u32, most: u32) -> i32 {
     status(|| with_world(w, |h| h.world.step_n_with(n as u64, (stalled > 0).then_some(GiveUp { stalled, most }), true).map_err(step_fail)))
+}
+
+/// The clock deadlines are read on (s): the page's `performance.now()`, imported as
+/// `env.ss_now` (ms); natively (the crate's tests) the core's monotonic clock.
+#[cfg(target_arch = "wasm32")]
+fn now() -> f64 {
+    #[link(wasm_import_module = "env")]
+    extern "C" {
+        fn ss_now() -> f64;
+    }
+    // SAFETY: an import with no arguments and no memory access, given by `initEngine`.
+    unsafe { ss_now() / 1000.0 }
+}
+#[cfg(not(target_arch = "wasm32"))]
+fn now() -> f64 {
+    softsculpt::world::wall_clock()
+}
+
+/// Whether the page has a command waiting that a running step should make way for: the import
+/// `env.ss_interrupted` (the worker's shared counters, `web/src/engine/wasm.ts`); natively never.
+#[cfg(target_arch = "wasm32")]
+fn interrupted() -> bool {
+    #[link(wasm_import_module = "env")]
+    extern "C" {
+        fn ss_interrupted() -> i32;
+    }
+    // SAFETY: an import with no arguments and no memory access, given by `initEngine`.
+    unsafe { ss_interrupted() != 0 }
+}
+#[cfg(not(target_arch = "wasm32"))]
+fn interrupted() -> bool {
+    false
+}
+
+/// `World::advance`: `frame_dt` simulated seconds; under a real-time budget of `seconds` of
+/// wall-clock time (> 0; ≤ 0: converge every step) accepting a step past its deadline at a
+/// relative residual of `min_accuracy` (≤ 0: the core's `MIN_ACCURACY`); a refused implicit
+/// step halved up to `splits` times; `relax` 1: the relaxed retry. Result
+/// `{"steps", "splits", "simulated", "residual", "early", "wall"}`; on failure the error is a
+/// step error as `ss_step`'s (the world as after the last step taken).
+#[no_mangle]
+pub extern "C" fn ss_advance(w: u32, frame_dt: f64, seconds: f64, min_accuracy: f64, splits: u32, relax: u32) -> i32 {
+    status(|| {
+        with_world(w, |h| {
+            if !(frame_dt > 0.0 && frame_dt.is_finite()) {
+                return Err(Fail::usage(format!("the frame must be a positive time in seconds, got {frame_dt}")));
+            }
+            let mut budget = if seconds > 0.0 { Budget::real_time(seconds, now) } else { Budget::converge() };
+            if let Some(r) = budget.real_time.as_mut() {
+                if min_accuracy > 0.0 {
+                    r.min_accuracy = min_accuracy;
+                }
+            }
+            (budget.splits, budget.relax) = (splits, relax != 0);
+            let a = h.world.advance(frame_dt, &budget).map_err(step_fail)?;
+            let out = serde_json::json!({
+                "steps": a.steps, "splits": a.splits, "simulated": a.simulated,
+                "residual": a.residual, "early": a.early, "wall": a.wall,
+            });
+            set_result(out.to_string().into_bytes());
+            Ok(())
+        })
+    })
+}
+
+/// The anytime step's deadline for the steps that follow (`WorldSettings::deadline`): `seconds`
+/// of wall-clock time from now, a step past it accepted at a relative residual of `accept`
+/// (≤ 0: the core's `MIN_ACCURACY`); `seconds` < 0 clears it (every step to the tolerance).
+/// While it is set, a step is also abandoned, the world as before it (error cause
+/// `interrupted`), when the page has a command waiting (`env.ss_interrupted`).
+#[no_mangle]
+pub extern "C" fn ss_set_deadline(w: u32, seconds: f64, accept: f64) -> i32 {
+    status(|| {
+        with_world(w, |h| {
+            h.world.settings.interrupt = (seconds >= 0.0).then_some(Interrupt(interrupted));
+            h.world.settings.deadline = (seconds >= 0.0).then(|| Deadline {
+                now,
+                at: now() + seconds,
+                accept: if accept > 0.0 { accept } else { softsculpt::world::MIN_ACCURACY },
+            });
+            Ok(())
+        })
+    })
 }
 
 // ----- parameters -----------------------------------------------------------------------------

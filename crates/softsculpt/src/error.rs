@@ -75,6 +75,9 @@ pub enum SimError {
     /// An implicit step did not reach the tolerance within the Newton iteration cap; the state
     /// is left as it was before the step. `time` (s) is the time at the step's start.
     NotConverged { step: u64, time: f64, iterations: u32, residual: f64, tolerance: f64 },
+    /// The caller interrupted an implicit step (`WorldSettings::interrupt`: the page has a
+    /// command waiting); the state is left as it was before the step.
+    Interrupted { step: u64, time: f64 },
     /// An array passed in has the wrong length.
     Length { what: &'static str, expected: usize, got: usize },
 }
@@ -98,6 +101,11 @@ impl fmt::Display for SimError {
                 "the implicit step at t = {} s (step {step}) did not converge: relative residual {residual:.3e} \
                  after {iterations} Newton iterations, tolerance {tolerance:e}; the state is unchanged. \
                  Try a smaller dt (e.g. half), a looser --tolerance, or more --newton-iterations",
+                crate::world::sig3(*time)
+            ),
+            SimError::Interrupted { step, time } => write!(
+                f,
+                "the step at t = {} s (step {step}) was interrupted by its caller; the state is unchanged",
                 crate::world::sig3(*time)
             ),
             SimError::Length { what, expected, got } => {

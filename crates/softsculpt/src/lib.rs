@@ -33,6 +33,6 @@ pub mod workload;
 pub mod world;
 
 pub use body::{Material, Relaxed, SoftBody, SolverIterations, Stats, Target, VolumeMode, GAS_CONSTANT};
-pub use world::{Ground, Integrator, StepError, World, WorldSettings};
+pub use world::{Advance, Budget, Deadline, Ground, Integrator, RealTime, StepError, World, WorldSettings};
 pub use error::{MeshError, SimError};
 pub use mesh::{prepare, LoadedMesh, MeshReport, TriMesh};

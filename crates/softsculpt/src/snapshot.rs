@@ -589,6 +589,8 @@ fn settings_from_v1(s: SettingsV1) -> Result<WorldSettings, String> {
         newton_iterations: crate::params::NEWTON_ITERATIONS.number() as u32,
         give_up: None,
         relax: false,
+        deadline: None,
+        interrupt: None,
         contact: ContactSettings { thickness: s.contact_thickness, friction: s.contact_friction, edge_contact: s.edge_contact },
     };
     settings.validate().map_err(|e| e.to_string())?;

@@ -33,6 +33,9 @@ export interface RawEngine {
   ss_body_views(w: number, b: number): number;
   ss_body_newton_iterations(w: number, b: number): number;
   ss_body_relaxed(w: number, b: number): number;
+  ss_body_accuracy(w: number, b: number): number;
+  ss_advance(w: number, frameDt: number, seconds: number, minAccuracy: number, splits: number, relax: number): number;
+  ss_set_deadline(w: number, seconds: number, accept: number): number;
   ss_param_table(): number;
   ss_material_presets(): number;
   ss_params(w: number, b: number): number;
@@ -63,11 +66,29 @@ export interface RawEngine {
 
 let engine: RawEngine | null = null;
 
+/** The page's interrupting commands sent [0] and taken [1] (protocol.ts `interrupts`), if shared. */
+let counters: Int32Array | null = null;
+/** Let the engine abandon a step while an interrupting command waits (the worker, at init). */
+export function useInterrupts(shared: SharedArrayBuffer): void { counters = new Int32Array(shared); }
+/** The worker takes an interrupting command (the running steps need no longer make way). */
+export function tookInterrupt(): void { if (counters) Atomics.add(counters, 1, 1); }
+
+/**
+ * What the engine imports: the clock its anytime steps' deadlines are read on (ms), and
+ * whether a command is waiting that a step in progress should make way for.
+ */
+export const engineImports = {
+  env: {
+    ss_now: (): number => performance.now(),
+    ss_interrupted: (): number => (counters && Atomics.load(counters, 0) !== Atomics.load(counters, 1) ? 1 : 0),
+  },
+};
+
 /** Load the engine from the wasm bytes or a URL (browser). Safe to call more than once. */
 export async function initEngine(source: BufferSource | string): Promise<RawEngine> {
   if (engine) return engine;
   const bytes = typeof source === 'string' ? await (await fetch(source)).arrayBuffer() : source;
-  const { instance } = await WebAssembly.instantiate(bytes, {});
+  const { instance } = await WebAssembly.instantiate(bytes, engineImports);
   engine = instance.exports as unknown as RawEngine;
   return engine;
 }

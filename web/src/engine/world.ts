@@ -74,6 +74,16 @@ export interface Stats {
 
 export type ParamValue = number | boolean | string | [number, number, number];
 
+/** What a frame did (`World.advance`, the core's `Advance`). */
+export interface Advance {
+  /** Steps taken (a split step counts its pieces), steps split, simulated seconds advanced. */
+  steps: number; splits: number; simulated: number;
+  /** The largest relative residual a step was accepted at; steps stopped at their deadline. */
+  residual: number; early: number;
+  /** Wall-clock seconds the frame took (real-time budgets). */
+  wall: number;
+}
+
 /** One row of the engine's parameter table (softsculpt::params). */
 export interface ParamInfo {
   id: string;
@@ -293,6 +303,27 @@ export class World {
   stepSplitting(n: number, stalled: number, most: number): void { this.call((w) => raw().ss_step_splitting(w, n, stalled, most)); }
   /** `stepSplitting` that, rather than refuse a step, lets go of hinges (crushed faces', then all) for it; `stalled` 0: no early give-up. */
   stepRelaxed(n: number, stalled = 0, most = 0): void { this.call((w) => raw().ss_step_relaxed(w, n, stalled, most)); }
+  /**
+   * The anytime step's deadline for the steps that follow: `seconds` of wall-clock time from
+   * now, a step past it accepted at a relative residual of `accept` (0: the engine's default);
+   * `seconds` < 0 clears it (every step to the tolerance).
+   */
+  setDeadline(seconds: number, accept = 0): void { this.call((w) => raw().ss_set_deadline(w, seconds, accept)); }
+  /** The relative residual body `b`'s last implicit step was accepted at (0 for explicit steps). */
+  accuracy(b: number): number {
+    const r = raw().ss_body_accuracy(this.handle, b);
+    if (r < 0) throw new EngineError(errorJson());
+    return r;
+  }
+  /**
+   * `frameDt` simulated seconds (`World::advance`): under a real-time budget of `seconds`
+   * (0: converge every step), refused implicit steps halved up to `splits` times, `relax`: the
+   * relaxed retry. Throws like `step` (the world as after the last step taken).
+   */
+  advance(frameDt: number, seconds = 0, minAccuracy = 0, splits = 0, relax = false): Advance {
+    this.call((w) => raw().ss_advance(w, frameDt, seconds, minAccuracy, splits, relax ? 1 : 0));
+    return JSON.parse(resultText()) as Advance;
+  }
   /** Refresh every body's render positions, pins and stats. */
   sync(): void { this.call((w) => raw().ss_sync(w)); }
 

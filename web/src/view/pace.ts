@@ -15,6 +15,8 @@ export interface PaceInput {
   /** The last frame's slow-motion flag and its fraction of real time (0–1). */
   slowMotion: boolean;
   realTimeFraction: number;
+  /** The relative residual time-limited steps were accepted at (0: every step converged; `Frame.accuracy`). */
+  accuracy?: number;
   /** Milliseconds since the last frame arrived. */
   sinceFrameMs: number;
 }
@@ -23,7 +25,14 @@ export interface PaceInput {
 export function paceText(p: PaceInput): string {
   if (!p.playing) return 'paused';
   if (!p.busy && p.sinceFrameMs >= STALL_MS) return `waiting for a step: ${(p.sinceFrameMs / 1000).toFixed(1)} s so far`;
-  return p.slowMotion ? `${(p.realTimeFraction * 100).toFixed(0)}% of real time (slow motion)` : 'real time';
+  const speed = p.slowMotion ? `${(p.realTimeFraction * 100).toFixed(0)}% of real time (slow motion)` : 'real time';
+  return p.accuracy ? `${speed}, steps accurate to ${accuracyText(p.accuracy)} (time-limited)` : speed;
+}
+
+/** A relative residual as the HUD says it: "3%", "0.4%". */
+export function accuracyText(residual: number): string {
+  const pct = residual * 100;
+  return `${pct >= 1 ? pct.toFixed(0) : pct.toFixed(1)}%`;
 }
 
 /**

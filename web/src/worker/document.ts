@@ -640,6 +640,9 @@ export class Document {
       if (this.sinceRewind >= this.rewind.every - 1e-9) this.offerRewind();
       return true;
     } catch (e) {
+      // A command is waiting (protocol.ts `interrupts`): the engine abandoned the step, the world
+      // as before it; the command comes next and the steps go on after it.
+      if ((e as { fields?: Record<string, unknown> } | null)?.fields?.cause === 'interrupted') return false;
       this.settings.playing = false;
       this.pausedByError = true;
       // The engine put the world back to the start of the failing call, which may be collapsing
@@ -711,10 +714,28 @@ export class Document {
     this.noteRelaxed();
   }
 
+  /**
+   * The anytime step's deadline for the steps that follow (`World.setDeadline`): `seconds` of
+   * wall-clock time from now for implicit solves; < 0 clears it (every step to the tolerance).
+   */
+  setDeadline(seconds: number): void {
+    if (seconds < 0 || this.implicit) this.world.setDeadline(seconds);
+  }
+
+  /** The largest relative residual an implicit step was accepted at since `takeAccuracy`. */
+  private accuracy = 0;
+  /** That residual, if some step was stopped by its deadline short of the tolerance (else 0: every step converged); starts again. */
+  takeAccuracy(): number {
+    const a = this.accuracy;
+    this.accuracy = 0;
+    return a > (this.world.params(0).tolerance as number) ? a : 0;
+  }
+
   /** Steps that let go of hinges to finish (since the model was opened: reset in `newModel`). */
   relaxedSteps = 0;
   /** After a step that may have been relaxed (`World.stepRelaxed`): count it, and say so once. */
   private noteRelaxed(): void {
+    this.accuracy = Math.max(this.accuracy, ...this.everyBody.map((b) => this.world.accuracy(b)));
     const r = Math.max(0, ...this.everyBody.map((b) => this.world.relaxed(b)));
     if (r === 0 || ++this.relaxedSteps !== 1) return;
     this.synced();

@@ -36,7 +36,7 @@ export class FramePublisher {
    * The next frame, or null if nothing is new (`moved`: the simulation stepped or a stroke is
    * acting) or no buffer is free (the page has not drawn the last frame yet).
    */
-  next(doc: Document, moved: boolean, sim: { simMs: number; slowMotion: boolean; realTimeFraction: number }): Frame | null {
+  next(doc: Document, moved: boolean, sim: { simMs: number; slowMotion: boolean; realTimeFraction: number; accuracy: number }): Frame | null {
     const params = doc.params();
     const paramsKey = JSON.stringify(params);
     const settingsKey = JSON.stringify(doc.settings);

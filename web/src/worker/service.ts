@@ -4,7 +4,8 @@
 // tests do the same in Node.
 
 import type { Command, MessageKind, Reply, Settings, UiState } from '../protocol';
-import { transferables } from '../protocol';
+import { interrupts, transferables } from '../protocol';
+import { tookInterrupt, useInterrupts } from '../engine/wasm';
 import { Document, errorText, loadEngine } from './document';
 import { baseName } from '../project';
 import type { Autosave, AutosaveRecord } from '../storage';
@@ -67,6 +68,7 @@ export class Service {
   /** Handle one command. Whatever fails is reported; the document stays as it was. */
   async handle(cmd: Command): Promise<void> {
     if (cmd.type !== 'returnBuffer') this.poked = true;
+    if (interrupts(cmd)) tookInterrupt();
     try {
       await this.dispatch(cmd);
     } catch (e) {
@@ -77,7 +79,7 @@ export class Service {
 
   private async dispatch(cmd: Command): Promise<void> {
     const doc = this.doc;
-    if (cmd.type === 'init') return this.init(cmd.wasmUrl, cmd.restore);
+    if (cmd.type === 'init') { if (cmd.interrupts) useInterrupts(cmd.interrupts); return this.init(cmd.wasmUrl, cmd.restore); }
     if (cmd.type === 'returnBuffer') return this.frames.giveBack(cmd.buffer);
     if (cmd.type === 'resync') return this.frames.resync();
     if (cmd.type === 'ui') { doc.ui = cmd.ui; return; }
@@ -209,11 +211,12 @@ export class Service {
         this.recorder.sample(this.doc);
         this.saveWhileRunning();
       }
-      const sim = { simMs: 0, slowMotion: this.stepper.slowMotion, realTimeFraction: this.stepper.realTimeFraction };
+      const sim = { simMs: 0, slowMotion: this.stepper.slowMotion, realTimeFraction: this.stepper.realTimeFraction, accuracy: 0 };
       const frame = this.frames.next(this.doc, stepped || this.doc.stroking || this.poked, sim);
       if (frame) {
         this.poked = false;
         frame.simMs = this.stepper.take();
+        frame.accuracy = this.doc.takeAccuracy();
         const rec = this.recorder.status;
         if (rec) frame.recording = rec;
         this.post({ type: 'frame', frame });

@@ -2,8 +2,21 @@
 // the last tick holds (at most 0.1 s of it; fractions of a step carry over), in chunks of about
 // 2 ms, within a time budget so that commands (the grab's cursor, a press) are read between
 // ticks. If the steps do not fit in the budget the simulation runs in slow motion and says so.
+//
+// Implicit steps are anytime steps under a solve budget (SOLVE_BUDGET_MS per tick): past it the
+// engine stops each step's Newton solve at its first iterate within its minimum accuracy
+// (`WorldSettings::deadline`, crates/softsculpt/src/world/advance.rs), so a frame of a large or
+// poorly shaped mesh ends about on time instead of waiting for a converged step; the HUD shows
+// the accuracy reached (`Document.takeAccuracy`).
 
 import type { Document } from './document';
+
+/**
+ * Wall-clock ms a tick's implicit solves may take before each step is accepted at its first
+ * iterate within the engine's minimum accuracy (the rest of the 16 ms tick draws, publishes and
+ * reads commands). Measured: BENCHMARKS.md, "Every frame on time".
+ */
+export const SOLVE_BUDGET_MS = 12;
 
 export class Stepper {
   private last = 0;
@@ -23,7 +36,7 @@ export class Stepper {
   /** When the last tick ended (ms), 0 before the first. */
   private lastEnd = 0;
 
-  constructor(private readonly now: () => number, private readonly budgetMs = 30) {}
+  constructor(private readonly now: () => number, private readonly budgetMs = 30, private readonly solveBudgetMs = SOLVE_BUDGET_MS) {}
 
   /** One tick; returns whether it stepped. */
   tick(doc: Document): boolean {
@@ -44,7 +57,13 @@ export class Stepper {
     const n = s.realTime ? Math.floor(want + 0.1) : want;
     this.carry = s.realTime ? want - n : 0;
     doc.updateStroke(s.dt * n);
-    const done = this.run(doc, s.dt, n, this.budgetMs);
+    doc.setDeadline(this.solveBudgetMs / 1000);
+    let done = 0;
+    try {
+      done = this.run(doc, s.dt, n, this.budgetMs);
+    } finally {
+      doc.setDeadline(-1);
+    }
     this.slowMotion = done < n;
     if (this.slowMotion) this.carry = 0;
     const end = this.now();

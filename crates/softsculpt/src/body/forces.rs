@@ -13,6 +13,8 @@ pub(crate) enum Fault {
     Collapsed(f64),
     /// The implicit step's Newton iterations reached their cap at this relative residual.
     NotConverged { iterations: u32, residual: f64 },
+    /// The caller asked the implicit step to stop (`WorldSettings::interrupt`).
+    Interrupted,
 }
 
 impl Fault {
@@ -22,6 +24,7 @@ impl Fault {
             Fault::NonFinite => SimError::NonFinite { step },
             Fault::Collapsed(volume) => SimError::Collapsed { step, volume },
             Fault::NotConverged { iterations, residual } => SimError::NotConverged { step, time, iterations, residual, tolerance },
+            Fault::Interrupted => SimError::Interrupted { step, time },
         }
     }
 }

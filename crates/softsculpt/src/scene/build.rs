@@ -107,6 +107,8 @@ pub fn build(spec: &SceneSpec, text: &str, resolve: Resolver) -> Result<Built, S
         newton_iterations: w.newton_iterations,
         give_up: None,
         relax: false,
+        deadline: None,
+        interrupt: None,
         contact: ContactSettings { thickness: w.contact_thickness, friction: w.contact_friction, ..ContactSettings::default() },
     };
 

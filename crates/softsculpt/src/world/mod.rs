@@ -27,6 +27,7 @@
 //! integrators are exactly themselves. A failing stage leaves the world as it failed;
 //! [`World::step_n`] rolls the whole world back instead (`rollback.rs`).
 
+mod advance;
 mod clock;
 mod contacts;
 mod edges;
@@ -39,11 +40,14 @@ mod rollback;
 mod selfpairs;
 pub(crate) mod settings;
 
+pub use advance::{Advance, Budget, RealTime, GIVE_UP_MOST, GIVE_UP_STALLED, MIN_ACCURACY, SPLITS};
+#[cfg(not(target_arch = "wasm32"))]
+pub use advance::wall_clock;
 pub use clock::Clock;
 pub use events::{Action, Event, Events, Load};
 pub use freeze::SUPPORT_GAP;
 pub use obstacles::{Obstacle, Shape};
-pub use settings::{check_dt, ContactSettings, GiveUp, Ground, Integrator, WorldSettings};
+pub use settings::{check_dt, ContactSettings, Deadline, GiveUp, Ground, Integrator, Interrupt, WorldSettings};
 
 use crate::body::{SoftBody, Stats};
 use crate::error::SimError;

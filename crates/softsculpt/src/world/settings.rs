@@ -119,6 +119,18 @@ pub struct WorldSettings {
     /// for that step (`body::implicit::Relaxed`), before it is refused. Off: refused (the CLI and
     /// scenes); the modeler turns it on for its steps rather than pause the user's work.
     pub relax: bool,
+    /// Implicit integrator only, the caller's choice for a run (not saved in scenes or
+    /// snapshots; [`World::advance`](super::World::advance) sets it under a real-time budget):
+    /// a wall-clock time after which a step's solve stops at its current iterate, if that is
+    /// within [`Deadline::accept`] (the anytime step, `body/implicit/mod.rs`). `None`: every
+    /// step to `tolerance`.
+    pub deadline: Option<Deadline>,
+    /// Implicit integrator only, the caller's choice for a run (not saved): asked between the
+    /// solver's iterations; when it answers yes the step is abandoned (`SimError::Interrupted`)
+    /// and, through [`World::step_n`](super::World::step_n), the world is as before the call.
+    /// The page's worker asks whether a command is waiting, so Undo or a new model never waits
+    /// for a slow step.
+    pub interrupt: Option<Interrupt>,
     /// Contact between bodies and self-collision.
     pub contact: ContactSettings,
 }
@@ -139,6 +151,59 @@ pub struct GiveUp {
     pub most: u32,
 }
 
+/// When an implicit step's solve may stop short of the tolerance (the anytime step): once the
+/// clock `now` reads `at` or later, the solve stops after the Newton iteration in progress (its
+/// conjugate gradient stops at once, after at least one iteration: any iterate of a
+/// preconditioned CG from δ = 0 is a descent direction of the step's quadratic model) and the
+/// step is accepted at its current iterate if the relative residual ‖r‖/‖r_0‖ there is at most
+/// `accept`; else the solve goes on until it is (or refuses the step at the cap, as always).
+/// Every accepted iterate passed the line search, which only moves down the step's incremental
+/// potential (`Implicit::line_search`), so a step stopped early is a smaller move towards the
+/// backward-Euler solution, not a blow-up: it damps more, it never adds energy the converged
+/// step would not.
+#[derive(Debug, Clone, Copy)]
+pub struct Deadline {
+    /// The clock (s, any fixed origin): [`crate::world::wall_clock`] natively, the page's
+    /// `performance.now()` in WebAssembly.
+    pub now: fn() -> f64,
+    /// When the solve should stop (s, on `now`'s clock).
+    pub at: f64,
+    /// The largest relative residual (dimensionless, > 0) a step stopped by the deadline is
+    /// accepted with.
+    pub accept: f64,
+}
+
+impl Deadline {
+    /// Whether the deadline has passed.
+    pub fn passed(&self) -> bool {
+        (self.now)() >= self.at
+    }
+}
+
+/// Whether the caller wants the step in progress abandoned (`WorldSettings::interrupt`).
+#[derive(Debug, Clone, Copy)]
+pub struct Interrupt(pub fn() -> bool);
+
+impl Interrupt {
+    pub fn asked(&self) -> bool {
+        (self.0)()
+    }
+}
+
+impl PartialEq for Interrupt {
+    /// Any two (a caller's run-time choice, like the deadline: not part of what a world is).
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
+}
+
+impl PartialEq for Deadline {
+    /// Two deadlines at the same time with the same acceptance (the clocks are not compared).
+    fn eq(&self, o: &Self) -> bool {
+        self.at == o.at && self.accept == o.accept
+    }
+}
+
 impl Default for WorldSettings {
     /// The defaults of the parameter table: gravity on, no wind, no ground, no obstacles.
     fn default() -> Self {
@@ -154,6 +219,8 @@ impl Default for WorldSettings {
             newton_iterations: table::NEWTON_ITERATIONS.number() as u32,
             give_up: None,
             relax: false,
+            deadline: None,
+            interrupt: None,
             contact: ContactSettings::default(),
         }
     }
@@ -178,6 +245,11 @@ impl WorldSettings {
         }
         if self.wind.iter().any(|w| !w.is_finite()) {
             return Err(bad("wind", format!("must be finite, got {:?}", self.wind)));
+        }
+        if let Some(d) = self.deadline {
+            if !(d.accept > 0.0) || d.at.is_nan() {
+                return Err(bad("min-accuracy", format!("must be a relative residual above 0, got {}", d.accept)));
+            }
         }
         check_non_negative("wind-drag", self.wind_drag)?;
         if let Some(g) = self.ground {

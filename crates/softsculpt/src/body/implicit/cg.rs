@@ -53,7 +53,10 @@ impl Cg {
     /// and the fine products made. A hinged body's products switch to the matrix's blocks
     /// (`System::prepare`) from the start if `upfront`, else after [`BLOCKS_AFTER`] products.
     #[allow(clippy::too_many_arguments)]
-    pub fn solve(&mut self, th: &Threads, sys: &mut System, mg: &mut Multigrid, m: &Model, r: &[f64], eta: f64, upfront: bool, delta: &mut [f64]) -> (u32, u32) {
+    /// It also stops once `stop` says so (a deadline passed, an interrupt), after at least one
+    /// iteration (the anytime step: any PCG iterate from δ = 0 minimizes A's quadratic model
+    /// over a Krylov space containing 0, so r·δ ≤ −½ δᵀAδ < 0, a descent direction).
+    pub fn solve(&mut self, th: &Threads, sys: &mut System, mg: &mut Multigrid, m: &Model, r: &[f64], eta: f64, upfront: bool, stop: &dyn Fn() -> bool, delta: &mut [f64]) -> (u32, u32) {
         if upfront {
             sys.prepare(th, m);
         }
@@ -121,7 +124,7 @@ impl Cg {
                 });
             }
             rn = sum3(slots).1;
-            if rn <= target || rn == 0.0 {
+            if rn <= target || rn == 0.0 || stop() {
                 return (it + 1, products);
             }
             let rz_new = mg.apply(th, sys, m, res, z, slots);

@@ -82,13 +82,20 @@ use system::{Frame, System};
 
 /// Iterations of the last step: Newton iterations and conjugate-gradient iterations (summed
 /// over the Newton iterations, over every attempt). Zero for the explicit integrators.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct SolverIterations {
     pub newton: u32,
     pub linear: u32,
     /// What of the hinges the step let go of to finish ([`Relaxed`]; only where the world's
     /// `relax` allows it).
     pub relaxed: Relaxed,
+    /// The relative residual ‖r‖/‖r_0‖ (mass-weighted, see the module doc) the step was accepted
+    /// at: at most `tolerance` for a converged step (or the rounding level), at most the
+    /// deadline's `accept` for one stopped early. 0 for the explicit integrators.
+    pub residual: f64,
+    /// The step was accepted short of the tolerance because its deadline passed
+    /// (`WorldSettings::deadline`, the anytime step).
+    pub early: bool,
 }
 
 /// What of the model's bending a step let go of to finish, when the world allows a relaxed
@@ -199,6 +206,9 @@ pub(crate) struct Implicit {
     inputs: Option<u64>,
     /// Some evaluation of this step met a hinge with a crushed face (`System::crushed`).
     crushed: bool,
+    /// The relative residual the last successful `newton` stopped at, and whether its deadline
+    /// stopped it (`WorldSettings::deadline`).
+    reached: (f64, bool),
 }
 
 impl Implicit {
@@ -208,7 +218,7 @@ impl Implicit {
         let chunks = sys.vslots.len();
         let mut mg = multigrid::Multigrid::new(&sys, n, multigrid::HINGED_FROM);
         mg.unhinged_from = multigrid::MULTIGRID_FROM;
-        Implicit { sys, mg, cg: cg::Cg::new(n, chunks), vp: vec![0.0; 3 * n], xt: vec![0.0; 3 * n], r: vec![0.0; 3 * n], delta: vec![0.0; 3 * n], zprev: vec![0.0; 3 * n], pprev: vec![0.0; 3 * n], warmed: false, held_any: false, built: None, assembled: false, inputs: None, crushed: false }
+        Implicit { sys, mg, cg: cg::Cg::new(n, chunks), vp: vec![0.0; 3 * n], xt: vec![0.0; 3 * n], r: vec![0.0; 3 * n], delta: vec![0.0; 3 * n], zprev: vec![0.0; 3 * n], pprev: vec![0.0; 3 * n], warmed: false, held_any: false, built: None, assembled: false, inputs: None, crushed: false, reached: (0.0, false) }
     }
 
     /// Built for a body with `m`'s vertex, spring and face counts.
@@ -331,6 +341,9 @@ impl Implicit {
         // problem, another residual).
         let mut best = (f64::INFINITY, 0u32);
         loop {
+            if w.interrupt.is_some_and(|i| i.asked()) {
+                return Err(Fault::Interrupted);
+            }
             // Vertices the ground would have to pull down are let go for the rest of the step
             // (the set only shrinks: no cycling), at convergence and at iterations 1, 2, 3, 4,
             // 8, 16, … (`ground::release_due`).
@@ -359,9 +372,19 @@ impl Implicit {
                 }
             }
             if converged {
+                self.reached = (if r0 > 0.0 { norm / r0 } else { 0.0 }, false);
                 return Ok(());
             }
             let rho = norm / r0;
+            // The anytime step (`WorldSettings::deadline`): past the deadline, after at least
+            // one Newton iteration, an iterate within `accept` is the step.
+            let late = w.deadline.filter(|d| d.passed());
+            if let Some(d) = late {
+                if k >= 1 && rho <= d.accept {
+                    self.reached = (rho, true);
+                    return Ok(());
+                }
+            }
             // A held attempt stalled this long is redone from v⁺ = v without the ground
             // (`step`; `ground.rs`).
             if k == ground::GIVE_UP && self.sys.ground.active() {
@@ -405,7 +428,13 @@ impl Implicit {
             // The products' blocks (hinged bodies, `blocks.rs`) from the start of the solve if
             // this Newton solve's last one was long, else once it is (`cg::BLOCKS_AFTER`).
             let upfront = products_last >= cg::BLOCKS_AFTER;
-            let (linear, products) = self.cg.solve(th, &mut self.sys, &mut self.mg, m, &self.r, eta, upfront, &mut self.delta);
+            // A linear solve started before the deadline stops when it passes (after one
+            // iteration: still a descent direction); one started after it runs to η, since
+            // the iterate was not yet good enough to accept.
+            // An interrupt stops it too (the loop's next check abandons the step).
+            let deadline = if late.is_none() { w.deadline } else { None };
+            let stop = || deadline.is_some_and(|d| d.passed()) || w.interrupt.is_some_and(|i| i.asked());
+            let (linear, products) = self.cg.solve(th, &mut self.sys, &mut self.mg, m, &self.r, eta, upfront, &stop, &mut self.delta);
             (it.linear, products_last) = (it.linear + linear, products);
             it.newton += 1;
             k += 1;
@@ -594,9 +623,13 @@ impl Implicit {
         (self.assembled, self.inputs, self.crushed) = (false, None, false);
         let kept = &s.kept;
         let mut solved = match self.newton(th, &fr, (warm, kept), true, &mut it) {
+            Err(Fault::Interrupted) => return Err(Fault::Interrupted),
             Err(_) if self.warmed => self.newton(th, &fr, (None, kept), true, &mut it),
             done => done,
         };
+        if matches!(solved, Err(Fault::Interrupted)) {
+            return solved.map(|()| it);
+        }
         if solved.is_err() && w.ground.is_some() && self.held_any {
             solved = self.newton(th, &fr, (None, kept), false, &mut it);
         }
@@ -607,13 +640,18 @@ impl Implicit {
         // converges, the faithful solve's refusal is what the caller hears (it may split).
         if matches!(solved, Err(Fault::NotConverged { .. })) && w.relax && self.crushed && p.rigidity > 0.0 {
             for relax in [Relaxed::Crushed, Relaxed::Unbent] {
-                if self.newton(th, &Frame { relax, ..fr }, (None, kept), true, &mut it).is_ok() {
-                    (solved, it.relaxed) = (Ok(()), relax);
-                    break;
+                match self.newton(th, &Frame { relax, ..fr }, (None, kept), true, &mut it) {
+                    Ok(()) => {
+                        (solved, it.relaxed) = (Ok(()), relax);
+                        break;
+                    }
+                    Err(Fault::Interrupted) => return Err(Fault::Interrupted),
+                    Err(_) => {}
                 }
             }
         }
         solved?;
+        (it.residual, it.early) = self.reached;
         if self.assembled {
             if let Some(b) = &self.built {
                 s.kept.clone_from(b);

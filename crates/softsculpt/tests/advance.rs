@@ -1,0 +1,202 @@
+//! How time advances (`World::advance`, `world/advance.rs`): frames under a budget, the anytime
+//! implicit step (`WorldSettings::deadline`) and the explicit stable step (`World::stable_dt`).
+//!
+//! The clocks here are not the machine's: a test that waits on the wall clock measures the
+//! machine. `late` reads later at every call, so every deadline has passed by the time a
+//! solve first looks at it (the worst budget: a frame that had no time at all); `never`
+//! stands still, so no deadline ever passes.
+
+mod common;
+use common::*;
+use softsculpt::body::{Material, SoftBody};
+use softsculpt::mesh::builtin::icosphere;
+use softsculpt::world::{Budget, Ground, Integrator, World, WorldSettings};
+use std::cell::Cell;
+
+thread_local! { static TICKS: Cell<f64> = const { Cell::new(0.0) }; }
+/// A clock one second later at every reading.
+fn late() -> f64 {
+    TICKS.with(|t| {
+        t.set(t.get() + 1.0);
+        t.get()
+    })
+}
+/// A clock that never moves.
+fn never() -> f64 {
+    0.0
+}
+
+const FRAME: f64 = 1.0 / 60.0;
+
+/// The modeler's 642-vertex sphere (`modeler` preset, implicit, 1/60 s) dropped from 0.5 m
+/// above the ground.
+fn dropped_sphere() -> World {
+    let mut mesh = icosphere(3, 1.0);
+    for p in mesh.positions.chunks_exact_mut(3) {
+        p[1] += 1.5;
+    }
+    let body = SoftBody::new(&mesh, 1.0, Material::default()).unwrap();
+    let mut w = World::single(body, WorldSettings { ground: Some(Ground::at(0.0)), ..WorldSettings::default() });
+    w.apply_preset(0, "modeler").unwrap();
+    assert_eq!(w.settings.integrator, Integrator::Implicit);
+    w
+}
+
+fn lowest(w: &World) -> f64 {
+    w.bodies[0].positions().chunks_exact(3).map(|p| p[1]).fold(f64::INFINITY, f64::min)
+}
+
+fn highest(w: &World) -> f64 {
+    w.bodies[0].positions().chunks_exact(3).map(|p| p[1]).fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// Under *converge*, a frame is the steps it holds, bit for bit: `advance` only decides how
+/// many (frame / dt, rounded) — for the implicit integrator (one 1/60 s step per frame) and an
+/// explicit one (167 steps of 1e-4 s per frame). And a real-time budget whose deadline never
+/// passes is the converged step too: the deadline only ever stops a solve, never starts one.
+#[test]
+fn a_frame_under_converge_is_its_steps_bit_for_bit() {
+    let mut a = dropped_sphere();
+    let mut b = a.clone();
+    let mut c = a.clone();
+    let never_late = Budget::real_time(1.0, never);
+    for f in 0..40 {
+        let done = a.advance(FRAME, &Budget::converge()).unwrap();
+        assert_eq!((done.steps, done.splits, done.early), (1, 0, 0));
+        b.step_n(1).unwrap();
+        c.advance(FRAME, &never_late).unwrap();
+        assert_eq!(a.bodies[0].positions(), b.bodies[0].positions(), "frame {f}");
+        assert_eq!(a.bodies[0].velocities(), b.bodies[0].velocities(), "frame {f}");
+        assert_eq!(a.bodies[0].positions(), c.bodies[0].positions(), "frame {f}");
+        // The residual reported is what the step converged to.
+        assert!(done.residual <= a.settings.tolerance, "frame {f}: {}", done.residual);
+    }
+    assert!(a.settings.deadline.is_none() && !a.settings.relax && a.settings.give_up.is_none(), "the caller's settings are back");
+
+    let mut e = rooted_mushroom();
+    e.settings.integrator = Integrator::Symplectic;
+    e.settings.dt = 1e-4;
+    let mut f = e.clone();
+    let done = e.advance(FRAME, &Budget::converge()).unwrap();
+    assert_eq!(done.steps, 167);
+    f.step_n(167).unwrap();
+    assert_eq!(e.bodies[0].positions(), f.bodies[0].positions());
+}
+
+/// A step whose deadline has passed stops after its first Newton iteration whose iterate is
+/// within the budget's accuracy, says so, and reports that accuracy: on the hard pull of
+/// `tests/implicit.rs` (2 m in 0.4 s at ω = 600 1/s), where converged steps take several.
+#[test]
+fn past_its_deadline_a_step_ends_at_the_first_iterate_within_its_accuracy() {
+    let (mut a, pull) = pulled_sphere();
+    let mut converged_newton = 0;
+    let mut b = a.clone();
+    let budget = Budget::real_time(0.0, late);
+    let accept = budget.real_time.unwrap().min_accuracy;
+    for s in 0..40 {
+        a.bodies[0].set_targets(&pull(s)).unwrap();
+        b.bodies[0].set_targets(&pull(s)).unwrap();
+        let done = a.advance(FRAME, &budget).unwrap();
+        let it = a.bodies[0].solver_iterations();
+        assert!(it.residual <= accept, "step {s}: accepted at {} > {accept}", it.residual);
+        assert_eq!(done.residual, it.residual);
+        if it.early {
+            assert_eq!(done.early, 1);
+        } else {
+            // Converged before the deadline was looked at again: within the tolerance.
+            assert!(it.residual <= a.settings.tolerance, "step {s}");
+        }
+        b.advance(FRAME, &Budget::converge()).unwrap();
+        converged_newton += b.bodies[0].solver_iterations().newton;
+        assert!(a.bodies[0].is_finite());
+    }
+    assert!(converged_newton > 40, "the converged pull takes more than one Newton iteration a step ({converged_newton})");
+}
+
+/// Anytime steps lose energy as converged ones do and come to rest where they do. The sphere
+/// dropped 0.5 m onto the ground, every step stopped at its first Newton iterate within
+/// `MIN_ACCURACY` (the worst budget): the total energy (kinetic, elastic, gas, gravity) never
+/// rises above where it started — nothing but gravity does work, the ground takes energy
+/// (inelastic) and backward Euler damps, so a rise would be the solver's own energy — within
+/// 1e-6 of the sphere's weight times its size (the converged step's rounding; the anytime
+/// step's error is a smaller move, which damps more). After 4 s both rest: the top's height and
+/// the gas volume agree within 1 % (the accuracy goal for real-time frames).
+#[test]
+fn anytime_steps_of_a_drop_lose_energy_and_rest_where_converged_steps_do() {
+    let mut any = dropped_sphere();
+    let mut conv = any.clone();
+    let e0 = any.total_energy();
+    let scale = 1.0 * 9.81 * 1.0;
+    let budget = Budget::real_time(0.0, late);
+    let mut early = 0;
+    for f in 0..240 {
+        early += any.advance(FRAME, &budget).unwrap().early;
+        conv.advance(FRAME, &Budget::converge()).unwrap();
+        let e = any.total_energy();
+        assert!(e <= e0 + 1e-6 * scale, "frame {f}: energy {e} above the start's {e0}");
+        assert!(lowest(&any) > -0.01, "frame {f}: through the ground ({})", lowest(&any));
+    }
+    assert!(early > 20, "the drop's steps were stopped early ({early})");
+    let (ha, hc) = (highest(&any), highest(&conv));
+    let (va, vc) = (any.stats(0).volume, conv.stats(0).volume);
+    assert!((ha - hc).abs() <= 0.01 * hc, "height {ha} against {hc}");
+    assert!((va - vc).abs() <= 0.01 * vc, "volume {va} against {vc}");
+}
+
+/// `stable_dt` is the Courant-like bound of its documentation: for a sphere of 642 vertices of
+/// 1/642 kg with springs only (k = 100 N/m, c_s = 0.1 N·s/m), ω² = 12 k / m, 0.3 · 2/ω =
+/// 2.16e-3 s and the damping's 0.3 · 2 m / (24 c_s) = 3.9e-4 s: the damping's, rounded down to
+/// 2e-4 s; forward Euler a quarter of it, 9.75e-5 s, rounded down to 5e-5 s; none for the
+/// implicit integrator. And the symplectic
+/// steps it gives keep a swirled ball's energy bounded (it oscillates, within 1 %).
+#[test]
+fn the_stable_step_keeps_an_explicit_body_bounded() {
+    let mat = Material { stiffness: 100.0, spring_damping: 0.1, ..bare() };
+    let mut body = sphere_body(3, 1.0, mat);
+    swirl(&mut body, 0.5);
+    let mut w = alone(body, still());
+    let m = 1.0 / 642.0;
+    let by_damping: f64 = 0.3 * 2.0 * m / (12.0 * 0.2);
+    assert!((by_damping - 3.9e-4).abs() < 1e-5);
+    assert_eq!(w.stable_dt(Integrator::Symplectic), Some(2e-4));
+    assert_eq!(w.stable_dt(Integrator::Euler), Some(5e-5));
+    assert_eq!(w.stable_dt(Integrator::Implicit), None);
+    w.settings.dt = w.stable_dt(Integrator::Symplectic).unwrap();
+    let e0 = w.total_energy();
+    for _ in 0..60 {
+        w.advance(FRAME, &Budget::converge()).unwrap();
+        assert!(w.total_energy() <= 1.01 * e0);
+    }
+}
+
+thread_local! { static ASKED: Cell<u32> = const { Cell::new(0) }; }
+/// An interrupt that answers yes from its fifth question on (mid-solve: a step asks once per
+/// Newton iteration and once per conjugate-gradient iteration).
+fn fifth() -> bool {
+    ASKED.with(|a| {
+        a.set(a.get() + 1);
+        a.get() >= 5
+    })
+}
+
+/// An interrupted step is abandoned with the world exactly as before it (the page's Undo or
+/// new model never waits for a slow step, and loses nothing); the same step asked again without
+/// the interrupt is the step it would have been.
+#[test]
+fn an_interrupted_step_leaves_the_world_as_it_was() {
+    let (mut a, pull) = pulled_sphere();
+    a.bodies[0].set_targets(&pull(12)).unwrap();
+    let mut b = a.clone();
+    let (x, v) = (a.bodies[0].positions().to_vec(), a.bodies[0].velocities().to_vec());
+    let time = a.time();
+    a.settings.interrupt = Some(softsculpt::world::Interrupt(fifth));
+    let e = a.advance(FRAME, &Budget::converge()).expect_err("interrupted");
+    assert!(matches!(e.error, softsculpt::SimError::Interrupted { .. }), "{e}");
+    assert_eq!(a.bodies[0].positions(), &x[..]);
+    assert_eq!(a.bodies[0].velocities(), &v[..]);
+    assert_eq!(a.time(), time);
+    a.settings.interrupt = None;
+    a.advance(FRAME, &Budget::converge()).unwrap();
+    b.advance(FRAME, &Budget::converge()).unwrap();
+    assert_eq!(a.bodies[0].positions(), b.bodies[0].positions());
+}
