@@ -572,7 +572,10 @@ export class Document {
     // A brush keeps what it painted and the state of those vertices; a drag moves everything.
     this.strokeScope = s.tool === 'grab' || s.tool === 'press' ? 'all' : 'touched';
     this.stroke.start(this.strokeBody());
-    if (this.stroke.path(this.strokeBody()) && this.implicit) this.pace.brace();
+    // Converged steps brace for a grab in substeps (`pace.ts`); time-limited ones need not: a
+    // step whose Newton solve wanders is accepted at its first iterate within the minimum
+    // accuracy, and four substeps would cost four times the frame's budget.
+    if (this.stroke.path(this.strokeBody()) && this.implicit && !this.timeLimited) this.pace.brace();
     if (this.stroke.paintsBodyData) this.bodyVersion++;
   }
   strokeMove(point: Vec3 | null, inverted: boolean, pressure?: number): void {
@@ -719,8 +722,11 @@ export class Document {
    * wall-clock time from now for implicit solves; < 0 clears it (every step to the tolerance).
    */
   setDeadline(seconds: number): void {
+    if (seconds >= 0) this.timeLimited = true;
     if (seconds < 0 || this.implicit) this.world.setDeadline(seconds);
   }
+  /** The steps run under a solve budget (the page's ticks: `setDeadline`), not to convergence. */
+  private timeLimited = false;
 
   /** The largest relative residual an implicit step was accepted at since `takeAccuracy`. */
   private accuracy = 0;
