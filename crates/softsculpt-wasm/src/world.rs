@@ -409,6 +409,26 @@ pub extern "C" fn ss_advance(w: u32, frame_dt: f64, seconds: f64, min_accuracy: 
     })
 }
 
+/// `World::stable_dt`: the largest stable step (s) of the explicit integrator `name` for every
+/// body of the world; 0 for `implicit` (stable at any step); −1 on error (set).
+///
+/// # Safety
+/// `name` must point to `len` bytes.
+#[no_mangle]
+pub unsafe extern "C" fn ss_stable_dt(w: u32, name: *const u8, len: usize) -> f64 {
+    let out = text(name, len, "the integrator").and_then(|n| {
+        let integrator = softsculpt::Integrator::from_name(n).ok_or_else(|| Fail::usage(format!("no integrator '{n}' (one of {})", softsculpt::Integrator::NAMES.join(", "))))?;
+        with_world(w, |h| Ok(h.world.stable_dt(integrator).unwrap_or(0.0)))
+    });
+    match out {
+        Ok(dt) => dt,
+        Err(e) => {
+            crate::fail(e);
+            -1.0
+        }
+    }
+}
+
 /// The anytime step's deadline for the steps that follow (`WorldSettings::deadline`): `seconds`
 /// of wall-clock time from now, a step past it accepted at a relative residual of `accept`
 /// (≤ 0: the core's `MIN_ACCURACY`); `seconds` < 0 clears it (every step to the tolerance).

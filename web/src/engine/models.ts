@@ -71,63 +71,12 @@ export function dtFor(world: World, b: number, integrator: string): number {
   return integrator === 'implicit' ? FRAME_DT : stableDt(world, b, integrator);
 }
 
-function minMass(world: World, b: number): number {
-  return world.body(b).masses.reduce((a, m) => Math.min(a, m), Infinity);
-}
-
 /**
- * Forward Euler's share of that step. Its amplification on an undamped mode of frequency ω is
- * √(1 + ω² dt²) > 1 at any dt: it is stable only where damping outweighs that, dt ≲ 2 γ / ω²
- * for a mode damped at rate γ — and the skin's transverse (wrinkling) modes get no spring
- * damping (it acts along the springs), only the viscous c. Measured: the modeler's resting
- * mushroom switched to Euler at the symplectic step (5e-4 s) grew a mode ~8× a second from 6 s
- * on (6.5e-5 J at 10 s; a new-user trial saw 3 m/s and 0.2 J), while at 2e-4 and 1e-4 s it
- * stayed at rest (test/explicit.test.ts); natively, from the unsettled mushroom, 5e-4 s still
- * moved at 0.09 m/s after 4 s, 2.5e-4 s settled. A quarter leaves a margin of two over that.
+ * The largest stable time step (s) of an explicit integrator for the world's bodies: the core's
+ * `World::stable_dt` (crates/softsculpt/src/world/advance.rs, docs/model.md), the one rule the
+ * page and the core share. `_b` is kept for the callers' sake: the step is the world's, so every
+ * body's bound counts.
  */
-const EULER_SHARE = 0.25;
-
-/**
- * The hinges' share of the stiffness in `stableDt` (N/m, as if springs): their Gauss–Newton
- * matrix D w ∇θ ∇θᵀ (crates/softsculpt/src/body/hinges.rs) bounded by Gershgorin on a vertex of
- * a near-equilateral mesh of shortest edge h: |∇θ| ≤ 2/(√3 h) at each of a hinge's four
- * vertices, w = 2/√3, 12 hinges around a vertex: ω² ≤ 12 · D (2/√3)(2/(√3 h))(4 · 2/(√3 h)) / m
- * = 74 D / (h² m), against 12 k / m for springs: k_h = 6.2 D / h² (it grows 4× per
- * subdivision: bending limits explicit steps as h², where the implicit step does not care).
- */
-function hingeStiffness(world: World, b: number): number {
-  const d = (world.params(b).rigidity as number | undefined) ?? 0;
-  if (!(d > 0)) return 0;
-  const h = world.body(b).rest.reduce((a, l) => (l > 0 ? Math.min(a, l) : a), Infinity);
-  return Number.isFinite(h) ? (6.2 * d) / (h * h) : 0;
-}
-
-/**
- * The largest stable time step for body `b` (explicit methods need dt ≲ 2/ω with ω² ≈ 12 k / m,
- * and dt ≲ 2 m / (12 cs) for the spring damping), with a safety factor of 0.3 (and
- * [`EULER_SHARE`] of that for forward Euler), at most 1 ms, a round number.
- */
-export function stableDt(world: World, b: number, integrator = 'symplectic'): number {
-  const p = world.params(b);
-  const m = minMass(world, b);
-  const k = (p.stiffness as number) + (p.bending as number) + hingeStiffness(world, b), cs = 2 * (p.spring_damping as number);
-  const omega = Math.sqrt((12 * k) / m);
-  const limits = [1e-3, 0.3 * (2 / omega)];
-  if (cs > 0) limits.push((0.3 * 2 * m) / (12 * cs));
-  // The hinges' damping D w τ θ̇ (τ = c_s / k, core: body/hinges.rs) like the springs' c_s: a
-  // mode of ω_h² = 12 k_h / m damped at τ ω_h² / 2 needs dt ≲ 2 / (τ ω_h²). Forward Euler on
-  // such a mode (amplification √((1 − γ dt)² + ω² dt²), γ = (c + τ ω²) / 2) is stable for
-  // dt ≤ 2γ / (ω² + γ²) ≈ τ / (1 + τ² ω² / 4) where τ ω² dominates, else only while
-  // dt ≤ c / ω_h² (the viscous c alone; [`EULER_SHARE`] leaves a margin of four on both).
-  const kh = hingeStiffness(world, b);
-  if (kh > 0) {
-    const w2 = (12 * kh) / m, tau = (p.stiffness as number) > 0 ? (p.spring_damping as number) / (p.stiffness as number) : 0;
-    if (tau > 0) limits.push((0.3 * 2) / (tau * w2));
-    // (Neither τ nor c: forward Euler has no stable step on these modes; the others' limit stands.)
-    const euler = Math.max(tau / (1 + (tau * tau * w2) / 4), (p.damping as number) / w2);
-    if (integrator === 'euler' && euler > 0) limits.push(euler);
-  }
-  const dt = Math.min(...limits) * (integrator === 'euler' ? EULER_SHARE : 1);
-  const ten = Math.pow(10, Math.floor(Math.log10(dt)));
-  return [5, 2, 1].map((f) => f * ten).find((v) => v <= dt) ?? ten;
+export function stableDt(world: World, _b: number, integrator = 'symplectic'): number {
+  return world.stableDt(integrator);
 }

@@ -309,6 +309,12 @@ export class World {
    * `seconds` < 0 clears it (every step to the tolerance).
    */
   setDeadline(seconds: number, accept = 0): void { this.call((w) => raw().ss_set_deadline(w, seconds, accept)); }
+  /** The largest stable step (s) of an explicit integrator for every body (the core's `World::stable_dt`); 0 for implicit. */
+  stableDt(integrator: string): number {
+    const dt = withBytes(encode(integrator), (p, n) => raw().ss_stable_dt(this.handle, p, n));
+    if (dt < 0) throw new EngineError(errorJson());
+    return dt;
+  }
   /** The relative residual body `b`'s last implicit step was accepted at (0 for explicit steps). */
   accuracy(b: number): number {
     const r = raw().ss_body_accuracy(this.handle, b);
