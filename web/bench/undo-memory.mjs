@@ -11,7 +11,7 @@ import { fileURLToPath } from 'node:url';
 const strokes = Number(process.argv[2] ?? 100);
 const level = Number(process.argv[3] ?? 7);
 const wasm = readFileSync(fileURLToPath(new URL('../public/softsculpt.wasm', import.meta.url)));
-const { instance } = await WebAssembly.instantiate(wasm, { env: { ss_now: () => performance.now() } });
+const { instance } = await WebAssembly.instantiate(wasm, { env: { ss_now: () => performance.now(), ss_interrupted: () => 0 } });
 const e = instance.exports;
 const ok = (r) => {
   if (r < 0) throw new Error(new TextDecoder().decode(new Uint8Array(e.memory.buffer, e.ss_error_ptr(), e.ss_error_len())));

@@ -12,7 +12,7 @@ const steps = Number(process.argv[3] ?? 300);
 const [mode, tolText] = (process.argv[4] ?? 'explicit').split(':');
 const implicit = mode === 'implicit';
 const wasm = readFileSync(fileURLToPath(new URL('../public/softsculpt.wasm', import.meta.url)));
-const { instance } = await WebAssembly.instantiate(wasm, { env: { ss_now: () => performance.now() } });
+const { instance } = await WebAssembly.instantiate(wasm, { env: { ss_now: () => performance.now(), ss_interrupted: () => 0 } });
 const e = instance.exports;
 const native = fileURLToPath(new URL('../../target/release/softsculpt', import.meta.url));
 const fail = () => {

@@ -11,7 +11,7 @@ import { tookInterrupt, useInterrupts } from '../src/engine/wasm';
 
 beforeAll(loadEngine);
 
-/** The standard workload at 10,242 vertices on implicit 1/60 s steps to 1e-9: a step of ~0.2 s in wasm here (4 Newton iterations). */
+/** The standard workload at 10,242 vertices on implicit 1/60 s steps to 1e-9: a step of 0.2–0.35 s in wasm here (4 Newton iterations). */
 function slowWorld(): World {
   const w = World.workload(5);
   w.setParam(0, 'integrator', 'implicit');
@@ -54,7 +54,7 @@ it('a command sent during a long step ends it at once, the world as before the s
   await thread.terminate();
   console.log(`whole step ${whole.toFixed(0)} ms, interrupted after ${cut.toFixed(0)} ms`);
   expect(cause).toBe('interrupted');
-  // Asked between iterations (a conjugate-gradient iteration here is a few ms of the ~1 s
+  // Asked between iterations (a conjugate-gradient iteration here is ~1 ms of the 0.2–0.35 s
   // step): it ends soon after the command, well before the step would have.
   expect(cut).toBeLessThan(whole / 2);
   expect(b.snapshot()).toEqual(before);

@@ -147,12 +147,15 @@ pub extern "C" fn ss_body_newton_iterations(w: u32, b: u32) -> i32 {
     })
 }
 
-/// The relative residual ‖r‖/‖r_0‖ body `b`'s last implicit step was accepted at (0 for the
-/// explicit integrators; above the tolerance when its deadline stopped it: the anytime step),
-/// or −1 (error set).
+/// The relative residual ‖r‖/‖r_0‖ body `b`'s last implicit step was accepted at when its
+/// deadline stopped it short of the tolerance (the anytime step); 0 for a step that converged
+/// (or an explicit one); −1 (error set).
 #[no_mangle]
 pub extern "C" fn ss_body_accuracy(w: u32, b: u32) -> f64 {
-    match with_world(w, |h| Ok(h.world.bodies[h.body(b)?].solver_iterations().residual)) {
+    match with_world(w, |h| {
+        let it = h.world.bodies[h.body(b)?].solver_iterations();
+        Ok(if it.early { it.residual } else { 0.0 })
+    }) {
         Ok(r) => r,
         Err(e) => {
             crate::fail(e);

@@ -71,7 +71,7 @@ fn a_frame_under_converge_is_its_steps_bit_for_bit() {
         // The residual reported is what the step converged to.
         assert!(done.residual <= a.settings.tolerance, "frame {f}: {}", done.residual);
     }
-    assert!(a.settings.deadline.is_none() && !a.settings.relax && a.settings.give_up.is_none(), "the caller's settings are back");
+    assert!(c.settings.deadline.is_none() && !c.settings.relax && c.settings.give_up.is_none(), "the caller's settings are back after a real-time frame");
 
     let mut e = rooted_mushroom();
     e.settings.integrator = Integrator::Symplectic;
@@ -89,7 +89,7 @@ fn a_frame_under_converge_is_its_steps_bit_for_bit() {
 #[test]
 fn past_its_deadline_a_step_ends_at_the_first_iterate_within_its_accuracy() {
     let (mut a, pull) = pulled_sphere();
-    let mut converged_newton = 0;
+    let (mut converged_newton, mut newton, mut early) = (0, 0, 0);
     let mut b = a.clone();
     let budget = Budget::real_time(0.0, late);
     let accept = budget.real_time.unwrap().min_accuracy;
@@ -98,6 +98,7 @@ fn past_its_deadline_a_step_ends_at_the_first_iterate_within_its_accuracy() {
         b.bodies[0].set_targets(&pull(s)).unwrap();
         let done = a.advance(FRAME, &budget).unwrap();
         let it = a.bodies[0].solver_iterations();
+        (newton, early) = (newton + it.newton, early + done.early);
         assert!(it.residual <= accept, "step {s}: accepted at {} > {accept}", it.residual);
         assert_eq!(done.residual, it.residual);
         if it.early {
@@ -111,6 +112,9 @@ fn past_its_deadline_a_step_ends_at_the_first_iterate_within_its_accuracy() {
         assert!(a.bodies[0].is_finite());
     }
     assert!(converged_newton > 40, "the converged pull takes more than one Newton iteration a step ({converged_newton})");
+    // The deadline did stop steps, and saved iterations: a step the deadline stops is accepted
+    // at its first iterate within the accuracy, so it takes at most the converged step's.
+    assert!(early > 0 && newton < converged_newton, "{early} steps stopped early, {newton} Newton iterations against {converged_newton}");
 }
 
 /// Anytime steps lose energy as converged ones do and come to rest where they do. The sphere

@@ -73,6 +73,8 @@ let counters: Int32Array | null = null;
 export function useInterrupts(shared: SharedArrayBuffer): void { counters = new Int32Array(shared); }
 /** The worker takes an interrupting command (the running steps need no longer make way). */
 export function tookInterrupt(): void { if (counters) Atomics.add(counters, 1, 1); }
+/** A command was lost on the way (it could not be read): count every one sent as taken, so no step is abandoned for it forever. */
+export function settleInterrupts(): void { if (counters) Atomics.store(counters, 1, Atomics.load(counters, 0)); }
 
 /**
  * What the engine imports: the clock its anytime steps' deadlines are read on (ms), and

@@ -315,7 +315,7 @@ export class World {
     if (dt < 0) throw new EngineError(errorJson());
     return dt;
   }
-  /** The relative residual body `b`'s last implicit step was accepted at (0 for explicit steps). */
+  /** The relative residual body `b`'s last implicit step was accepted at when its deadline stopped it (0: it converged, or explicit). */
   accuracy(b: number): number {
     const r = raw().ss_body_accuracy(this.handle, b);
     if (r < 0) throw new EngineError(errorJson());

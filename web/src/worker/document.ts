@@ -728,13 +728,13 @@ export class Document {
   /** The steps run under a solve budget (the page's ticks: `setDeadline`), not to convergence. */
   private timeLimited = false;
 
-  /** The largest relative residual an implicit step was accepted at since `takeAccuracy`. */
+  /** The largest relative residual an implicit step stopped by its deadline was accepted at since `takeAccuracy`. */
   private accuracy = 0;
-  /** That residual, if some step was stopped by its deadline short of the tolerance (else 0: every step converged); starts again. */
+  /** That residual (0: every step converged); starts again. */
   takeAccuracy(): number {
     const a = this.accuracy;
     this.accuracy = 0;
-    return a > (this.world.params(0).tolerance as number) ? a : 0;
+    return a;
   }
 
   /** Steps that let go of hinges to finish (since the model was opened: reset in `newModel`). */

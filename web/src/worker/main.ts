@@ -4,6 +4,7 @@
 import type { Command, Reply } from '../protocol';
 import { Service } from './service';
 import { loadAutosave, saveAutosave } from '../storage';
+import { settleInterrupts } from '../engine/wasm';
 
 /** The worker's global scope, as far as it is used here. */
 const scope = self as unknown as {
@@ -21,7 +22,7 @@ const service = new Service({
 });
 
 scope.onmessage = (ev: MessageEvent<Command>) => { void service.handle(ev.data); };
-scope.onmessageerror = () => service.message('a command to the simulation was lost (it could not be read); please try again', 'error');
+scope.onmessageerror = () => { settleInterrupts(); service.message('a command to the simulation was lost (it could not be read); please try again', 'error'); };
 
 // About 60 ticks a second; a tick that takes longer (slow motion) is followed at once by the next.
 const FRAME_MS = 16;

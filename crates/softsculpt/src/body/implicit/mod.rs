@@ -436,6 +436,9 @@ impl Implicit {
             let stop = || deadline.is_some_and(|d| d.passed()) || w.interrupt.is_some_and(|i| i.asked());
             let (linear, products) = self.cg.solve(th, &mut self.sys, &mut self.mg, m, &self.r, eta, upfront, &stop, &mut self.delta);
             (it.linear, products_last) = (it.linear + linear, products);
+            if w.interrupt.is_some_and(|i| i.asked()) {
+                return Err(Fault::Interrupted);
+            }
             it.newton += 1;
             k += 1;
             gyprev = self.conjugate(k, gyprev);
