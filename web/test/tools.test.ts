@@ -2,7 +2,7 @@ import { beforeAll, describe, expect, it } from 'vitest';
 import { loadEngine } from './setup';
 import { falloff, inflateFactor, targetSpring, vertexNormals, verticesAround } from '../src/tools/brush';
 import { placeOnGround, MODELS } from '../src/models';
-import { addModel, stableDt, useDefaults } from '../src/engine/models';
+import { addModel, useDefaults } from '../src/engine/models';
 import { World } from '../src/engine/world';
 
 beforeAll(loadEngine);
@@ -92,7 +92,7 @@ describe('models', () => {
     const dt1 = useDefaults(w, 0);
     expect(w.params(0).dt).toBe(dt1);
     w.setParam(0, 'stiffness', 1e5);
-    expect(stableDt(w, 0)).toBeLessThan(dt1);
+    expect(w.stableDt('symplectic')).toBeLessThan(dt1);
     w.free();
   });
 });

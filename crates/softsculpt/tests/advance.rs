@@ -204,3 +204,15 @@ fn an_interrupted_step_leaves_the_world_as_it_was() {
     b.advance(FRAME, &Budget::converge()).unwrap();
     assert_eq!(a.bodies[0].positions(), b.bodies[0].positions());
 }
+
+/// Explicit steps under a real-time budget run while it lasts, at least one: with no time at
+/// all (the `late` clock) a frame of 167 steps takes one, and says so in `simulated`.
+#[test]
+fn explicit_steps_under_an_exhausted_budget_take_one_step_and_say_so() {
+    let mut w = rooted_mushroom();
+    w.settings.integrator = Integrator::Symplectic;
+    w.settings.dt = 1e-4;
+    let done = w.advance(FRAME, &Budget::real_time(0.0, late)).unwrap();
+    assert_eq!(done.steps, 1);
+    assert!((done.simulated - 1e-4).abs() < 1e-15);
+}

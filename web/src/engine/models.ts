@@ -66,17 +66,11 @@ export function useDefaults(world: World, b: number): number {
   return FRAME_DT;
 }
 
-/** The step an integrator gets when chosen: 1/60 s implicit, else the stable explicit step. */
-export function dtFor(world: World, b: number, integrator: string): number {
-  return integrator === 'implicit' ? FRAME_DT : stableDt(world, b, integrator);
+/**
+ * The step an integrator gets when chosen: 1/60 s implicit, else the stable explicit step of
+ * every body (the core's `World::stable_dt`, docs/model.md).
+ */
+export function dtFor(world: World, integrator: string): number {
+  return integrator === 'implicit' ? FRAME_DT : world.stableDt(integrator);
 }
 
-/**
- * The largest stable time step (s) of an explicit integrator for the world's bodies: the core's
- * `World::stable_dt` (crates/softsculpt/src/world/advance.rs, docs/model.md), the one rule the
- * page and the core share. `_b` is kept for the callers' sake: the step is the world's, so every
- * body's bound counts.
- */
-export function stableDt(world: World, _b: number, integrator = 'symplectic'): number {
-  return world.stableDt(integrator);
-}

@@ -13,7 +13,7 @@
 import { initEngine } from '../engine/wasm';
 import { World, type DeltaScope, type FreezeReport, type ParamInfo, type ParamValue, type RemeshReport } from '../engine/world';
 import { sig3 } from '../format';
-import { addModel, dtFor, stableDt, useDefaults } from '../engine/models';
+import { addModel, dtFor, useDefaults } from '../engine/models';
 import { stepSplitting } from './split';
 import { NEWTON_MOST, NEWTON_STALLED, Pace, stepPaced } from './pace';
 import { History, travel } from '../history';
@@ -343,7 +343,7 @@ export class Document {
     // Another integrator gets a step it is stable at: 1/60 s implicit, else the explicit limit.
     if (ok && id === 'integrator') {
       this.pace.reset();
-      this.setDt(dtFor(this.world, 0, value as string));
+      this.setDt(dtFor(this.world, value as string));
       this.settings.substeps = Math.max(1, Math.round(1 / 60 / this.settings.dt));
       this.hooks.message(`${value}: dt = ${fmt(this.settings.dt)} s`);
     }
@@ -554,7 +554,7 @@ export class Document {
       // Implicit steps keep dt (the parameters do not depend on the resolution); an explicit
       // integrator needs the finer mesh's stable step.
       const integrator = String(this.world.params(0).integrator);
-      if (integrator !== 'implicit') this.setDt(Math.min(this.settings.dt, ...this.everyBody.map((b) => stableDt(this.world, b, integrator))));
+      if (integrator !== 'implicit') this.setDt(Math.min(this.settings.dt, this.world.stableDt(integrator)));
       this.settings.substeps = Math.max(1, Math.round(1 / 60 / this.settings.dt));
     });
   }
@@ -655,7 +655,7 @@ export class Document {
       const integrator = String(this.world.params(0).integrator);
       this.hooks.message(explainStop(e, {
         integrator, dt: this.settings.dt, changes: this.changes, groundUnderBody: this.groundUnderBody,
-        stableDt: integrator === 'implicit' ? undefined : stableDt(this.world, 0, integrator), rewoundTo,
+        stableDt: integrator === 'implicit' ? undefined : this.world.stableDt(integrator), rewoundTo,
       }), 'error');
       return false;
     }
