@@ -3,12 +3,13 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { readFileSync } from 'node:fs';
+import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import validator from 'gltf-validator';
 import { browserSuite, inspect, openModeler, settle, shot } from './harness.mjs';
+import { sliverObj } from './icosphere.mjs';
 
 const suite = browserSuite();
 const FIXTURES = fileURLToPath(new URL('./fixtures/', import.meta.url));
@@ -129,6 +130,31 @@ test('Remesh keeps an imported 8-vertex tower its shape: made at a shorter edge,
   assert.deepEqual(errors, []);
   await shot(page, 'import-09-tower-remeshed');
   await ctx.close();
+});
+
+test('a file of long thin triangles: the dialog measures them and offers Remesh, checked; Enter remeshes it, it runs, and Undo gives the file back', async () => {
+  const { page, errors } = await openModeler(suite.browser, suite.server.url);
+  const file = join(mkdtempSync(join(tmpdir(), 'slivers-')), 'slivers.obj');
+  writeFileSync(file, sliverObj(3));
+  await pick(page, file);
+  const text = await page.locator('.import-dialog').innerText();
+  assert.match(text, /Smallest angle 0\.\d°, shortest edge \d+ % of the mean/);
+  assert.match(text, /Remesh to even triangles \(recommended\) — long thin triangles make stiff, slow springs/);
+  assert.equal(await page.locator('.import-dialog input[name=remesh]').isChecked(), true);
+  await shot(page, 'import-07-slivers-dialog');
+  await page.keyboard.press('Enter');
+  await page.waitForFunction(() => /^remeshed: /.test(window.softsculpt.lastMessage()) && !window.softsculpt.busy(), null, { timeout: 60000 });
+  // 642 + 640 vertices as in the file; remeshed at its mean edge, about the icosphere's 642 again.
+  const n = await inspect(page, () => window.softsculpt.vertexCount());
+  assert.ok(n < 1282, `remeshed to ${n} vertices`);
+  // It runs: a second of simulated time passes (waiting on simulated time, not the clock).
+  const t0 = await inspect(page, () => window.softsculpt.stats().time);
+  await page.waitForFunction((t) => window.softsculpt.stats().time > t + 1, t0, { timeout: 60000 });
+  await shot(page, 'import-08-slivers-remeshed');
+  await page.keyboard.press('Control+z');
+  await page.waitForFunction(() => window.softsculpt.vertexCount() === 1282, null, { timeout: 30000 });
+  assert.deepEqual(errors, []);
+  await page.context().close();
 });
 
 test('a Z-up STL stands upright at its own size, fills the view, and its export comes back the same', async () => {

@@ -7,6 +7,7 @@ import { guessUp, headerText, isClosed, needsAnswer, place, question, REFERENCE_
 import { exportHeader, exportShape, shapeMesh } from '../src/io/export';
 import { animationGlb, World } from '../src/engine/world';
 import { addModel } from '../src/engine/models';
+import { SLOW_FRAME_MS, verdict } from '../src/worker/trial';
 
 beforeAll(loadEngine);
 
@@ -296,3 +297,26 @@ function geometryOf(p: Float64Array): THREE.BufferGeometry {
   geo.setAttribute('position', new THREE.BufferAttribute(Float32Array.from(p), 3));
   return geo;
 }
+
+describe('the import trial (worker/trial.ts)', () => {
+  const even = { minAngle: 40, smallShare: 0, shortest: 0.6, poor: false };
+  const slivers = { minAngle: 0.8, smallShare: 0.06, shortest: 0.03, poor: false };
+  it('recommends Remesh for slivers that made the trial slow, with the reason, and not for a large even mesh', () => {
+    const v = verdict(slivers, 1, 4 * SLOW_FRAME_MS);
+    expect(v.remesh).toBe(true);
+    expect(v.why).toMatch(/took \d+ ms .*long thin triangles \(smallest angle 0\.8°, shortest edge 3 % of the mean\)/);
+    expect(verdict(slivers, 0, 500).why).toMatch(/did not finish/);
+    // Slivers that cost nothing (the trial fast), or an even mesh that is merely large: no.
+    expect(verdict(slivers, 6, SLOW_FRAME_MS / 4).remesh).toBe(false);
+    expect(verdict(even, 0, 500).remesh).toBe(false);
+    // Triangles the core calls poor (many small angles): offered when slow, only named when fast.
+    expect(verdict({ ...even, poor: true, smallShare: 0.3 }, 0, 500)).toMatchObject({ remesh: true, reason: 'uneven triangles make uneven, slow springs' });
+    expect(verdict({ ...even, poor: true, smallShare: 0.3 }, 6, 1)).toMatchObject({ remesh: false, why: 'uneven triangles (30 % of angles below 25°)' });
+  });
+  it('asks about a file whose only open question is Remesh', () => {
+    const q = { name: 'a.obj', format: 'OBJ', declaredUp: null, guessedUp: 'y' as Up, guessReason: '', upSure: true, pieces: [{ vertices: 8, faces: 12, closed: true }], size: [1, 1, 1] as [number, number, number] };
+    expect(needsAnswer(q)).toBe(false);
+    expect(needsAnswer({ ...q, cost: verdict(slivers, 0, 500) })).toBe(true);
+    expect(needsAnswer({ ...q, cost: verdict(even, 0, 500) })).toBe(false);
+  });
+});

@@ -102,6 +102,8 @@ describe('worker service', () => {
     const old = h.tick()!;
     await h.send({ type: 'subdivide' });
     expect(h.messages().at(-1)).toBe('subdivided: 362 → 1,442 vertices, the shape kept under its weight (Ctrl+Z undoes)');
+    // Within what runs in real time here: nothing said before it ran.
+    expect(h.messages().filter((m) => /^subdividing to/.test(m))).toEqual([]);
     const f = h.tick()!;
     expect(f.topology!.vertexCount).toBe(1442);
     expect(f.positions.length).toBe(3 * 1442);
@@ -110,6 +112,11 @@ describe('worker service', () => {
     expect(h.service.frames.allocated).toBe(1);
     h.giveBack(f);
     expect(h.tick()!.positions.buffer).toBe(f.positions.buffer);
+    // Past it, what to expect is said before it runs (V + E = 4V − 6 vertices of a closed mesh).
+    await h.send({ type: 'subdivide' });
+    const said = h.messages().slice(-2);
+    expect(said[0]).toMatch(/^subdividing to about 5,762 vertices: past ~1,500 the steps here no longer converge in real time/);
+    expect(said[1]).toMatch(/^subdivided: 1,442 → 5,762 vertices/);
   });
 
   it('grab: a stroke pulls the picked vertices toward the cursor, one undo entry per stroke', async () => {
@@ -450,6 +457,56 @@ function cubeObj(s: number, dx: number, base: number): string {
 }
 
 describe('importing', () => {
+  /** The built-in sphere as an OBJ; with `slivers`, every other triangle split at a point 1 % of the way from a corner (long thin triangles, edges ~2 % of the mean). */
+  async function sphereObj(slivers: boolean): Promise<string> {
+    const h = await started();
+    await h.send({ type: 'loadBuiltin', name: 'sphere' });
+    const b = h.service.doc.world.body(0);
+    const x = Array.from(b.positions), t = Array.from(b.triangles);
+    const lines: string[] = [];
+    const faces: number[][] = [];
+    for (let f = 0; f < t.length; f += 3) {
+      const [a, c, d] = [t[f], t[f + 1], t[f + 2]];
+      if (!slivers || (f / 3) % 2 !== 0) { faces.push([a, c, d]); continue; }
+      const m = x.length / 3;
+      for (let k = 0; k < 3; k++) x.push(0.98 * x[3 * a + k] + 0.01 * x[3 * c + k] + 0.01 * x[3 * d + k]);
+      faces.push([a, c, m], [c, d, m], [d, a, m]);
+    }
+    for (let i = 0; i < x.length; i += 3) lines.push(`v ${x[i]} ${x[i + 1]} ${x[i + 2]}`);
+    for (const f of faces) lines.push(`f ${f[0] + 1} ${f[1] + 1} ${f[2] + 1}`);
+    return lines.join('\n');
+  }
+
+  it('a mesh of long thin triangles is offered Remesh, checked, with the reason; the answer remeshes it evenly', async () => {
+    const h = await started();
+    await h.send({ type: 'import', name: 'slivers.obj', data: bytes(await sphereObj(true)) });
+    const q = (h.replies.find((r) => r.type === 'importQuestion') as Reply & { type: 'importQuestion' } | undefined)?.question;
+    // Asked although the file leaves nothing else open (one piece, a sure up axis): for Remesh.
+    expect(q?.cost?.remesh).toBe(true);
+    // Split 1 % from a corner: the smallest angle is a few degrees at most, the shortest edge a few % of the mean.
+    expect(q!.cost!.minAngle).toBeLessThan(10);
+    expect(q!.cost!.shortest).toBeLessThan(0.1);
+    expect(q!.cost!.why).toMatch(/long thin triangles/);
+    await h.send({ type: 'importAnswer', answer: { up: q!.guessedUp, pieces: 'each', remesh: true } });
+    expect(h.messages().some((m) => /^imported slivers\.obj/.test(m))).toBe(true);
+    expect(h.messages().at(-1)).toMatch(/^remeshed: .*smallest 0° → \d+°/);
+    // Isotropic remeshing keeps its angles above ~20° (docs/meshing.md): no sliver is left.
+    expect(h.service.doc.world.quality(0).min_angle_deg).toBeGreaterThan(20);
+    // One undo step each: Undo gives back the file's own triangles.
+    await h.send({ type: 'undo' });
+    expect(h.service.doc.world.quality(0).min_angle_deg).toBeLessThan(10);
+  });
+
+  it('an evenly meshed file is not offered Remesh, however long its trial took', async () => {
+    const h = await started();
+    await h.send({ type: 'import', name: 'even.obj', data: bytes(await sphereObj(false)) });
+    const q = (h.replies.find((r) => r.type === 'importQuestion') as Reply & { type: 'importQuestion' } | undefined)?.question;
+    // Imported without a question (one piece, a round shape: Y-up is sure enough), so no Remesh asked for.
+    expect(q).toBeUndefined();
+    expect(h.messages().at(-1)).toMatch(/^imported even\.obj/);
+    expect(h.messages().at(-1)).not.toMatch(/Remesh/);
+  });
+
   it('an open sheet loads cloth-like: no gas, the rest of the defaults, and it drapes on the ground', async () => {
     const h = await started();
     // A flat sheet (thinnest along y): Y-up for sure, imported without a question.

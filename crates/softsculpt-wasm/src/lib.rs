@@ -54,7 +54,7 @@
 //! | `ss_param_table()` | result: the parameter table JSON (`softsculpt::params::table_json`) |
 //! | `ss_move_ground(w, height)` | `World::move_ground`: the ground to `height` m, carrying the bodies standing on it; result `{"moved"}` |
 //! | `ss_remesh(w, b, edge, under_load)` | `World::remesh`: isotropic remeshing to `edge` m (shorter if the shape needs it, or refused), masses and pins carried; result `{"dropped_events", "edge", "requested", "crease_deg", "tries", "distance", "volume_change"}` |
-//! | `ss_quality(w, b)` | `World::quality`: result JSON (smallest angle, share below 25°, mean edge, spread, poor) |
+//! | `ss_quality(w, b)` | `World::quality`: result JSON (smallest angle, share below 25°, shortest and mean edge, spread, poor) |
 //! | `ss_material_presets()` | result: the material presets' names and help (`softsculpt::params::material_presets_json`) |
 //! | `ss_params(w, b)` | result: `{id: value}` of every body and world parameter (null: no ground) |
 //! | `ss_set_param(w, b, id, id_len, json, json_len)` | `World::set_param` with a JSON value (number, [x,y,z], "name", true/false) |

@@ -600,8 +600,8 @@ pub extern "C" fn ss_remesh(w: u32, b: u32, edge: f64, under_load: u32) -> i32 {
 }
 
 /// Body `b`'s triangle quality (`World::quality`); result: JSON with the smallest angle and the
-/// share of angles below 25° (degrees, fraction), the mean edge (m), the edges' spread (σ/mean)
-/// and `poor` (`Quality::is_poor`).
+/// share of angles below 25° (degrees, fraction), the shortest and mean edge (m), the edges'
+/// spread (σ/mean) and `poor` (`Quality::is_poor`).
 #[no_mangle]
 pub extern "C" fn ss_quality(w: u32, b: u32) -> i32 {
     status(|| {
@@ -609,7 +609,7 @@ pub extern "C" fn ss_quality(w: u32, b: u32) -> i32 {
             let q = h.world.quality(i).map_err(sim_fail)?;
             let json = serde_json::json!({
                 "min_angle_deg": q.min_angle_deg, "small_angle_share": q.small_angle_share,
-                "edge_mean": q.edge_mean, "edge_spread": q.edge_spread, "poor": q.is_poor(),
+                "edge_min": q.edge_min, "edge_mean": q.edge_mean, "edge_spread": q.edge_spread, "poor": q.is_poor(),
             });
             set_result(json.to_string().into_bytes());
             Ok(())

@@ -74,6 +74,9 @@ export interface Stats {
 
 export type ParamValue = number | boolean | string | [number, number, number];
 
+/** A body's triangle quality (`World.quality`, the core's `mesh::quality::Quality`). */
+export interface Quality { min_angle_deg: number; small_angle_share: number; edge_min: number; edge_mean: number; edge_spread: number; poor: boolean }
+
 /** What a frame did (`World.advance`, the core's `Advance`). */
 export interface Advance {
   /** Steps taken (a split step counts its pieces), steps split, simulated seconds advanced. */
@@ -382,8 +385,8 @@ export class World {
     this.call((w) => raw().ss_remesh(w, b, edge, underLoad ? 1 : 0));
     return JSON.parse(resultText()) as RemeshReport;
   }
-  /** Body `b`'s triangle quality: smallest angle (°), share of angles below 25°, mean edge (m), spread (σ/mean), poor. */
-  quality(b: number): { min_angle_deg: number; small_angle_share: number; edge_mean: number; edge_spread: number; poor: boolean } {
+  /** Body `b`'s triangle quality: smallest angle (°), share of angles below 25°, shortest and mean edge (m), spread (σ/mean), poor. */
+  quality(b: number): Quality {
     this.call((w) => raw().ss_quality(w, b));
     return JSON.parse(resultText());
   }

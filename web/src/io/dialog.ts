@@ -1,7 +1,9 @@
 // The import dialog: what the engine found in a file (format, size in the file's units, pieces,
 // open surfaces) and the questions the file leaves open — which way is up (offered first: what
 // the format declares, else a guess with its reason) and, for a file of several pieces, one body
-// per piece or the largest only. Enter imports, Escape cancels.
+// per piece or the largest only — and what its triangles will cost to simulate (a trial run,
+// worker/trial.ts), with Remesh checked where they would make it slow. Enter imports, Escape
+// cancels.
 
 import type { ImportAnswer, ImportQuestion } from './import';
 
@@ -23,7 +25,7 @@ const CSS = `
 const esc = (s: string) => s.replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]!);
 const num = (x: number) => x.toPrecision(3);
 
-/** The dialog's HTML for `q` (a form with radio groups `up` and `pieces`). */
+/** The dialog's HTML for `q` (a form with radio groups `up` and `pieces`, and a `remesh` checkbox). */
 export function dialogHtml(q: ImportQuestion): string {
   const p = q.pieces, n = p.length;
   const vertices = p.reduce((s, x) => s + x.vertices, 0), faces = p.reduce((s, x) => s + x.faces, 0);
@@ -46,10 +48,18 @@ export function dialogHtml(q: ImportQuestion): string {
   const cloth = open
     ? `<p class="note">${open === n ? (n === 1 ? 'The surface is' : 'Every piece is') : `${open} of ${n} pieces are`} open (cloth-like): no gas inside ${open === 1 ? 'it' : 'them'}; it hangs and drapes on its springs.</p>`
     : '';
+  const c = q.cost;
+  const trial = c ? (c.frames > 0 ? `a trial frame took ${c.msPerFrame.toFixed(0)} ms` : `a trial frame did not finish in ${(c.msPerFrame / 1000).toFixed(1)} s`) : '';
+  const mesh = c
+    ? `<fieldset><legend>Triangles</legend>
+        <p class="note">Smallest angle ${c.minAngle.toFixed(1)}°, shortest edge ${(100 * c.shortest).toFixed(0)} % of the mean, ${(100 * c.smallShare).toFixed(0)} % of angles below 25°; ${trial} (real time: 16.7 ms a frame).</p>
+        <label><input type="checkbox" name="remesh"${c.remesh ? ' checked' : ''}> Remesh to even triangles${c.remesh ? ' (recommended)' : ''} <span class="why">— ${esc(c.remesh ? c.reason : c.why || 'not needed: the triangles are even enough')}; Undo brings the file's triangles back</span></label>
+      </fieldset>`
+    : '';
   return `<form method="dialog">
     <h2>Import ${esc(q.name)}</h2>
     <div class="note">${esc(q.format)}: ${vertices} vertices, ${faces} faces, ${q.size.map(num).join(' × ')} in the file's units, kept as metres (the view is fitted to it).</div>
-    ${up}${pieces}${cloth}
+    ${up}${pieces}${cloth}${mesh}
     <div class="buttons"><button type="button" value="cancel">Cancel</button><button type="submit" value="import">Import</button></div>
   </form>`;
 }
@@ -85,7 +95,7 @@ export function askImport(q: ImportQuestion): Promise<ImportAnswer | null> {
     form.addEventListener('submit', (ev) => {
       ev.preventDefault();
       const d = new FormData(form);
-      close({ up: d.get('up') === 'z' ? 'z' : 'y', pieces: d.get('pieces') === 'largest' ? 'largest' : 'each' });
+      close({ up: d.get('up') === 'z' ? 'z' : 'y', pieces: d.get('pieces') === 'largest' ? 'largest' : 'each', remesh: d.get('remesh') === 'on' });
     });
     root.querySelector('button[value=cancel]')!.addEventListener('click', () => close(null));
     (form.querySelector('button[type=submit]') as HTMLButtonElement).focus();

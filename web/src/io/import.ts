@@ -37,13 +37,26 @@ export interface ImportQuestion {
   pieces: { vertices: number; faces: number; closed: boolean }[];
   /** Bounding box size (file units, taken as metres). */
   size: Vec3;
+  /** Its triangles and a trial run (worker/trial.ts): whether Remesh is recommended, and why. */
+  cost?: MeshCost;
 }
 
-export interface ImportAnswer { up: Up; pieces: 'each' | 'largest' }
+/** What a file's triangles will cost to simulate (worker/trial.ts: its triangles and a trial run). */
+export interface MeshCost {
+  /** The smallest angle (°), the share of angles below 25°, the shortest edge over the mean edge: the worst piece's. */
+  minAngle: number; smallShare: number; shortest: number;
+  /** Frames the trial finished, and its wall-clock ms per frame (its whole time if none finished). */
+  frames: number; msPerFrame: number;
+  /** Remesh recommended (asked, checked in the dialog); why, in one line with the numbers (also for poor triangles that run fast: '' if even), and in a few words ('' unless recommended). */
+  remesh: boolean; why: string; reason: string;
+}
 
-/** Whether anything is left to ask: the up axis is unsure, or there are several pieces. */
+/** `remesh`: remeshed at once after the import (its own undo step). */
+export interface ImportAnswer { up: Up; pieces: 'each' | 'largest'; remesh?: boolean }
+
+/** Whether anything is left to ask: the up axis is unsure, there are several pieces, or Remesh is recommended. */
 export function needsAnswer(q: ImportQuestion): boolean {
-  return !(q.declaredUp !== null || q.upSure === true) || q.pieces.length > 1;
+  return !(q.declaredUp !== null || q.upSure === true) || q.pieces.length > 1 || q.cost?.remesh === true;
 }
 
 /** (x, y, z) → (x, z, −y): a Z-up file turned Y-up (−90° about x; windings and lengths kept). */

@@ -61,10 +61,19 @@ export async function loadEngine(source: BufferSource | string): Promise<void> {
   await initEngine(source);
 }
 
+/**
+ * Vertices up to which the modeler's steps converge in real time on a machine like this one
+ * (BENCHMARKS.md, "Every frame on time": the mushroom subdivided once, 1,442 vertices, runs in
+ * real time; twice, 5,762, at a quarter of it while grabbed): past it Subdivide says what to expect.
+ */
+export const REAL_TIME_VERTICES = 1_500;
+
 export class Document {
   private w: World | null = null;
   /** An empty world's snapshot: what a new model starts from (no obstacles, default settings). */
   private empty: Uint8Array | null = null;
+  /** The empty world's snapshot (a scratch world for an import's trial, `trial.ts`). */
+  get emptyWorld(): Uint8Array { return this.empty!; }
   /** The open scene, if any (its first body is the active body). */
   private session: SceneSource | null = null;
   readonly history = new History<Entry>({ limit: HISTORY_STEPS, maxBytes: HISTORY_BYTES, size: (e) => e.delta.byteLength });
@@ -522,6 +531,10 @@ export class Document {
 
   subdivide(): void {
     if (this.totalVertices > 200_000) { this.hooks.message('the mesh is already very fine; not subdividing', 'warn'); return; }
+    // What to expect, said before it runs: Loop subdivision makes V + E ≈ 4V − 6 vertices of a
+    // closed mesh of V (E = 3V − 6 edges).
+    const next = this.everyBody.reduce((n, b) => n + 4 * this.world.body(b).vertexCount - 6, 0);
+    if (next > REAL_TIME_VERTICES) this.hooks.message(`subdividing to about ${next.toLocaleString('en-US')} vertices: past ~${REAL_TIME_VERTICES.toLocaleString('en-US')} the steps here no longer converge in real time — expect slow motion and time-limited accuracy (the HUD says both); Ctrl+Z undoes`, 'warn');
     this.edit('subdivide', true, () => {
       this.hooks.progress('subdividing');
       let dropped = 0, underLoad = false;

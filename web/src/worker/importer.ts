@@ -6,6 +6,7 @@
 import { World } from '../engine/world';
 import { FRAME_DT } from '../engine/models';
 import { headerText, needsAnswer, place, question, sizeFactor, type ImportAnswer, type ImportQuestion, type Up } from '../io/import';
+import { trial, verdict, worst } from './trial';
 import type { MessageKind } from '../protocol';
 import type { Document } from './document';
 
@@ -48,6 +49,11 @@ export class Importer {
       const triangles = bodies.map((b) => b.triangles.slice());
       const q = question(name, report, lists, triangles, headerText(new Uint8Array(data)), remembered);
       const p: Pending = { name, lists, triangles, areas: report.pieces.map((x) => x.area), warnings, question: q };
+      // What it will cost to simulate (trial.ts): built as the default answer would build it.
+      const quality = worst(report.pieces.map((_, k) => scratch.quality(first + k)));
+      this.hooks.progress(`importing ${name}: a trial run`);
+      const run = trial(this.doc.emptyWorld, (w) => { this.addPieces(w, p, { up: q.guessedUp, pieces: 'each' }); });
+      if (run) q.cost = verdict(quality, run.frames, run.msPerFrame);
       this.pending = p;
       if (needsAnswer(p.question)) this.hooks.ask(p.question);
       else this.answer({ up: p.question.guessedUp, pieces: 'each' });
@@ -65,7 +71,7 @@ export class Importer {
     this.pending = null;
     if (!p) { this.hooks.message('no import is waiting for an answer', 'warn'); return; }
     if (!a) { this.hooks.message(`import of ${p.name} cancelled — the current model is unchanged`); return; }
-    this.build(p, a);
+    if (this.build(p, a) && a.remesh) this.doc.remesh();
   }
 
   /**
@@ -83,27 +89,39 @@ export class Importer {
     this.build(l.p, { ...l.a, up }, `turned ${up === 'z' ? 'from Z-up' : 'back to Y-up as in the file'}`);
   }
 
-  private build(p: Pending, a: ImportAnswer, why?: string): void {
+  /**
+   * The chosen pieces of `p` into world `w` as `a` says, each a body under the modeler's preset
+   * at the model's size; returns how many are open surfaces (no gas), the size and the frame.
+   */
+  private addPieces(w: World, p: Pending, a: ImportAnswer) {
     const chosen = a.pieces === 'largest' ? [0] : p.lists.map((_, k) => k);
     const { positions, frame } = place(chosen.map((k) => p.lists[k]), a.up);
     frame.format = p.question.format;
     const size = sizeFactor(positions);
     const area = chosen.reduce((s, k) => s + p.areas[k], 0);
     let gasless = 0;
+    chosen.forEach((k, i) => {
+      const b = w.addMesh(positions[i], p.triangles[k], 1, false);
+      if (w.applyPresetScaled(b, 'modeler', size).length > 0) gasless++;
+      // The mass the preset gives the whole model (1 kg at the reference size, × size³),
+      // shared by area: the same surface density on every piece.
+      w.setParam(b, 'mass', (w.params(b).mass as number) * (chosen.length > 1 ? p.areas[k] / area : 1));
+    });
+    return { chosen, gasless, size, frame };
+  }
+
+  /** Build the model from `p` as `a` says (one undo step); returns whether it was built. */
+  private build(p: Pending, a: ImportAnswer, why?: string): boolean {
     const w = this.doc.world;
+    let made = null as ReturnType<Importer['addPieces']> | null;
     this.hooks.progress(`importing ${p.name}`);
     const ok = this.doc.edit(why ? `up axis ${a.up.toUpperCase()}` : `import ${p.name}`, true, () => {
       this.doc.fresh();
-      chosen.forEach((k, i) => {
-        const b = w.addMesh(positions[i], p.triangles[k], 1, false);
-        if (w.applyPresetScaled(b, 'modeler', size).length > 0) gasless++;
-        // The mass the preset gives the whole model (1 kg at the reference size, × size³),
-        // shared by area: the same surface density on every piece.
-        w.setParam(b, 'mass', (w.params(b).mass as number) * (chosen.length > 1 ? p.areas[k] / area : 1));
-      });
-      this.doc.adopt(p.name, frame);
+      made = this.addPieces(w, p, a);
+      this.doc.adopt(p.name, made.frame);
     }, 'all', (why) => `could not import ${p.name}: ${why} — the current model is unchanged`);
-    if (!ok) return;
+    if (!ok || !made) return false;
+    const { chosen, gasless, size } = made;
     this.made.set(this.doc.settings.opened ?? -1, { p, a });
     // The newest few (each holds its file's pieces).
     for (const k of this.made.keys()) if (this.made.size > 4) this.made.delete(k);
@@ -126,10 +144,12 @@ export class Importer {
     // Too few vertices for the brushes to shape: say what gives them more.
     if (v < 100) parts.push(`only ${v} vertices: Subdivide (U) or Model › Remesh gives the tools more to shape`);
     // Long thin triangles make poor springs: say so, and what evens them.
-    const quality = w.quality(0);
-    if (quality.poor) parts.push(`uneven triangles (${Math.round(100 * quality.small_angle_share)} % of angles below 25°): Model › Remesh evens them`);
+    // (Not when the answer remeshes it: that says what it did.)
+    const cost = p.question.cost;
+    if (!a.remesh && cost?.why) parts.push(`${cost.why}: Model › Remesh evens them`);
     this.hooks.message(parts.filter(Boolean).join('; '));
     // The file's warnings were said when it was imported, not again when it is turned.
     if (p.warnings.length && !why) this.hooks.message(p.warnings.join('\n'), 'warn');
+    return true;
   }
 }
