@@ -3,7 +3,8 @@
 //! its size (the page's import: diagonal / 2.5 m), dropped under gravity for FRAMES frames of
 //! 1/60 s, each frame under a real-time budget of BUDGET_MS (0: every step converged). Prints
 //! per frame the wall-clock ms, Newton and CG iterations, whether the deadline stopped it and
-//! the residual it was accepted at; then the mean and worst frame.
+//! the residual it was accepted at, the top's height, the volume and the largest speed; then the
+//! mean and worst frame.
 //!
 //!   cargo run --release -p softsculpt --example drop -- PATH [BUDGET_MS=12] [FRAMES=30]
 use softsculpt::body::{Material, SoftBody};
@@ -34,7 +35,9 @@ fn main() {
         let a = w.advance(FRAME, &budget).unwrap_or_else(|e| panic!("frame {f}: {e}"));
         ms.push(1000.0 * (wall_clock() - t0));
         let it = w.bodies[0].solver_iterations();
-        println!("frame {f:3}: {:8.1} ms  steps {} splits {}  newton {:3} linear {:6}  early {}  residual {:.2e}", ms[f], a.steps, a.splits, it.newton, it.linear, a.early, a.residual);
+        let b = &w.bodies[0];
+        let top = b.positions().chunks_exact(3).map(|p| p[1]).fold(f64::MIN, f64::max);
+        println!("frame {f:3}: {:8.1} ms  steps {} splits {}  newton {:3} linear {:6}  early {}  residual {:.2e}  top {top:.3} m  V {:.3} m³  max speed {:.3} m/s", ms[f], a.steps, a.splits, it.newton, it.linear, a.early, a.residual, b.volume(), b.max_speed());
     }
     let mean = ms.iter().sum::<f64>() / ms.len() as f64;
     println!("mean {mean:.1} ms, worst {:.1} ms", ms.iter().copied().fold(0.0, f64::max));
