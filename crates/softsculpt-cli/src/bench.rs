@@ -36,7 +36,7 @@ pub struct BenchArgs {
     #[arg(long, allow_hyphen_values = true, value_parser = args::positive, value_name = "TOL")]
     pub tolerance: Option<f64>,
     /// Threads (0 or absent: every core).
-    #[arg(long, allow_hyphen_values = true, value_parser = args::count, value_name = "N")]
+    #[arg(long, allow_hyphen_values = true, value_parser = args::threads, value_name = "N")]
     pub threads: Option<u64>,
 }
 

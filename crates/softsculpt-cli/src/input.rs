@@ -39,12 +39,39 @@ fn read(input: &str) -> Result<LoadedMesh, String> {
         Some(e) => Some(MeshFormat::from_extension(e).ok_or_else(|| format!("{input}: unsupported file type '.{e}' (read: {READ_EXTENSIONS})"))?),
         None => None,
     };
-    let bytes = std::fs::read(path).map_err(|e| format!("{input}: cannot read: {e}"))?;
+    let bytes = read_file(path, input)?;
     let format = match format.or_else(|| MeshFormat::sniff(&bytes)) {
         Some(f) => f,
         None => return Err(format!("{input}: no file extension, and the first bytes are not those of a PLY, STL, glTF or GLB file (name it {READ_EXTENSIONS})")),
     };
     softsculpt::mesh::load(&bytes, Some(format)).map_err(|e| format!("{input}: {e}"))
+}
+
+/// The largest input file read (bytes): 1 GiB, above the largest meshes the engine runs (an
+/// ASCII STL of 2 M triangles, the remesher's limit, is ~0.5 GB), so a wrong file cannot grow
+/// the process without bound (`simulate /dev/zero` grew to 4.7 GB in 6 s before this limit).
+pub const MAX_INPUT_BYTES: u64 = 1 << 30;
+
+/// The bytes of the input file at `path` (`shown` in errors): only a regular file of at most
+/// [`MAX_INPUT_BYTES`] (a device, pipe or socket is refused before anything is read), read
+/// with a cap so a file growing while it is read stops there too.
+pub fn read_file(path: &Path, shown: &str) -> Result<Vec<u8>, String> {
+    use std::io::Read;
+    let meta = std::fs::metadata(path).map_err(|e| format!("{shown}: cannot read: {e}"))?;
+    if !meta.is_file() {
+        return Err(format!("{shown}: not a regular file (a device, pipe or socket is not read: save the mesh to a file)"));
+    }
+    let too_big = |n: u64| format!("{shown}: {n} bytes is more than the {} MiB an input file may have", MAX_INPUT_BYTES >> 20);
+    if meta.len() > MAX_INPUT_BYTES {
+        return Err(too_big(meta.len()));
+    }
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    let file = std::fs::File::open(path).map_err(|e| format!("{shown}: cannot read: {e}"))?;
+    file.take(MAX_INPUT_BYTES + 1).read_to_end(&mut bytes).map_err(|e| format!("{shown}: cannot read: {e}"))?;
+    if bytes.len() as u64 > MAX_INPUT_BYTES {
+        return Err(too_big(bytes.len() as u64));
+    }
+    Ok(bytes)
 }
 
 /// The output format of `--out`, from its extension: one clear error before anything runs.

@@ -1,7 +1,8 @@
 //! `softsculpt run SCENE --out DIR [--frames N]`: play a scene file headless.
 //!
-//! Writes, into DIR (created if needed), only once the whole run has succeeded, each file
-//! atomically:
+//! Writes, into DIR (created if needed; one that is not empty is refused before the run unless
+//! `--overwrite`, which empties it once the run has succeeded), only once the whole run has
+//! succeeded, each file atomically, then one line saying what it wrote:
 //! - `NAME.obj` — every body's final shape (in its source file's vertex order and polygons);
 //! - `summary.json` — time, steps and every body's final statistics (the `simulate` stats keys);
 //! - with `--frames N`: `frames/NAME_0000.obj` … (N frames at equal intervals from the start to
@@ -29,23 +30,34 @@ pub struct RunArgs {
     #[arg(long)]
     pub quiet: bool,
     /// Threads for the force stages and the implicit solver (0 or absent: every core).
-    #[arg(long, allow_hyphen_values = true, value_parser = crate::args::count, value_name = "N")]
+    #[arg(long, allow_hyphen_values = true, value_parser = crate::args::threads, value_name = "N")]
     pub threads: Option<u64>,
+    /// Write into a --out directory that is not empty: its contents are removed first (once the
+    /// run has succeeded), so no earlier run's frames stay beside the new ones.
+    #[arg(long)]
+    pub overwrite: bool,
 }
 
 pub fn run(a: RunArgs) -> Result<(), String> {
     let shown = a.scene.display().to_string();
-    let text = std::fs::read(&a.scene).map_err(|e| format!("{shown}: cannot read: {e}"))?;
+    if a.out.is_file() {
+        return Err(format!("{}: is a file, --out needs a directory", a.out.display()));
+    }
+    let occupied = std::fs::read_dir(&a.out).map(|mut d| d.next().is_some()).unwrap_or(false);
+    if occupied && !a.overwrite {
+        return Err(format!("{}: the directory is not empty (an earlier run's files would stay beside the new ones): give an empty or new --out, or --overwrite to empty it", a.out.display()));
+    }
+    let text = crate::input::read_file(&a.scene, &shown)?;
     let text = String::from_utf8(text).map_err(|_| format!("{shown}: not UTF-8 text"))?;
     let dir = a.scene.parent().map(Path::to_path_buf).unwrap_or_default();
-    let mut resolve = |path: &str| -> Result<Vec<u8>, String> { std::fs::read(dir.join(path)).map_err(|e| e.to_string()) };
+    let mut resolve = |path: &str| -> Result<Vec<u8>, String> {
+        let p = dir.join(path);
+        crate::input::read_file(&p, &p.display().to_string())
+    };
     let mut scene = SceneRun::load(&text, &mut resolve).map_err(|e| format!("{shown}: {e}"))?;
     scene.world.set_threads(a.threads.unwrap_or(0) as usize).map_err(|e| format!("--threads: {e}"))?;
     if a.frames == Some(1) {
         return Err("--frames: at least 2 (the first frame is the start, the last the end)".into());
-    }
-    if a.out.is_file() {
-        return Err(format!("{}: is a file, --out needs a directory", a.out.display()));
     }
 
     let total = scene.total_steps();
@@ -87,6 +99,9 @@ pub fn run(a: RunArgs) -> Result<(), String> {
         b.finish_and_clear();
     }
 
+    if occupied {
+        empty_dir(&a.out)?;
+    }
     let header = |t: f64| format!("softsculpt run {shown}: t = {t} s");
     let mut summary = serde_json::Map::new();
     summary.insert("time".into(), json!(scene.time()));
@@ -115,5 +130,18 @@ pub fn run(a: RunArgs) -> Result<(), String> {
     }
     let text = serde_json::to_string_pretty(&json!(summary)).expect("JSON of plain values");
     output::write_atomic(&a.out.join("summary.json"), format!("{text}\n").as_bytes())?;
+    let n = scene.names.len();
+    let framed = if times.is_empty() { String::new() } else { format!(", {} frames and animation.glb", times.len()) };
+    println!("wrote {}: {n} {} ({}), summary.json{framed}; after {} steps, t = {:.4} s", a.out.display(), if n == 1 { "body" } else { "bodies" }, scene.names.iter().map(|s| format!("{s}.obj")).collect::<Vec<_>>().join(", "), scene.steps(), scene.time());
+    Ok(())
+}
+
+/// Remove everything in `dir` (`--overwrite`), the directory itself kept.
+fn empty_dir(dir: &Path) -> Result<(), String> {
+    let fail = |e: std::io::Error| format!("{}: cannot empty it for --overwrite: {e}", dir.display());
+    for entry in std::fs::read_dir(dir).map_err(fail)? {
+        let p = entry.map_err(fail)?.path();
+        if p.is_dir() && !p.is_symlink() { std::fs::remove_dir_all(&p) } else { std::fs::remove_file(&p) }.map_err(fail)?;
+    }
     Ok(())
 }

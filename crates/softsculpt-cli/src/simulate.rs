@@ -37,7 +37,7 @@ pub struct SimulateArgs {
     /// Threads for the force stages and the implicit solver (0 or absent: every core); the
     /// implicit solver gives the same bits on any count, the explicit integrators on 2 or more
     /// (one thread sums the springs in another order: equal to rounding, 1e-12 relative).
-    #[arg(long, allow_hyphen_values = true, value_parser = args::count, value_name = "N")]
+    #[arg(long, allow_hyphen_values = true, value_parser = args::threads, value_name = "N")]
     pub threads: Option<u64>,
     #[arg(long, allow_hyphen_values = true, default_value_t = table::STIFFNESS.number(), value_parser = args::non_negative, value_name = "K", help = help(&table::STIFFNESS))]
     pub stiffness: f64,

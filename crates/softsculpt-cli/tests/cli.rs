@@ -275,7 +275,7 @@ fn implicit_runs_report_solver_iterations_and_bad_tolerances_are_refused() {
     let stats = dir.path().join("s.jsonl");
     let o = softsculpt(&[
         "simulate", "builtin:sphere", "--out", out.to_str().unwrap(), "--steps", "20", "--dt", "0.0166", "--integrator", "implicit",
-        "--tolerance", "1e-5", "--gas", "5", "--threads", "2", "--stats", stats.to_str().unwrap(), "--stats-every", "10",
+        "--tolerance", "1e-5", "--gas", "5", "--threads", &two_or_fewer_threads(), "--stats", stats.to_str().unwrap(), "--stats-every", "10",
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let last: serde_json::Value = serde_json::from_str(std::fs::read_to_string(&stats).unwrap().lines().last().unwrap()).unwrap();
@@ -310,4 +310,48 @@ fn a_reader_that_closes_the_pipe_early_gets_no_panic() {
         use std::os::unix::process::ExitStatusExt;
         assert_eq!(status.signal(), Some(13), "{args:?}: {status:?}"); // SIGPIPE
     }
+}
+
+/// Two threads, or as many as the machine runs if fewer (`--threads` refuses more).
+fn two_or_fewer_threads() -> String {
+    std::thread::available_parallelism().map_or(1, |n| n.get()).min(2).to_string()
+}
+
+/// `--threads` above what the machine runs at once is refused before anything runs, saying how
+/// many it runs (`--threads 99999` once started 2,498 threads and stopped the machine).
+#[test]
+fn more_threads_than_the_machine_runs_are_refused_up_front() {
+    let d = Dir::new();
+    let most = std::thread::available_parallelism().map_or(1, |n| n.get());
+    for command in [&["simulate", "builtin:sphere", "--out", &d.s("t.obj")][..], &["bench", "--levels", "1"][..]] {
+        for n in [most + 1, 99999] {
+            let mut args = command.to_vec();
+            let n = n.to_string();
+            args.extend_from_slice(&["--threads", &n]);
+            let o = softsculpt(&args);
+            assert_eq!(o.status.code(), Some(2), "{args:?}");
+            assert_clean_error(&o, "--threads");
+            assert!(stderr(&o).contains(&format!("this machine runs {most} threads at once")), "{}", stderr(&o));
+        }
+    }
+    assert!(!d.path("t.obj").exists());
+}
+
+/// An input that is not a regular file (a device: `/dev/zero` grew the process to 4.7 GB) or is
+/// larger than the limit is one clear error before anything is read; nothing is written.
+#[cfg(unix)]
+#[test]
+fn a_device_or_an_oversized_input_is_refused_before_it_is_read() {
+    let d = Dir::new();
+    let out = d.path("never.obj");
+    let o = softsculpt(&["simulate", "/dev/zero", "--out", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).starts_with("error: /dev/zero: not a regular file") && stderr(&o).lines().count() == 1, "{}", stderr(&o));
+    // A sparse file one byte over 1 GiB: refused by its size, never read (no disk, no memory).
+    let big = d.path("big.stl");
+    std::fs::File::create(&big).unwrap().set_len((1u64 << 30) + 1).unwrap();
+    let o = softsculpt(&["info", big.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("1073741825 bytes is more than the 1024 MiB an input file may have") && stderr(&o).lines().count() == 1, "{}", stderr(&o));
+    assert!(!out.exists());
 }

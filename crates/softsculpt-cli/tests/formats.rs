@@ -307,6 +307,8 @@ fn malformed_files_of_each_format_are_one_clear_error() {
         (d.file("base64.gltf", gltf.replace("base64,", "base64,!!").as_bytes()), "base64"),
         (d.file("accessor.gltf", gltf.replace("\"indices\":1", "\"indices\":7").as_bytes()), "not a valid glTF file"),
         (d.file("nofaces.gltf", br#"{"asset":{"version":"2.0"}}"#), "no faces"),
+        // gltf-json's validation panicked on a POSITION accessor past the accessors (exit 101).
+        (d.file("position.gltf", br#"{"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":7}}]}]}"#), "attribute POSITION names accessor 7, but the file has 0 accessors"),
     ];
     for (input, needle) in &cases {
         if std::env::var_os("SHOW_ERRORS").is_some() {

@@ -153,3 +153,31 @@ fn every_shipped_scene_runs_from_the_command_line() {
     }
     assert!(n >= 6, "{n} scenes");
 }
+
+/// `run` into a directory that is not empty is refused before the run (an earlier run's frames
+/// and `animation.glb` stayed beside the new ones); `--overwrite` empties it once the run has
+/// succeeded; the run ends with one line saying what it wrote.
+#[test]
+fn a_full_output_directory_is_refused_unless_overwrite_empties_it() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("scene.toml"), SCENE).unwrap();
+    std::fs::write(dir.path().join("tetra.obj"), TETRA).unwrap();
+    let scene = dir.path().join("scene.toml");
+    let out = dir.path().join("out");
+    let o = softsculpt(&["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap(), "--frames", "4"]);
+    assert!(o.status.success(), "{}", err(&o));
+    let said = String::from_utf8_lossy(&o.stdout);
+    assert!(said.starts_with(&format!("wrote {}: 2 bodies (ball.obj, tet.obj), summary.json, 4 frames and animation.glb; after 300 steps", out.display())), "{said}");
+    let before = std::fs::read(out.join("summary.json")).unwrap();
+    // Again without --overwrite: refused, nothing touched.
+    let o = softsculpt(&["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(err(&o).contains("the directory is not empty") && err(&o).contains("--overwrite") && err(&o).lines().count() == 1, "{}", err(&o));
+    assert!(out.join("animation.glb").is_file() && out.join("frames/ball_0003.obj").is_file());
+    assert_eq!(std::fs::read(out.join("summary.json")).unwrap(), before);
+    // With --overwrite and no frames: the old frames and animation are gone, the new run is there.
+    let o = softsculpt(&["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap(), "--overwrite"]);
+    assert!(o.status.success(), "{}", err(&o));
+    assert!(!out.join("animation.glb").exists() && !out.join("frames").exists());
+    assert!(out.join("ball.obj").is_file() && out.join("summary.json").is_file());
+}

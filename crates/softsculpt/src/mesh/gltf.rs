@@ -166,6 +166,8 @@ pub fn parse(bytes: &[u8], format: MeshFormat) -> Result<ObjData, MeshError> {
             _ => {}
         }
     }
+    let doc = ::gltf::Gltf::from_slice_without_validation(bytes).map_err(|e| fail(e.to_string().trim_end_matches([';', '.', ' ']).to_string()))?;
+    dangling_accessors(doc.as_json()).map_err(fail)?;
     let doc = ::gltf::Gltf::from_slice(bytes).map_err(|e| fail(e.to_string().trim_end_matches([';', '.', ' ']).to_string()))?;
     let mut buffers = Vec::new();
     for b in doc.buffers() {
@@ -268,4 +270,29 @@ pub fn glb_container(doc: &serde_json::Value, mut bin: Vec<u8>) -> Vec<u8> {
     out.extend_from_slice(b"BIN\0");
     out.extend_from_slice(&bin);
     out
+}
+
+/// A primitive's attribute or indices naming an accessor the file does not have: one error here,
+/// since `gltf-json` 1.4's validation indexes the POSITION accessor before it checks the index
+/// and panics on such a file (`{"meshes":[{"primitives":[{"attributes":{"POSITION":7}}]}]}`).
+fn dangling_accessors(root: &::gltf::json::Root) -> Result<(), String> {
+    let n = root.accessors.len();
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            let named = prim.attributes.iter().map(|(k, i)| (format!("attribute {}", semantic(k)), i.value())).chain(prim.indices.iter().map(|i| ("indices".to_string(), i.value())));
+            for (what, i) in named {
+                if i >= n {
+                    return Err(format!("mesh {m} primitive {p}: its {what} names accessor {i}, but the file has {n} accessor{}", if n == 1 { "" } else { "s" }));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+fn semantic(k: &::gltf::json::validation::Checked<::gltf::json::mesh::Semantic>) -> String {
+    match k {
+        ::gltf::json::validation::Checked::Valid(s) => s.to_string(),
+        ::gltf::json::validation::Checked::Invalid => "(unknown)".into(),
+    }
 }
