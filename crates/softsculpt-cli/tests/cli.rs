@@ -93,8 +93,8 @@ fn every_bad_flag_is_one_clear_error_naming_the_flag() {
 fn a_failed_run_leaves_an_existing_output_untouched() {
     let d = Dir::new();
     let out = d.file("keep.obj", b"precious work\n");
-    // An explosion (dt far too large for the stiffness) fails mid-run.
-    let o = softsculpt(&["simulate", "builtin:sphere", "--out", &out, "--stiffness", "1e7", "--dt", "0.01", "--steps", "500"]);
+    // An explosion (dt far too large for the stiffness: forced past the stability check) fails mid-run.
+    let o = softsculpt(&["simulate", "builtin:sphere", "--out", &out, "--stiffness", "1e7", "--dt", "0.01", "--steps", "500", "--force"]);
     assert_clean_error(&o, "smaller");
     assert!(stderr(&o).contains("step"));
     assert_eq!(std::fs::read(&out).unwrap(), b"precious work\n");
@@ -239,7 +239,8 @@ fn rigidity_is_taken_like_bending_and_bad_values_are_refused() {
     let d = Dir::new();
     for extra in [&[][..], &["--preset", "clay"][..]] {
         let out = d.path("r.obj");
-        let mut args = vec!["simulate", "builtin:sphere", "--out", out.to_str().unwrap(), "--steps", "20", "--gas", "5", "--rigidity", "0.05"];
+        // (--force: clay is above the symplectic stable step at the default dt; 20 steps hold.)
+        let mut args = vec!["simulate", "builtin:sphere", "--out", out.to_str().unwrap(), "--steps", "20", "--gas", "5", "--rigidity", "0.05", "--force"];
         args.extend_from_slice(extra);
         let o = softsculpt(&args);
         assert!(o.status.success(), "{extra:?}: {}", stderr(&o));
@@ -354,4 +355,34 @@ fn a_device_or_an_oversized_input_is_refused_before_it_is_read() {
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("1073741825 bytes is more than the 1024 MiB an input file may have") && stderr(&o).lines().count() == 1, "{}", stderr(&o));
     assert!(!out.exists());
+}
+
+/// An explicit run far above the model's stability bound is refused before it starts, with the
+/// step that would be stable and the implicit integrator as the fixes (before: `--preset
+/// stiff_rubber` on the sphere collapsed at step 12 and the advice said "stiffer springs");
+/// `--force` runs it, and it does collapse; at the advised step, or implicit, it runs.
+#[test]
+fn an_explicit_step_far_above_the_stable_step_is_refused_with_the_fix() {
+    let d = Dir::new();
+    let out = d.path("r.obj");
+    let base = ["simulate", "builtin:sphere", "--out", out.to_str().unwrap(), "--preset", "stiff_rubber"];
+    let o = softsculpt(&base);
+    assert_clean_error(&o, "--dt 0.001 s is above the largest step symplectic is stable at for this model");
+    let e = stderr(&o);
+    assert!(e.contains("--integrator implicit") && e.contains("--force"), "{e}");
+    assert!(!out.exists(), "nothing written");
+    // The advised step, read from the message: it runs.
+    let advised = e.split("give --dt ").nth(1).and_then(|r| r.split(' ').next()).unwrap().to_string();
+    let mut args = base.to_vec();
+    args.extend_from_slice(&["--dt", &advised, "--steps", "200"]);
+    assert!(softsculpt(&args).status.success(), "at --dt {advised}");
+    let mut args = base.to_vec();
+    args.extend_from_slice(&["--integrator", "implicit", "--dt", "0.0166", "--steps", "20"]);
+    assert!(softsculpt(&args).status.success(), "implicit");
+    // Forced: it runs and collapses, as measured before the check (step 12).
+    let mut args = base.to_vec();
+    args.push("--force");
+    let o = softsculpt(&args);
+    assert_clean_error(&o, "collapsed");
+    assert!(!stderr(&o).contains("stiffer springs"), "{}", stderr(&o));
 }

@@ -94,7 +94,7 @@ impl fmt::Display for SimError {
             SimError::Collapsed { step, volume } => write!(
                 f,
                 "the body collapsed at step {step} (gas volume {volume:e} m^3 is not positive); \
-                 try a smaller dt, more gas or stiffer springs"
+                 try a smaller dt (or the implicit integrator) or more gas"
             ),
             SimError::NotConverged { step, time, iterations, residual, tolerance } => write!(
                 f,

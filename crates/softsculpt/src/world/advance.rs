@@ -209,7 +209,7 @@ impl World {
     /// (D the rigidity, h the shortest rest length: their Gauss–Newton matrix D w ∇θ ∇θᵀ bounded
     /// by Gershgorin on a near-equilateral mesh, |∇θ| ≤ 2/(√3 h), w = 2/√3, 12 hinges around a
     /// vertex: ω² ≤ 74 D / (h² m), against 12 k / m for springs), the limits are, with a safety
-    /// factor of 0.3: dt ≤ 0.3 · 2/ω, ω² = 12 (k + k_b + k_h) / m (a vertex's fastest mode);
+    /// factor of 0.3 ([`SAFETY`]): dt ≤ 0.3 · 2/ω, ω² = 12 (k + k_b + k_h) / m (a vertex's fastest mode);
     /// dt ≤ 0.3 · 2 m / (12 · 2 c_s) (the spring damping); for hinges with τ = c_s / k,
     /// dt ≤ 0.3 · 2 / (τ ω_h²), ω_h² = 12 k_h / m; forward Euler also
     /// dt ≤ max(τ / (1 + τ² ω_h² / 4), c / ω_h²) (its amplification √((1 − γ dt)² + ω² dt²),
@@ -219,33 +219,49 @@ impl World {
         if integrator == Integrator::Implicit {
             return None;
         }
-        let dt = self.bodies.iter().map(|b| body_stable_dt(b, integrator)).fold(1e-3, f64::min);
+        let dt = self.bodies.iter().map(|b| body_stable_dt(b, integrator, SAFETY, 1e-3)).fold(1e-3, f64::min);
         let ten = 10f64.powf(dt.log10().floor());
         Some([5.0, 2.0, 1.0].iter().map(|f| f * ten).find(|&v| v <= dt).unwrap_or(ten))
     }
+
+    /// The largest step (s) the explicit integrator `integrator` is linearly stable at for
+    /// every body: [`World::stable_dt`]'s bounds without its safety factor (`safety` 1 in place
+    /// of [`SAFETY`]), its 1 ms cap and its rounding (forward Euler keeps [`EULER_SHARE`]).
+    /// None for the implicit integrator (stable at any step). Above it a run is all but sure to
+    /// blow up: the command line refuses such a `--dt` unless `--force`; below it but above
+    /// `stable_dt` it may still ring (the bound is for the springs' linear modes, Gershgorin's
+    /// over-estimate of the fastest, not the gas or contact).
+    pub fn dt_limit(&self, integrator: Integrator) -> Option<f64> {
+        (integrator != Integrator::Implicit).then(|| self.bodies.iter().map(|b| body_stable_dt(b, integrator, 1.0, f64::INFINITY)).fold(f64::INFINITY, f64::min))
+    }
 }
 
-/// [`World::stable_dt`] of one body, before rounding (s).
-fn body_stable_dt(b: &crate::body::SoftBody, integrator: Integrator) -> f64 {
+/// The share of the stability bounds [`World::stable_dt`] takes (its margin for what the
+/// bounds leave out: the gas, contacts, a large deformation).
+const SAFETY: f64 = 0.3;
+
+/// [`World::stable_dt`] of one body at `safety` × its bounds and at most `cap` (before forward
+/// Euler's share), before rounding (s).
+fn body_stable_dt(b: &crate::body::SoftBody, integrator: Integrator, safety: f64, cap: f64) -> f64 {
     let p = &b.material;
     let m = b.masses().iter().copied().fold(f64::INFINITY, f64::min);
     let h = b.rest_lengths().iter().copied().filter(|&l| l > 0.0).fold(f64::INFINITY, f64::min);
     let kh = if p.rigidity > 0.0 && h.is_finite() { 6.2 * p.rigidity / (h * h) } else { 0.0 };
     let k = p.stiffness + p.bending_stiffness + kh;
-    let mut limit = 1e-3f64;
+    let mut limit = cap;
     if k > 0.0 {
-        limit = limit.min(0.3 * 2.0 / (12.0 * k / m).sqrt());
+        limit = limit.min(safety * 2.0 / (12.0 * k / m).sqrt());
     }
     let cs = 2.0 * p.spring_damping;
     if cs > 0.0 {
-        limit = limit.min(0.3 * 2.0 * m / (12.0 * cs));
+        limit = limit.min(safety * 2.0 * m / (12.0 * cs));
     }
     let mut euler_limit = f64::INFINITY;
     if kh > 0.0 {
         let w2 = 12.0 * kh / m;
         let tau = if p.stiffness > 0.0 { p.spring_damping / p.stiffness } else { 0.0 };
         if tau > 0.0 {
-            limit = limit.min(0.3 * 2.0 / (tau * w2));
+            limit = limit.min(safety * 2.0 / (tau * w2));
         }
         let euler = (tau / (1.0 + tau * tau * w2 / 4.0)).max(p.damping / w2);
         if euler > 0.0 {
