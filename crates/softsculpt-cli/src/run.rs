@@ -36,6 +36,10 @@ pub struct RunArgs {
     /// run has succeeded), so no earlier run's frames stay beside the new ones.
     #[arg(long)]
     pub overwrite: bool,
+    /// Run an explicit integrator at a dt above the model's stability bound (refused
+    /// otherwise, with the dt that would be stable).
+    #[arg(long)]
+    pub force: bool,
 }
 
 pub fn run(a: RunArgs) -> Result<(), String> {
@@ -56,6 +60,7 @@ pub fn run(a: RunArgs) -> Result<(), String> {
     };
     let mut scene = SceneRun::load(&text, &mut resolve).map_err(|e| format!("{shown}: {e}"))?;
     scene.world.set_threads(a.threads.unwrap_or(0) as usize).map_err(|e| format!("--threads: {e}"))?;
+    crate::simulate::check_stable(&scene.world, a.force, "the scene's dt").map_err(|e| format!("{shown}: {e}"))?;
     if a.frames == Some(1) {
         return Err("--frames: at least 2 (the first frame is the start, the last the end)".into());
     }

@@ -187,15 +187,15 @@ const REFUSE_ABOVE: f64 = 2.0;
 /// refused with the advice that fixes it (a dt that is stable, or the implicit integrator)
 /// unless `force`; above it, a warning. Before this check the run failed part-way with advice
 /// that pointed the wrong way ("stiffer springs").
-fn check_stable(world: &World, force: bool) -> Result<(), String> {
+pub fn check_stable(world: &World, force: bool, dt_name: &str) -> Result<(), String> {
     let s = &world.settings;
     let Some(limit) = world.dt_limit(s.integrator) else { return Ok(()) };
     if s.dt <= limit {
         return Ok(());
     }
     let stable = world.stable_dt(s.integrator).unwrap_or(limit);
-    let what = format!("--dt {} s is above the largest step {} is stable at for this model, about {limit:.2e} s (its stiffest vertex's fastest mode)", s.dt, s.integrator.name());
-    let fix = format!("give --dt {stable} (with a margin) or less, or --integrator implicit (stable at any dt)");
+    let what = format!("{dt_name} {} s is above the largest step {} is stable at for this model, about {limit:.2e} s (its stiffest vertex's fastest mode)", s.dt, s.integrator.name());
+    let fix = format!("give {dt_name} {stable} (with a margin) or less, or the implicit integrator (stable at any dt)");
     if s.dt > REFUSE_ABOVE * limit && !force {
         return Err(format!("{what}: {fix}; --force runs it anyway"));
     }
@@ -241,7 +241,7 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     if let Some(name) = &a.preset {
         apply_preset(&mut world, name, &a)?;
     }
-    check_stable(&world, a.force)?;
+    check_stable(&world, a.force, "--dt")?;
     if let Some(h) = a.ground {
         let (lo, _) = loaded.mesh.bounds();
         if lo[1] < h {

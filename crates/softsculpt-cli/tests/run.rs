@@ -181,3 +181,21 @@ fn a_full_output_directory_is_refused_unless_overwrite_empties_it() {
     assert!(!out.join("animation.glb").exists() && !out.join("frames").exists());
     assert!(out.join("ball.obj").is_file() && out.join("summary.json").is_file());
 }
+
+/// A scene whose explicit step is far above a body's stability bound is refused before it runs,
+/// naming the scene's dt and the fix; `--force` runs it (and it blows up, as the bound said).
+#[test]
+fn a_scene_stepped_far_above_its_stable_step_is_refused_with_the_fix() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("stiff.toml");
+    std::fs::write(&scene, "[world]\ndt = 0.001\nintegrator = \"symplectic\"\n\n[[body]]\nmodel = \"sphere\"\nstiffness = 20000.0\n").unwrap();
+    let out = dir.path().join("out");
+    let o = softsculpt(&["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = err(&o);
+    assert!(e.starts_with("error:") && e.lines().count() == 1, "{e}");
+    assert!(e.contains("the scene's dt 0.001 s is above the largest step symplectic is stable at") && e.contains("the implicit integrator") && e.contains("--force"), "{e}");
+    assert!(!out.exists());
+    let o = softsculpt(&["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap(), "--force"]);
+    assert!(!o.status.success() && (err(&o).contains("blew up") || err(&o).contains("collapsed")), "{}", err(&o));
+}
