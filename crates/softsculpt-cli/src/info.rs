@@ -42,7 +42,8 @@ pub fn run(a: InfoArgs) -> Result<(), String> {
             "boundary_edges": r.edges.boundary,
             "non_manifold_edges": r.edges.non_manifold,
             "closed": closed,
-            "volume": m.volume(),
+            // null for an open surface (no inside: the text says "not meaningful").
+            "volume": closed.then(|| m.volume()),
             "bounds_min": lo,
             "bounds_max": hi,
             "up_axis": r.up_axis.name(),

@@ -13,7 +13,7 @@ use std::path::PathBuf;
 #[derive(Args, Debug)]
 pub struct SimulateArgs {
     /// Mesh to simulate: an .obj, .ply, .stl, .gltf or .glb file, or builtin:NAME (sphere,
-    /// mushroom, octopus).
+    /// mushroom, octopus, kangaroo).
     pub input: String,
     /// Where to write the final shape, atomically; the extension chooses the format: .obj,
     /// .ply, .stl or .glb.
@@ -318,12 +318,14 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     let bytes = loaded.write(out_format, body.positions(), &header).map_err(|e| format!("--out {}: {e}", a.out.display()))?;
     output::write_atomic(&a.out, &bytes).map_err(|e| format!("--out {e}"))?;
     let rest = if stopped_at_rest { " (at rest)" } else { "" };
+    // The enclosed volume (what `info` of the output reports); the gas's own in another mode.
+    let gas = if body.material.volume_mode == VolumeMode::Exact { String::new() } else { format!(", the gas's {} volume {:.6} m^3", body.material.volume_mode.name(), body.volume()) };
     eprintln!(
-        "wrote {} after {} steps, t = {:.4} s{rest}, volume {:.6} m^3",
+        "wrote {} after {} steps, t = {:.4} s{rest}, volume {:.6} m^3 enclosed{gas}",
         a.out.display(),
         world.steps(),
         world.time(),
-        body.volume()
+        body.exact_volume()
     );
     Ok(())
 }

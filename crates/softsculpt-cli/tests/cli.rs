@@ -386,3 +386,31 @@ fn an_explicit_step_far_above_the_stable_step_is_refused_with_the_fix() {
     assert_clean_error(&o, "collapsed");
     assert!(!stderr(&o).contains("stiffer springs"), "{}", stderr(&o));
 }
+
+/// An open surface has no inside: `info --json` gives its volume as null, as the text calls it
+/// not meaningful (before, the JSON gave a number for it).
+#[test]
+fn an_open_surface_has_no_volume_in_the_json() {
+    let d = Dir::new();
+    let open = d.file("open.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\n");
+    let o = softsculpt(&["info", &open, "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["closed"], false);
+    assert!(v["volume"].is_null(), "{v}");
+    let t = String::from_utf8_lossy(&softsculpt(&["info", &open]).stdout).to_string();
+    assert!(t.contains("(not meaningful: open surface)"), "{t}");
+}
+
+/// `simulate --help` names every built-in model (it once left out the kangaroo), and so does
+/// docs/scenes.md's `model` key.
+#[test]
+fn the_help_and_the_scene_docs_name_every_built_in_model() {
+    let help = String::from_utf8_lossy(&softsculpt(&["simulate", "--help"]).stdout).split_whitespace().collect::<Vec<_>>().join(" ");
+    let docs = std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/scenes.md")).unwrap();
+    let row = docs.lines().find(|l| l.starts_with("| `model` |")).unwrap();
+    for name in softsculpt::mesh::builtin::NAMES {
+        assert!(help.contains(name), "simulate --help lacks {name}");
+        assert!(row.contains(&format!("`{name}`")), "docs/scenes.md lacks {name}: {row}");
+    }
+}

@@ -54,3 +54,23 @@ fn bad_plasticity_and_presets_are_refused() {
     assert!(e.starts_with("error: --preset") && e.contains("unknown preset 'marble'") && e.contains("clay"), "{e}");
     assert!(!dir.path("out.obj").exists());
 }
+
+/// The success line says which volume it prints: the enclosed one (what `info` of the output
+/// reads), and in another gas mode the gas's own beside it (before, `--volume ellipsoid` printed
+/// the ellipsoid's 13.96 m³ as "volume" for a mesh enclosing 2.41).
+#[test]
+fn the_success_line_names_the_enclosed_volume_and_the_gas_model_volume() {
+    let dir = Dir::new();
+    let out = dir.s("e.obj");
+    let o = softsculpt(&["simulate", "builtin:mushroom", "--out", &out, "--steps", "50", "--gas", "5", "--volume", "ellipsoid"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let line = stderr(&o);
+    let number = |after: &str| -> f64 { line.split(after).nth(1).and_then(|r| r.split(' ').next()).unwrap().parse().unwrap() };
+    let (enclosed, gas) = (number("volume "), number("the gas's ellipsoid volume "));
+    assert!(line.contains(" m^3 enclosed, the gas's ellipsoid volume "), "{line}");
+    let info: serde_json::Value = serde_json::from_slice(&softsculpt(&["info", &out, "--json"]).stdout).unwrap();
+    // Printed to 6 decimals: within 5e-7 m³ of what info measures on the written file.
+    assert!((info["volume"].as_f64().unwrap() - enclosed).abs() <= 5e-7 + 1e-12, "{line} vs {info}");
+    // The mushroom's bounding ellipsoid encloses much more than the mushroom.
+    assert!(gas > 1.5 * enclosed, "{line}");
+}
