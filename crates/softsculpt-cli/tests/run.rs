@@ -199,3 +199,25 @@ fn a_scene_stepped_far_above_its_stable_step_is_refused_with_the_fix() {
     let o = softsculpt(&["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap(), "--force"]);
     assert!(!o.status.success() && (err(&o).contains("blew up") || err(&o).contains("collapsed")), "{}", err(&o));
 }
+
+/// A value the scene checks after parsing (a range, a missing companion key) is reported at the
+/// line that sets it, not at its table's header (before: `[body.gas]`'s `nrt = -5` on line 8
+/// was cited as line 4, `[[body]]`).
+#[test]
+fn a_bad_value_is_cited_at_its_own_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    for (text, line, key) in [
+        ("[world]\ndt = 0.001\n\n[[body]]\nmodel = \"sphere\"\n\n[body.gas]\nnrt = -5.0\n", 8, "body[0].gas.nrt"),
+        ("[[body]]\nmodel = \"sphere\"\nmass = 2.0\ngas = { nrt = -5.0 }\n", 4, "body[0].gas.nrt"),
+        ("# a comment\n[world]\nduration = 1.0\ndt = -0.001\n\n[[body]]\nmodel = \"sphere\"\n", 4, "world.dt"),
+        ("[[body]]\nmodel = \"sphere\"\n\n[[body]]\nmodel = \"sphere\"\nmass = 1.0\nstiffness = -5\n", 7, "body[1].stiffness"),
+    ] {
+        let scene = dir.path().join("bad.toml");
+        std::fs::write(&scene, text).unwrap();
+        let o = softsculpt(&["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+        let e = err(&o);
+        assert_eq!(o.status.code(), Some(1), "{e}");
+        assert!(e.contains(&format!("line {line}: {key}:")) && e.lines().count() == 1, "{text}\n{e}");
+    }
+}

@@ -30,15 +30,25 @@ pub struct Built {
     pub duration: f64,
 }
 
-struct Ctx {
+/// A table of the scene being checked: its text from byte `from` on (its header), its 1-based
+/// line, and its path (`body[0]`) for errors.
+struct Ctx<'a> {
+    text: &'a str,
+    from: usize,
     line: usize,
     table: String,
 }
 
-impl Ctx {
+impl<'a> Ctx<'a> {
+    fn new(text: &'a str, from: usize, table: String) -> Self {
+        Ctx { text, from, line: line_of(text, from), table }
+    }
+    /// An error about `key` of this table, at the line that sets the key if the table's text
+    /// has it (else at the table's header: a value a preset or a default gave).
     fn err(&self, key: &str, message: impl Into<String>) -> SceneError {
+        let line = key_line(self.text, self.from, &self.table, key).unwrap_or(self.line);
         let key = if key.is_empty() { self.table.clone() } else { format!("{}.{key}", self.table) };
-        SceneError { line: Some(self.line), key: Some(key), message: message.into() }
+        SceneError { line: Some(line), key: Some(key), message: message.into() }
     }
     fn finite(&self, key: &str, v: f64) -> Result<f64, SceneError> {
         if v.is_finite() { Ok(v) } else { Err(self.err(key, format!("must be a finite number, got {v}"))) }
@@ -54,13 +64,39 @@ impl Ctx {
     }
 }
 
+/// The 1-based line at which the table starting at byte `from` of `text` sets `key` (its last
+/// dotted part: `nrt` of `gas.nrt`, as `nrt = …` under `[body.gas]` or inside `gas = { nrt = … }`),
+/// searched up to the next table that is not one of its own sub-tables; None if it does not.
+fn key_line(text: &str, from: usize, table: &str, key: &str) -> Option<usize> {
+    let base = table.split('[').next().unwrap_or(table);
+    let last = key.rsplit('.').next().filter(|k| !k.is_empty())?;
+    let mut offset = from.min(text.len());
+    for (i, line) in text[offset..].split_inclusive('\n').enumerate() {
+        let t = line.trim_start();
+        if i > 0 && t.starts_with('[') {
+            let name = t.trim_start_matches('[').split([']', '.']).next().unwrap_or("").trim();
+            if name != base || t.starts_with("[[") {
+                return None;
+            }
+        }
+        let code = t.split('#').next().unwrap_or("");
+        let at = code.match_indices(last).find(|&(p, _)| {
+            let before = code[..p].trim_end();
+            let after = code[p + last.len()..].trim_start();
+            (before.is_empty() || before.ends_with('{') || before.ends_with(',')) && after.starts_with('=')
+        });
+        if let Some((p, _)) = at {
+            return Some(line_of(text, offset + (line.len() - t.len()) + p));
+        }
+        offset += line.len();
+    }
+    None
+}
+
 /// Build every body, obstacle and event of `spec` (parsed from `text`).
 pub fn build(spec: &SceneSpec, text: &str, resolve: Resolver) -> Result<Built, SceneError> {
     let w = &spec.world;
-    let mut cx = Ctx { line: 1, table: "world".into() };
-    if let Some(pos) = text.find("[world]") {
-        cx.line = line_of(text, pos);
-    }
+    let cx = Ctx::new(text, text.find("[world]").unwrap_or(0), "world".into());
     cx.positive("dt", w.dt)?;
     cx.positive("duration", w.duration)?;
     if w.duration / w.dt > 1e9 {
@@ -91,7 +127,7 @@ pub fn build(spec: &SceneSpec, text: &str, resolve: Resolver) -> Result<Built, S
 
     let mut obstacles = Vec::new();
     for (k, o) in spec.obstacles.iter().enumerate() {
-        let cx = Ctx { line: line_of(text, o.span().start), table: format!("obstacle[{k}]") };
+        let cx = Ctx::new(text, o.span().start, format!("obstacle[{k}]"));
         obstacles.push(obstacle(&cx, o.get_ref(), resolve)?);
     }
 
@@ -117,7 +153,7 @@ pub fn build(spec: &SceneSpec, text: &str, resolve: Resolver) -> Result<Built, S
     let tables = text.parse::<toml::Table>().ok();
     let given = |k: usize| tables.as_ref().and_then(|t| t.get("body")?.as_array()?.get(k)?.as_table().cloned()).unwrap_or_default();
     for (k, b) in spec.bodies.iter().enumerate() {
-        let cx = Ctx { line: line_of(text, b.span().start), table: format!("body[{k}]") };
+        let cx = Ctx::new(text, b.span().start, format!("body[{k}]"));
         let mut built = body(&cx, b.get_ref(), ground, k, resolve)?;
         if let Some(name) = &b.get_ref().preset {
             apply_preset(&cx, &mut built.body, name, &given(k))?;
@@ -134,7 +170,7 @@ pub fn build(spec: &SceneSpec, text: &str, resolve: Resolver) -> Result<Built, S
     let mut events = Vec::new();
     let mut last = 0.0;
     for (k, e) in spec.events.iter().enumerate() {
-        let cx = Ctx { line: line_of(text, e.span().start), table: format!("event[{k}]") };
+        let cx = Ctx::new(text, e.span().start, format!("event[{k}]"));
         let e = e.get_ref();
         if !(e.time.is_finite() && e.time >= 0.0) {
             return Err(cx.err("time", format!("must be 0 or more, got {}", e.time)));
