@@ -9,6 +9,14 @@ pub fn parse_up(s: &str) -> Result<UpAxis, String> {
     UpAxis::from_name(s).ok_or_else(|| format!("unknown up axis '{s}' (use y or z)"))
 }
 
+/// The frame outputs are written in: `--out-up` if given, else the input's (`--up`), else Y.
+pub fn out_up(out_up: Option<UpAxis>, up: Option<UpAxis>) -> UpAxis {
+    match out_up.or(up) {
+        Some(UpAxis::Z) => UpAxis::Z,
+        _ => UpAxis::Y,
+    }
+}
+
 /// Load and prepare a mesh, rotated to Y-up if `up` is Z; errors name the input and what is
 /// wrong with it.
 pub fn load(input: &str, up: Option<UpAxis>) -> Result<LoadedMesh, String> {

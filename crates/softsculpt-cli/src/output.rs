@@ -59,9 +59,9 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
     s.commit()
 }
 
-/// Write a generated mesh (remeshed, sketched) atomically in the format `format`.
-pub fn write_mesh(path: &Path, format: softsculpt::mesh::MeshFormat, mesh: &softsculpt::TriMesh, header: &str) -> Result<(), String> {
+/// Write a generated mesh (remeshed, sketched) atomically in the format `format`, in the frame `up`.
+pub fn write_mesh(path: &Path, format: softsculpt::mesh::MeshFormat, mesh: &softsculpt::TriMesh, header: &str, up: softsculpt::mesh::UpAxis) -> Result<(), String> {
     let loaded = softsculpt::LoadedMesh::from_trimesh(mesh.clone());
-    let bytes = loaded.write(format, &loaded.mesh.positions, header).map_err(|e| format!("--out {}: {e}", path.display()))?;
+    let bytes = loaded.write_in(format, &loaded.mesh.positions, header, up).map_err(|e| format!("--out {}: {e}", path.display()))?;
     write_atomic(path, &bytes).map_err(|e| format!("--out {e}"))
 }

@@ -22,9 +22,13 @@ pub struct RemeshArgs {
     /// edges are remeshed like the rest, which makes the most regular mesh).
     #[arg(long, value_parser = args::finite, value_name = "DEG")]
     pub crease: Option<f64>,
-    /// The file's up axis: z rotates a Z-up file to Y-up (x, y, z → x, z, −y); y keeps it.
+    /// The file's up axis: z reads a Z-up file (the output is written Z-up too); y keeps it.
     #[arg(long, value_parser = input::parse_up, value_name = "y|z")]
     pub up: Option<softsculpt::mesh::UpAxis>,
+    /// The output's up axis (default: the input's, --up): z writes it Z-up (Blender's PLY and
+    /// STL importers), y Y-up.
+    #[arg(long = "out-up", value_parser = input::parse_up, value_name = "y|z")]
+    pub out_up: Option<softsculpt::mesh::UpAxis>,
 }
 
 pub fn run(a: RemeshArgs) -> Result<(), String> {
@@ -45,7 +49,7 @@ pub fn run(a: RemeshArgs) -> Result<(), String> {
     // shows makes it again.
     let crease = r.crease_deg.map(|c| format!(" --crease {c}")).unwrap_or_default();
     let header = format!("SoftSculpt remesh {} --edge {}{crease}", a.input, r.edge);
-    output::write_mesh(&a.out, format, &out, &header)?;
+    output::write_mesh(&a.out, format, &out, &header, input::out_up(a.out_up, a.up))?;
     let (q0, q1) = (quality(&loaded.mesh, Some(r.edge)), quality(&out, Some(r.edge)));
     if r.shortened() {
         let creases = if a.crease.is_none() && r.crease_deg.is_some() { format!(", keeping edges sharper than {}°", remesh::CREASE) } else { String::new() };

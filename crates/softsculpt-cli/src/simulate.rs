@@ -19,10 +19,14 @@ pub struct SimulateArgs {
     /// .ply, .stl or .glb.
     #[arg(long, value_name = "OUT.obj")]
     pub out: PathBuf,
-    /// The input's up axis: z rotates a Z-up file to Y-up (x, y, z → x, z, −y) before the
-    /// run, and the output stays Y-up; y keeps it. Units are never changed.
+    /// The input's up axis: z rotates a Z-up file to Y-up (x, y, z → x, z, −y) for the run
+    /// (gravity along −y) and the output back to Z-up; y keeps it. Units are never changed.
     #[arg(long, value_parser = input::parse_up, value_name = "y|z")]
     pub up: Option<softsculpt::mesh::UpAxis>,
+    /// The output's up axis (default: the input's, --up): z writes it Z-up (Blender's PLY and
+    /// STL importers), y Y-up.
+    #[arg(long = "out-up", value_parser = input::parse_up, value_name = "y|z")]
+    pub out_up: Option<softsculpt::mesh::UpAxis>,
     /// Number of steps.
     #[arg(long, allow_hyphen_values = true, default_value = "1000", value_parser = args::count, value_name = "N")]
     pub steps: u64,
@@ -308,14 +312,16 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     if let Some(s) = stats {
         s.commit().map_err(|e| format!("--stats {e}"))?;
     }
+    let out_up = input::out_up(a.out_up, a.up);
     let header = format!(
-        "SoftSculpt simulate {} — {} steps of {} s ({})",
+        "SoftSculpt simulate {} — {} steps of {} s ({}), {}-up",
         a.input,
         world.steps(),
         a.dt,
-        a.integrator.name()
+        a.integrator.name(),
+        if out_up == softsculpt::mesh::UpAxis::Z { "Z" } else { "Y" }
     );
-    let bytes = loaded.write(out_format, body.positions(), &header).map_err(|e| format!("--out {}: {e}", a.out.display()))?;
+    let bytes = loaded.write_in(out_format, body.positions(), &header, out_up).map_err(|e| format!("--out {}: {e}", a.out.display()))?;
     output::write_atomic(&a.out, &bytes).map_err(|e| format!("--out {e}"))?;
     let rest = if stopped_at_rest { " (at rest)" } else { "" };
     // The enclosed volume (what `info` of the output reports); the gas's own in another mode.

@@ -36,7 +36,7 @@ pub fn run(a: SketchArgs) -> Result<(), String> {
     }
     let s = sketch(&o, a.edge, a.gas).map_err(|e| format!("{name}: {e}"))?;
     let header = format!("SoftSculpt sketch {name} — edge {:.4} m, gas nRT {:.4} J", s.edge, s.nrt);
-    output::write_mesh(&a.out, format, &s.mesh, &header)?;
+    output::write_mesh(&a.out, format, &s.mesh, &header, softsculpt::mesh::UpAxis::Y)?;
     eprintln!(
         "wrote {}: {} vertices, {} faces, edge {:.4} m, gas {:.4} J, volume {:.6} m^3, {} steps{}",
         a.out.display(),

@@ -219,8 +219,10 @@ fn a_two_piece_file_reports_two_pieces() {
     assert!(String::from_utf8_lossy(&o.stdout).contains("pieces:              2"));
 }
 
+/// `--up z` turns a Z-up file Y-up for the run and its output back to Z-up (the input's frame:
+/// before, the output stayed Y-up and Blender laid it on its side); `--out-up` chooses.
 #[test]
-fn a_z_up_file_comes_out_y_up_with_up_z() {
+fn a_z_up_file_runs_y_up_and_is_written_back_in_its_own_frame() {
     let d = Dir::new();
     // A tetrahedron 3 m tall along +Z.
     let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 3\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
@@ -235,11 +237,25 @@ fn a_z_up_file_comes_out_y_up_with_up_z() {
     assert_eq!(v["bounds_max"], serde_json::json!([1.0, 3.0, 0.0]));
     assert_eq!(v["volume"], before["volume"]);
     for ext in ["obj", "ply", "glb"] {
-        let out = d.s(&format!("yup.{ext}"));
+        // Written in the input's frame: the height along Z again (a proper rotation and back:
+        // exact for these coordinates).
+        let out = d.s(&format!("zup.{ext}"));
         ok(&softsculpt(&["simulate", &f, "--up", "z", "--out", &out, "--steps", "0"]));
+        let (lo, hi) = read(Path::new(&out)).mesh.bounds();
+        assert_eq!((lo, hi), ([0.0, 0.0, 0.0], [1.0, 1.0, 3.0]), "{out}: the height axis is Z, as in the file");
+        // --out-up y: written as run, the height along Y.
+        let out = d.s(&format!("yup.{ext}"));
+        ok(&softsculpt(&["simulate", &f, "--up", "z", "--out-up", "y", "--out", &out, "--steps", "0"]));
         let (lo, hi) = read(Path::new(&out)).mesh.bounds();
         assert_eq!((lo[1], hi[1]), (0.0, 3.0), "{out}: the height axis is Y");
     }
+    // A Y-up model written Z-up for Blender's STL importer: read back with --up z, it is the model.
+    let out = d.s("mushroom.stl");
+    ok(&softsculpt(&["simulate", "builtin:mushroom", "--out-up", "z", "--out", &out, "--steps", "0"]));
+    let (lo, hi) = read(Path::new(&out)).mesh.bounds();
+    let (lo_y, hi_y) = softsculpt::mesh::builtin::builtin("mushroom").unwrap().bounds();
+    // f32 STL: within an f32 rounding of the Y-up model's height, now along +Z.
+    assert!((hi[2] - hi_y[1]).abs() < 1e-6 && (lo[2] - lo_y[1]).abs() < 1e-6, "{lo:?} {hi:?} vs {lo_y:?} {hi_y:?}");
     let text = String::from_utf8_lossy(&softsculpt(&["info", &f, "--up", "z"]).stdout).into_owned();
     assert!(text.contains("format:              OBJ") && text.contains("up axis:             z (given by --up; rotated to Y-up)"), "{text}");
     // glTF says Y-up: --up z still rotates, with a warning.

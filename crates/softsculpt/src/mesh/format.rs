@@ -159,6 +159,15 @@ pub fn z_up_to_y_up(positions: &mut [f64]) {
     }
 }
 
+/// The inverse of [`z_up_to_y_up`]: (x, y, z) → (x, −z, y), for writing a Z-up file.
+pub fn y_up_to_z_up(positions: &mut [f64]) {
+    for p in positions.chunks_exact_mut(3) {
+        let (y, z) = (p[1], p[2]);
+        p[1] = -z;
+        p[2] = y;
+    }
+}
+
 impl LoadedMesh {
     /// Declare the file's up axis. `Z` rotates the mesh (and its source) to Y-up; `Y` keeps it.
     /// Returns a warning when this contradicts what the format says (glTF is Y-up).
@@ -189,7 +198,17 @@ impl LoadedMesh {
     /// source's vertex order and polygons (triangulated as fans where the format needs
     /// triangles). glTF text is not written: use GLB.
     pub fn write(&self, format: MeshFormat, positions: &[f64], header: &str) -> Result<Vec<u8>, MeshError> {
-        let out = self.source_positions(positions);
+        self.write_in(format, positions, header, UpAxis::Y)
+    }
+
+    /// [`LoadedMesh::write`] in the frame `up`: Z turns the (Y-up) positions to Z-up
+    /// ([`y_up_to_z_up`], the inverse of what reading with `Z` did), so a file read Z-up is
+    /// written back Z-up.
+    pub fn write_in(&self, format: MeshFormat, positions: &[f64], header: &str, up: UpAxis) -> Result<Vec<u8>, MeshError> {
+        let mut out = self.source_positions(positions);
+        if up == UpAxis::Z {
+            y_up_to_z_up(&mut out);
+        }
         Ok(match format {
             MeshFormat::Obj => obj::write(&out, &self.source, header),
             MeshFormat::Ply => super::ply::write(&out, &self.source, header),
