@@ -62,6 +62,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
 /// Write a generated mesh (remeshed, sketched) atomically in the format `format`, in the frame `up`.
 pub fn write_mesh(path: &Path, format: softsculpt::mesh::MeshFormat, mesh: &softsculpt::TriMesh, header: &str, up: softsculpt::mesh::UpAxis) -> Result<(), String> {
     let loaded = softsculpt::LoadedMesh::from_trimesh(mesh.clone());
-    let bytes = loaded.write_in(format, &loaded.mesh.positions, header, up).map_err(|e| format!("--out {}: {e}", path.display()))?;
+    let options = softsculpt::mesh::format::WriteOptions { up, triangulate: false };
+    let bytes = loaded.write_with(format, &loaded.mesh.positions, header, options).map_err(|e| format!("--out {}: {e}", path.display()))?;
     write_atomic(path, &bytes).map_err(|e| format!("--out {e}"))
 }

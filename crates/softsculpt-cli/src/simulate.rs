@@ -27,6 +27,11 @@ pub struct SimulateArgs {
     /// STL importers), y Y-up.
     #[arg(long = "out-up", value_parser = input::parse_up, value_name = "y|z")]
     pub out_up: Option<softsculpt::mesh::UpAxis>,
+    /// Write OBJ and PLY as triangles (each polygon a fan) instead of the input's polygons:
+    /// some readers (trimesh) refuse a PLY that mixes quads and triangles. STL and GLB are
+    /// always triangles.
+    #[arg(long)]
+    pub triangulate: bool,
     /// Number of steps.
     #[arg(long, allow_hyphen_values = true, default_value = "1000", value_parser = args::count, value_name = "N")]
     pub steps: u64,
@@ -321,7 +326,8 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         a.integrator.name(),
         if out_up == softsculpt::mesh::UpAxis::Z { "Z" } else { "Y" }
     );
-    let bytes = loaded.write_in(out_format, body.positions(), &header, out_up).map_err(|e| format!("--out {}: {e}", a.out.display()))?;
+    let options = softsculpt::mesh::format::WriteOptions { up: out_up, triangulate: a.triangulate };
+    let bytes = loaded.write_with(out_format, body.positions(), &header, options).map_err(|e| format!("--out {}: {e}", a.out.display()))?;
     output::write_atomic(&a.out, &bytes).map_err(|e| format!("--out {e}"))?;
     let rest = if stopped_at_rest { " (at rest)" } else { "" };
     // The enclosed volume (what `info` of the output reports); the gas's own in another mode.

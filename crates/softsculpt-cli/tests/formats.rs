@@ -346,3 +346,27 @@ fn an_unknown_output_type_is_refused_before_the_run() {
         assert!(!path.exists());
     }
 }
+
+/// `--triangulate` writes OBJ and PLY as triangles (fans of the input's polygons), the same
+/// positions; without it the input's quads are kept (a PLY mixing quads and triangles is valid,
+/// but trimesh refuses it).
+#[test]
+fn triangulate_writes_triangles_with_the_same_vertices() {
+    let d = Dir::new();
+    // A cube of five quads and a top split into two triangles.
+    let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
+                f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5 8\n";
+    let f = d.file("mixed.obj", text.as_bytes());
+    for ext in ["obj", "ply"] {
+        let kept = d.s(&format!("kept.{ext}"));
+        let tri = d.s(&format!("tri.{ext}"));
+        ok(&softsculpt(&["simulate", &f, "--out", &kept, "--steps", "0"]));
+        ok(&softsculpt(&["simulate", &f, "--out", &tri, "--steps", "0", "--triangulate"]));
+        let (k, t) = (read(Path::new(&kept)), read(Path::new(&tri)));
+        assert_eq!(k.source.arities.iter().filter(|&&n| n == 4).count(), 5, "{ext}: the quads kept");
+        assert!(t.source.arities.iter().all(|&n| n == 3), "{ext}: triangles only");
+        // 5 quads → 10 triangles, plus the 2 triangles: 12, over the same 8 vertices.
+        assert_eq!(t.source.arities.len(), 12, "{ext}");
+        assert_eq!(t.source.positions, k.source.positions, "{ext}: the same vertices in the same order");
+    }
+}

@@ -159,6 +159,15 @@ pub fn z_up_to_y_up(positions: &mut [f64]) {
     }
 }
 
+/// How [`LoadedMesh::write_with`] writes: in which frame, and whether OBJ and PLY polygons are
+/// split into triangles (some readers, trimesh among them, refuse a PLY mixing quads and
+/// triangles). The default: Y-up, the source's polygons.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct WriteOptions {
+    pub up: UpAxis,
+    pub triangulate: bool,
+}
+
 /// The inverse of [`z_up_to_y_up`]: (x, y, z) → (x, −z, y), for writing a Z-up file.
 pub fn y_up_to_z_up(positions: &mut [f64]) {
     for p in positions.chunks_exact_mut(3) {
@@ -198,20 +207,28 @@ impl LoadedMesh {
     /// source's vertex order and polygons (triangulated as fans where the format needs
     /// triangles). glTF text is not written: use GLB.
     pub fn write(&self, format: MeshFormat, positions: &[f64], header: &str) -> Result<Vec<u8>, MeshError> {
-        self.write_in(format, positions, header, UpAxis::Y)
+        self.write_with(format, positions, header, WriteOptions::default())
     }
 
-    /// [`LoadedMesh::write`] in the frame `up`: Z turns the (Y-up) positions to Z-up
-    /// ([`y_up_to_z_up`], the inverse of what reading with `Z` did), so a file read Z-up is
-    /// written back Z-up.
-    pub fn write_in(&self, format: MeshFormat, positions: &[f64], header: &str, up: UpAxis) -> Result<Vec<u8>, MeshError> {
+    /// [`LoadedMesh::write`] with `options`: the frame (Z turns the Y-up positions to Z-up,
+    /// [`y_up_to_z_up`], the inverse of what reading with `Z` did, so a file read Z-up is written
+    /// back Z-up) and whether OBJ and PLY get the source's polygons or triangles (fans).
+    pub fn write_with(&self, format: MeshFormat, positions: &[f64], header: &str, options: WriteOptions) -> Result<Vec<u8>, MeshError> {
         let mut out = self.source_positions(positions);
-        if up == UpAxis::Z {
+        if options.up == UpAxis::Z {
             y_up_to_z_up(&mut out);
         }
+        let fans;
+        let polygons = if options.triangulate {
+            let tris = fan_triangles(&self.source);
+            fans = ObjData { positions: Vec::new(), arities: vec![3; tris.len()], indices: tris.into_iter().flatten().collect() };
+            &fans
+        } else {
+            &self.source
+        };
         Ok(match format {
-            MeshFormat::Obj => obj::write(&out, &self.source, header),
-            MeshFormat::Ply => super::ply::write(&out, &self.source, header),
+            MeshFormat::Obj => obj::write(&out, polygons, header),
+            MeshFormat::Ply => super::ply::write(&out, polygons, header),
             MeshFormat::Stl => super::stl::write(&out, &self.source, header),
             MeshFormat::Glb => super::gltf::write_glb(&out, &self.source, header),
             MeshFormat::Gltf => {
