@@ -37,7 +37,9 @@ pub struct BenchArgs {
     pub tolerance: Option<f64>,
     /// Threads (0 or absent: every core).
     #[arg(long, allow_hyphen_values = true, value_parser = args::threads, value_name = "N")]
-    pub threads: Option<u64>,
+    pub threads: Option<u64>,    /// Off a terminal, print a progress line every 5 s on stderr (on a terminal a bar shows anyway).
+    #[arg(long)]
+    pub progress: bool,
 }
 
 fn parse_level(s: &str) -> Result<u32, String> {
@@ -52,6 +54,9 @@ pub fn run(a: BenchArgs) -> Result<(), String> {
     if !a.json {
         println!("{:>9} {:>9} {:>12} {:>18} {:>16} {:>8} {:>8}", "vertices", "springs", "ms/step", "ns/spring-step", "final volume", "newton", "linear");
     }
+    // Progress between repetitions, never inside the timed loop.
+    let mut bar = crate::progress::Progress::counted("bench", (a.levels.len() as u64) * a.reps * a.steps, "steps", true, a.progress);
+    let mut done = 0;
     for &level in &a.levels {
         let mut best = f64::INFINITY;
         let mut volume = 0.0;
@@ -85,6 +90,8 @@ pub fn run(a: BenchArgs) -> Result<(), String> {
                 linear += it.linear as u64;
             }
             best = best.min(t0.elapsed().as_secs_f64());
+            done += a.steps;
+            bar.set(done);
             volume = world.bodies[0].exact_volume();
         }
         let ms = best * 1e3 / a.steps as f64;
@@ -97,8 +104,9 @@ pub fn run(a: BenchArgs) -> Result<(), String> {
             );
         } else {
             let (nps, lps) = (newton as f64 / a.steps as f64, linear as f64 / a.steps as f64);
-            println!("{nv:>9} {ns:>9} {ms:>12.4} {ns_spring:>18.3} {volume:>16.9} {nps:>8.2} {lps:>8.1}");
+            bar.suspend(|| println!("{nv:>9} {ns:>9} {ms:>12.4} {ns_spring:>18.3} {volume:>16.9} {nps:>8.2} {lps:>8.1}"));
         }
     }
+    bar.finish();
     Ok(())
 }

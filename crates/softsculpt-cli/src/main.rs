@@ -11,6 +11,7 @@ mod bench;
 mod info;
 mod input;
 mod output;
+mod progress;
 mod remesh;
 mod run;
 mod simulate;

@@ -28,7 +28,9 @@ pub struct RemeshArgs {
     /// The output's up axis (default: the input's, --up): z writes it Z-up (Blender's PLY and
     /// STL importers), y Y-up.
     #[arg(long = "out-up", value_parser = input::parse_up, value_name = "y|z")]
-    pub out_up: Option<softsculpt::mesh::UpAxis>,
+    pub out_up: Option<softsculpt::mesh::UpAxis>,    /// Off a terminal, print a progress line every 5 s on stderr (on a terminal a bar shows anyway).
+    #[arg(long)]
+    pub progress: bool,
 }
 
 pub fn run(a: RemeshArgs) -> Result<(), String> {
@@ -43,7 +45,10 @@ pub fn run(a: RemeshArgs) -> Result<(), String> {
     remesh::check_edge_length(&loaded.mesh, a.edge).map_err(|e| format!("--edge: {e}"))?;
     // The shape is kept or the remesh refused (mesh::remesh::remesh_keeping_shape): a mesh too
     // coarse for --edge is remeshed at a half or a quarter of it, and says so.
-    let kept = remesh::remesh_keeping_shape(&loaded.mesh, a.edge, a.crease).map_err(|e| format!("{}: {e}", a.input))?;
+    let spin = crate::progress::Progress::spinner(&format!("remeshing {} at edge {} m", a.input, a.edge), true, a.progress);
+    let kept = remesh::remesh_keeping_shape(&loaded.mesh, a.edge, a.crease);
+    spin.finish();
+    let kept = kept.map_err(|e| format!("{}: {e}", a.input))?;
     let (out, r) = (kept.mesh, kept.report);
     // The header names what made the file (the edge and crease angle used), so the command it
     // shows makes it again.

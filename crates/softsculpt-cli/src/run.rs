@@ -13,7 +13,6 @@ use softsculpt::mesh::animation as gltf;
 use clap::Args;
 use serde_json::json;
 use softsculpt::scene::SceneRun;
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 #[derive(Args, Debug)]
@@ -39,7 +38,9 @@ pub struct RunArgs {
     /// Run an explicit integrator at a dt above the model's stability bound (refused
     /// otherwise, with the dt that would be stable).
     #[arg(long)]
-    pub force: bool,
+    pub force: bool,    /// Off a terminal, print a progress line every 5 s on stderr (on a terminal a bar shows anyway).
+    #[arg(long)]
+    pub progress: bool,
 }
 
 pub fn run(a: RunArgs) -> Result<(), String> {
@@ -82,27 +83,16 @@ pub fn run(a: RunArgs) -> Result<(), String> {
         }
     };
     take(&scene, &mut frames, &mut times);
-    let bar = (!a.quiet && std::io::stderr().is_terminal()).then(|| {
-        let b = indicatif::ProgressBar::new(total);
-        b.set_style(
-            indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} steps  {elapsed_precise} (eta {eta})")
-                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-        );
-        b
-    });
+    let mut bar = crate::progress::Progress::counted("run", total, "steps", !a.quiet, a.progress);
     scene
         .run(|s| {
             take(s, &mut frames, &mut times);
-            if let Some(b) = &bar {
-                if s.steps() % 100 == 0 {
-                    b.set_position(s.steps());
-                }
+            if s.steps() % 100 == 0 {
+                bar.set(s.steps());
             }
         })
         .map_err(|e| format!("{shown}: {e}"))?;
-    if let Some(b) = bar {
-        b.finish_and_clear();
-    }
+    bar.finish();
 
     if occupied {
         empty_dir(&a.out)?;

@@ -1,13 +1,13 @@
 //! `softsculpt simulate INPUT --out OUT.obj [options]` (a stable contract: keep the flags).
 
 use crate::args::{self, help};
+use crate::progress::Progress;
 use crate::{input, output};
 use softsculpt::params::{self as table, Value};
 use clap::Args;
 use serde_json::json;
 use softsculpt::body::{Material, SoftBody, VolumeMode};
 use softsculpt::world::{Ground, Integrator, World, WorldSettings};
-use std::io::IsTerminal;
 use std::path::PathBuf;
 
 #[derive(Args, Debug)]
@@ -32,6 +32,9 @@ pub struct SimulateArgs {
     /// always triangles.
     #[arg(long)]
     pub triangulate: bool,
+    /// Off a terminal, print a progress line every 5 s on stderr (on a terminal a bar shows anyway).
+    #[arg(long)]
+    pub progress: bool,
     /// Number of steps.
     #[arg(long, allow_hyphen_values = true, default_value = "1000", value_parser = args::count, value_name = "N")]
     pub steps: u64,
@@ -273,14 +276,8 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     };
     emit(&world)?;
 
-    let bar = (std::io::stderr().is_terminal() && a.steps >= 1000).then(|| {
-        let b = indicatif::ProgressBar::new(a.steps);
-        b.set_style(
-            indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} steps  {elapsed_precise} (eta {eta})")
-                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-        );
-        b
-    });
+    // A bar for runs long enough to want one (1,000 steps and more).
+    let mut bar = Progress::counted("simulate", a.steps, "steps", a.steps >= 1000, a.progress);
     let mut calm = 0u64;
     let mut stopped_at_rest = false;
     for step in 1..=a.steps {
@@ -294,18 +291,14 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         if step % every == 0 || step == a.steps || stopped_at_rest {
             emit(&world)?;
         }
-        if let Some(b) = &bar {
-            if step % 64 == 0 {
-                b.set_position(step);
-            }
+        if step % 64 == 0 {
+            bar.set(step);
         }
         if stopped_at_rest {
             break;
         }
     }
-    if let Some(b) = bar {
-        b.finish_and_clear();
-    }
+    bar.finish();
     let body = &world.bodies[0];
     if !body.is_finite() {
         return Err(format!(

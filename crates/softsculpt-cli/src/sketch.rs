@@ -19,13 +19,15 @@ pub struct SketchArgs {
     pub edge: Option<f64>,
     /// Gas as the product nRT [J] (default: the amount that stretches the skin about 2 %).
     #[arg(long, value_parser = args::finite, value_name = "NRT", allow_hyphen_values = true)]
-    pub gas: Option<f64>,
+    pub gas: Option<f64>,    /// Off a terminal, print a progress line every 5 s on stderr (on a terminal a bar shows anyway).
+    #[arg(long)]
+    pub progress: bool,
 }
 
 pub fn run(a: SketchArgs) -> Result<(), String> {
     let format = input::out_format(&a.out)?;
     let name = a.outline.display().to_string();
-    let text = std::fs::read(&a.outline).map_err(|e| format!("{name}: cannot read: {e}"))?;
+    let text = input::read_file(&a.outline, &name)?;
     let text = String::from_utf8(text).map_err(|_| format!("{name}: not a text file (lines of 'x y')"))?;
     let points = outline::parse(&text).map_err(|e| format!("{name}: {e}"))?;
     let o = Outline::new(&points).map_err(|e| format!("{name}: {e}"))?;
@@ -34,7 +36,10 @@ pub fn run(a: SketchArgs) -> Result<(), String> {
             return Err(format!("--gas {g}: a sketch needs gas to inflate (nRT > 0 J)"));
         }
     }
-    let s = sketch(&o, a.edge, a.gas).map_err(|e| format!("{name}: {e}"))?;
+    let spin = crate::progress::Progress::spinner(&format!("sketching {name}"), true, a.progress);
+    let s = sketch(&o, a.edge, a.gas);
+    spin.finish();
+    let s = s.map_err(|e| format!("{name}: {e}"))?;
     let header = format!("SoftSculpt sketch {name} — edge {:.4} m, gas nRT {:.4} J", s.edge, s.nrt);
     output::write_mesh(&a.out, format, &s.mesh, &header, softsculpt::mesh::UpAxis::Y)?;
     eprintln!(

@@ -414,3 +414,29 @@ fn the_help_and_the_scene_docs_name_every_built_in_model() {
         assert!(row.contains(&format!("`{name}`")), "docs/scenes.md lacks {name}: {row}");
     }
 }
+
+/// Off a terminal (a pipe, as here) a long run prints nothing but its final line: no bar, no
+/// escape codes; `--progress` is accepted by every long command (its lines come every 5 s, so a
+/// run this short prints none).
+#[test]
+fn off_a_terminal_only_the_final_line_is_printed() {
+    let d = Dir::new();
+    let (p, r) = (d.s("p.obj"), d.s("r.obj"));
+    for extra in [&[][..], &["--progress"][..]] {
+        let mut args = vec!["simulate", "builtin:sphere", "--out", &p, "--steps", "2000"];
+        args.extend_from_slice(extra);
+        let o = softsculpt(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let e = stderr(&o);
+        assert_eq!(e.lines().count(), 1, "{extra:?}: {e}");
+        assert!(e.starts_with("wrote ") && !e.contains('\u{1b}'), "{e}");
+    }
+    for args in [
+        vec!["remesh", "builtin:sphere", "--edge", "0.1", "--out", &r, "--progress"],
+        vec!["bench", "--levels", "1", "--steps", "10", "--reps", "1", "--progress"],
+    ] {
+        let o = softsculpt(&args);
+        assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+        assert!(!stderr(&o).contains('\u{1b}'), "{}", stderr(&o));
+    }
+}
