@@ -55,8 +55,8 @@ pub fn run(a: BenchArgs) -> Result<(), String> {
         println!("{:>9} {:>9} {:>12} {:>18} {:>16} {:>8} {:>8}", "vertices", "springs", "ms/step", "ns/spring-step", "final volume", "newton", "linear");
     }
     // Progress between repetitions, never inside the timed loop.
-    let mut bar = crate::progress::Progress::counted("bench", (a.levels.len() as u64) * a.reps * a.steps, "steps", true, a.progress);
-    let mut done = 0;
+    let mut bar = crate::progress::Progress::counted("bench", (a.levels.len() as u64).saturating_mul(a.reps).saturating_mul(a.steps), "steps", true, a.progress);
+    let mut done = 0u64;
     for &level in &a.levels {
         let mut best = f64::INFINITY;
         let mut volume = 0.0;
@@ -90,7 +90,7 @@ pub fn run(a: BenchArgs) -> Result<(), String> {
                 linear += it.linear as u64;
             }
             best = best.min(t0.elapsed().as_secs_f64());
-            done += a.steps;
+            done = done.saturating_add(a.steps);
             bar.set(done);
             volume = world.bodies[0].exact_volume();
         }

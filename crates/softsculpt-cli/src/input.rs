@@ -9,11 +9,15 @@ pub fn parse_up(s: &str) -> Result<UpAxis, String> {
     UpAxis::from_name(s).ok_or_else(|| format!("unknown up axis '{s}' (use y or z)"))
 }
 
-/// The frame outputs are written in: `--out-up` if given, else the input's (`--up`), else Y.
-pub fn out_up(out_up: Option<UpAxis>, up: Option<UpAxis>) -> UpAxis {
-    match out_up.or(up) {
-        Some(UpAxis::Z) => UpAxis::Z,
-        _ => UpAxis::Y,
+/// The frame an output of `format` is written in: `--out-up` if given, else the input's
+/// (`--up`), else Y; glTF is always Y-up (its specification): `--out-up z` for a .glb is
+/// refused, and a Z-up input is written to .glb Y-up.
+pub fn out_up(out_up: Option<UpAxis>, up: Option<UpAxis>, format: MeshFormat) -> Result<UpAxis, String> {
+    let gltf = matches!(format, MeshFormat::Glb | MeshFormat::Gltf);
+    match (out_up.or(up), gltf) {
+        (Some(UpAxis::Z), true) if out_up == Some(UpAxis::Z) => Err("--out-up z: glTF is Y-up by specification, so a .glb is written Y-up (use .obj, .ply or .stl for Z-up)".into()),
+        (Some(UpAxis::Z), false) => Ok(UpAxis::Z),
+        _ => Ok(UpAxis::Y),
     }
 }
 

@@ -12,6 +12,7 @@ mod info;
 mod input;
 mod output;
 mod progress;
+mod record;
 mod remesh;
 mod run;
 mod simulate;

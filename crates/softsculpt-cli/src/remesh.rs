@@ -35,6 +35,7 @@ pub struct RemeshArgs {
 
 pub fn run(a: RemeshArgs) -> Result<(), String> {
     let format = input::out_format(&a.out)?;
+    input::out_up(a.out_up, a.up, format)?;
     if let Some(c) = a.crease {
         if !(c > 0.0 && c < 180.0) {
             return Err(format!("--crease {c}: the crease angle is in degrees, between 0 and 180"));
@@ -54,7 +55,7 @@ pub fn run(a: RemeshArgs) -> Result<(), String> {
     // shows makes it again.
     let crease = r.crease_deg.map(|c| format!(" --crease {c}")).unwrap_or_default();
     let header = format!("SoftSculpt remesh {} --edge {}{crease}", a.input, r.edge);
-    output::write_mesh(&a.out, format, &out, &header, input::out_up(a.out_up, a.up))?;
+    output::write_mesh(&a.out, format, &out, &header, input::out_up(a.out_up, a.up, format)?)?;
     let (q0, q1) = (quality(&loaded.mesh, Some(r.edge)), quality(&out, Some(r.edge)));
     if r.shortened() {
         let creases = if a.crease.is_none() && r.crease_deg.is_some() { format!(", keeping edges sharper than {}°", remesh::CREASE) } else { String::new() };

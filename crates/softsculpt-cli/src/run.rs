@@ -1,7 +1,8 @@
 //! `softsculpt run SCENE --out DIR [--frames N]`: play a scene file headless.
 //!
 //! Writes, into DIR (created if needed; one that is not empty is refused before the run unless
-//! `--overwrite`, which empties it once the run has succeeded), only once the whole run has
+//! `--overwrite` and all it holds is an earlier run's outputs, removed once the run has
+//! succeeded), only once the whole run has
 //! succeeded, each file atomically, then one line saying what it wrote:
 //! - `NAME.obj` — every body's final shape (in its source file's vertex order and polygons);
 //! - `summary.json` — time, steps and every body's final statistics (the `simulate` stats keys);
@@ -31,8 +32,9 @@ pub struct RunArgs {
     /// Threads for the force stages and the implicit solver (0 or absent: every core).
     #[arg(long, allow_hyphen_values = true, value_parser = crate::args::threads, value_name = "N")]
     pub threads: Option<u64>,
-    /// Write into a --out directory that is not empty: its contents are removed first (once the
-    /// run has succeeded), so no earlier run's frames stay beside the new ones.
+    /// Write into a --out directory that holds an earlier run's outputs: they are removed (once
+    /// this run has succeeded), so none of its frames stay beside the new ones. A directory
+    /// holding anything else is refused.
     #[arg(long)]
     pub overwrite: bool,
     /// Run an explicit integrator at a dt above the model's stability bound (refused
@@ -50,16 +52,27 @@ pub fn run(a: RunArgs) -> Result<(), String> {
     }
     let occupied = std::fs::read_dir(&a.out).map(|mut d| d.next().is_some()).unwrap_or(false);
     if occupied && !a.overwrite {
-        return Err(format!("{}: the directory is not empty (an earlier run's files would stay beside the new ones): give an empty or new --out, or --overwrite to empty it", a.out.display()));
+        return Err(format!("{}: the directory is not empty (an earlier run's files would stay beside the new ones): give an empty or new --out, or --overwrite to replace an earlier run's outputs", a.out.display()));
     }
+    // --overwrite removes only what a run writes, so a wrong --out (the scene's own folder, `.`,
+    // home) loses nothing: anything else there refuses it.
+    let earlier = if occupied { earlier_outputs(&a.out)? } else { Vec::new() };
     let text = crate::input::read_file(&a.scene, &shown)?;
     let text = String::from_utf8(text).map_err(|_| format!("{shown}: not UTF-8 text"))?;
     let dir = a.scene.parent().map(Path::to_path_buf).unwrap_or_default();
+    // The files the scene reads, with their hashes, for the run record (record.rs).
+    let mut inputs = vec![serde_json::json!({ "name": shown, "sha256": crate::record::sha256(text.as_bytes()), "bytes": text.len() })];
     let mut resolve = |path: &str| -> Result<Vec<u8>, String> {
+        // (The scene's error names the file: the reason alone here.)
         let p = dir.join(path);
-        crate::input::read_file(&p, &p.display().to_string())
+        let shown = p.display().to_string();
+        let bytes = crate::input::read_file(&p, &shown).map_err(|e| e.trim_start_matches(&format!("{shown}: ")).trim_start_matches("cannot read: ").to_string())?;
+        inputs.push(serde_json::json!({ "name": path, "sha256": crate::record::sha256(&bytes), "bytes": bytes.len() }));
+        Ok(bytes)
     };
     let mut scene = SceneRun::load(&text, &mut resolve).map_err(|e| format!("{shown}: {e}"))?;
+    // Recorded as the run starts (the parameters the scene set; events change some later).
+    let record = crate::record::run(&scene.world, &scene.names, inputs);
     scene.world.set_threads(a.threads.unwrap_or(0) as usize).map_err(|e| format!("--threads: {e}"))?;
     crate::simulate::check_stable(&scene.world, a.force, "the scene's dt").map_err(|e| format!("{shown}: {e}"))?;
     if a.frames == Some(1) {
@@ -94,11 +107,10 @@ pub fn run(a: RunArgs) -> Result<(), String> {
         .map_err(|e| format!("{shown}: {e}"))?;
     bar.finish();
 
-    if occupied {
-        empty_dir(&a.out)?;
-    }
+    remove_all(&a.out, &earlier)?;
     let header = |t: f64| format!("softsculpt run {shown}: t = {t} s");
     let mut summary = serde_json::Map::new();
+    summary.insert("run".into(), record);
     summary.insert("time".into(), json!(scene.time()));
     summary.insert("steps".into(), json!(scene.steps()));
     let mut bodies = serde_json::Map::new();
@@ -127,16 +139,50 @@ pub fn run(a: RunArgs) -> Result<(), String> {
     output::write_atomic(&a.out.join("summary.json"), format!("{text}\n").as_bytes())?;
     let n = scene.names.len();
     let framed = if times.is_empty() { String::new() } else { format!(", {} frames and animation.glb", times.len()) };
-    println!("wrote {}: {n} {} ({}), summary.json{framed}; after {} steps, t = {:.4} s", a.out.display(), if n == 1 { "body" } else { "bodies" }, scene.names.iter().map(|s| format!("{s}.obj")).collect::<Vec<_>>().join(", "), scene.steps(), scene.time());
+    eprintln!("wrote {}: {n} {} ({}), summary.json{framed}; after {} steps, t = {:.4} s", a.out.display(), if n == 1 { "body" } else { "bodies" }, scene.names.iter().map(|s| format!("{s}.obj")).collect::<Vec<_>>().join(", "), scene.steps(), scene.time());
     Ok(())
 }
 
-/// Remove everything in `dir` (`--overwrite`), the directory itself kept.
-fn empty_dir(dir: &Path) -> Result<(), String> {
-    let fail = |e: std::io::Error| format!("{}: cannot empty it for --overwrite: {e}", dir.display());
+/// The entries of `dir` an earlier `run` wrote (`summary.json`, `animation.glb`, `frames/`, and
+/// OBJ files whose first line is run's header), for `--overwrite` to remove; an error naming the
+/// first entry that is anything else.
+fn earlier_outputs(dir: &Path) -> Result<Vec<PathBuf>, String> {
+    let fail = |e: std::io::Error| format!("{}: cannot list it: {e}", dir.display());
+    let mut out = Vec::new();
     for entry in std::fs::read_dir(dir).map_err(fail)? {
         let p = entry.map_err(fail)?.path();
-        if p.is_dir() && !p.is_symlink() { std::fs::remove_dir_all(&p) } else { std::fs::remove_file(&p) }.map_err(fail)?;
+        let name = p.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        let ours = match name.as_str() {
+            "summary.json" | "animation.glb" => p.is_file(),
+            "frames" => p.is_dir() && !p.is_symlink() && std::fs::read_dir(&p).map_err(fail)?.all(|e| e.is_ok_and(|e| written_by_run(&e.path()))),
+            _ => written_by_run(&p),
+        };
+        if !ours {
+            return Err(format!(
+                "{}: --overwrite replaces only an earlier run's outputs, and '{name}' is not one (give another --out)",
+                dir.display()
+            ));
+        }
+        out.push(p);
+    }
+    Ok(out)
+}
+
+/// An OBJ file `run` wrote: its first line is run's header (`# softsculpt run …`).
+fn written_by_run(p: &Path) -> bool {
+    use std::io::Read;
+    let mut head = [0u8; 16];
+    p.extension().is_some_and(|e| e == "obj")
+        && p.is_file()
+        && std::fs::File::open(p).and_then(|mut f| f.read_exact(&mut head)).is_ok()
+        && &head == b"# softsculpt run"
+}
+
+/// Remove `paths` (an earlier run's outputs: files, and the frames folder).
+fn remove_all(dir: &Path, paths: &[PathBuf]) -> Result<(), String> {
+    for p in paths {
+        if p.is_dir() { std::fs::remove_dir_all(p) } else { std::fs::remove_file(p) }
+            .map_err(|e| format!("{}: cannot remove {} for --overwrite: {e}", dir.display(), p.display()))?;
     }
     Ok(())
 }

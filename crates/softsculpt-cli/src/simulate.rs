@@ -163,10 +163,6 @@ fn parse_volume(s: &str) -> Result<VolumeMode, String> {
 /// Consecutive calm steps that count as "at rest" for --until-rest.
 pub const REST_WINDOW: u64 = 100;
 
-pub fn stats_line(s: &softsculpt::Stats) -> String {
-    stats_json(s).to_string()
-}
-
 /// The stats keys of the contract, in order.
 pub fn stats_json(s: &softsculpt::Stats) -> serde_json::Value {
     json!({
@@ -217,6 +213,7 @@ pub fn check_stable(world: &World, force: bool, dt_name: &str) -> Result<(), Str
 
 pub fn run(a: SimulateArgs) -> Result<(), String> {
     let out_format = input::out_format(&a.out)?;
+    input::out_up(a.out_up, a.up, out_format)?;
     let loaded = input::load(&a.input, a.up)?;
     input::warn(&a.input, &loaded);
 
@@ -266,15 +263,22 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
         Some(p) => Some(output::Staged::create(p).map_err(|e| format!("--stats {e}"))?),
         None => None,
     };
-    let mut emit = |world: &World| -> Result<(), String> {
+    let mut emit = |world: &World, record: Option<serde_json::Value>| -> Result<(), String> {
         if let Some(s) = stats.as_mut() {
-            let mut line = stats_line(&world.stats(0));
+            let mut row = stats_json(&world.stats(0));
+            // The first row (step 0) also records the run (record.rs): the stats keys as every
+            // row has them, and "run".
+            if let (Some(r), Some(map)) = (record, row.as_object_mut()) {
+                map.insert("run".into(), r);
+            }
+            let mut line = row.to_string();
             line.push('\n');
             s.write(line.as_bytes())?;
         }
         Ok(())
     };
-    emit(&world)?;
+    let run_record = a.stats.is_some().then(|| crate::record::run(&world, &["body".to_string()], vec![crate::record::input(&a.input)]));
+    emit(&world, run_record)?;
 
     // A bar for runs long enough to want one (1,000 steps and more).
     let mut bar = Progress::counted("simulate", a.steps, "steps", a.steps >= 1000, a.progress);
@@ -289,7 +293,7 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
             }
         }
         if step % every == 0 || step == a.steps || stopped_at_rest {
-            emit(&world)?;
+            emit(&world, None)?;
         }
         if step % 64 == 0 {
             bar.set(step);
@@ -310,7 +314,7 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     if let Some(s) = stats {
         s.commit().map_err(|e| format!("--stats {e}"))?;
     }
-    let out_up = input::out_up(a.out_up, a.up);
+    let out_up = input::out_up(a.out_up, a.up, out_format)?;
     let header = format!(
         "SoftSculpt simulate {} — {} steps of {} s ({}), {}-up",
         a.input,
@@ -325,12 +329,8 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     let rest = if stopped_at_rest { " (at rest)" } else { "" };
     // The enclosed volume (what `info` of the output reports); the gas's own in another mode.
     let gas = if body.material.volume_mode == VolumeMode::Exact { String::new() } else { format!(", the gas's {} volume {:.6} m^3", body.material.volume_mode.name(), body.volume()) };
-    eprintln!(
-        "wrote {} after {} steps, t = {:.4} s{rest}, volume {:.6} m^3 enclosed{gas}",
-        a.out.display(),
-        world.steps(),
-        world.time(),
-        body.exact_volume()
-    );
+    // (An open surface encloses nothing: no volume said, as `info` says.)
+    let volume = if body.is_closed() { format!(", volume {:.6} m^3 enclosed{gas}", body.exact_volume()) } else { ", an open surface (no volume)".to_string() };
+    eprintln!("wrote {} after {} steps, t = {:.4} s{rest}{volume}", a.out.display(), world.steps(), world.time());
     Ok(())
 }

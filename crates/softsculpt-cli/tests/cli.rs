@@ -154,9 +154,11 @@ fn stats_lines_carry_the_contract_keys() {
         "step", "time", "volume", "pressure", "kinetic_energy", "elastic_energy", "gas_energy", "gravity_energy",
         "total_energy", "momentum", "center_of_mass", "max_speed", "solver_iterations", "plastic_dissipation",
     ];
-    for l in &lines {
+    for (i, l) in lines.iter().enumerate() {
         let obj = l.as_object().unwrap();
-        assert_eq!(obj.keys().map(|k| k.as_str()).collect::<Vec<_>>(), keys);
+        // The contract's keys, in order; the first row adds the run's record after them (record.rs).
+        let got: Vec<&str> = obj.keys().map(|k| k.as_str()).filter(|&k| !(i == 0 && k == "run")).collect();
+        assert_eq!(got, keys);
         assert_eq!(l["momentum"].as_array().unwrap().len(), 3);
         // Explicit integrators report no solver iterations.
         assert_eq!(l["solver_iterations"], serde_json::json!({"newton": 0, "linear": 0}));
@@ -427,9 +429,11 @@ fn off_a_terminal_only_the_final_line_is_printed() {
         args.extend_from_slice(extra);
         let o = softsculpt(&args);
         assert!(o.status.success(), "{}", stderr(&o));
+        // (A loaded machine may take over 5 s: then --progress's lines come before it.)
         let e = stderr(&o);
-        assert_eq!(e.lines().count(), 1, "{extra:?}: {e}");
-        assert!(e.starts_with("wrote ") && !e.contains('\u{1b}'), "{e}");
+        let rest: Vec<&str> = e.lines().filter(|l| !(extra.len() == 1 && l.starts_with("progress: simulate: "))).collect();
+        assert_eq!(rest.len(), 1, "{extra:?}: {e}");
+        assert!(rest[0].starts_with("wrote ") && !e.contains('\u{1b}'), "{e}");
     }
     for args in [
         vec!["remesh", "builtin:sphere", "--edge", "0.1", "--out", &r, "--progress"],
@@ -439,4 +443,33 @@ fn off_a_terminal_only_the_final_line_is_printed() {
         assert!(o.status.success(), "{args:?}: {}", stderr(&o));
         assert!(!stderr(&o).contains('\u{1b}'), "{}", stderr(&o));
     }
+}
+
+/// The first statistics row records the run (the stats keys as every row has them, and "run"):
+/// the command line, the version, every world and body parameter by its table id with the
+/// values the run used, and the input file with the SHA-256 of its bytes; the other rows are
+/// plain statistics rows.
+#[test]
+fn the_first_stats_row_records_the_run() {
+    use sha2::Digest;
+    let d = Dir::new();
+    let mesh = d.file("tetra.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n");
+    let stats = d.s("s.jsonl");
+    let o = softsculpt(&["simulate", &mesh, "--out", &d.s("o.obj"), "--steps", "20", "--stiffness", "250", "--gas", "3", "--stats", &stats]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let rows: Vec<serde_json::Value> = std::fs::read_to_string(&stats).unwrap().lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    let run = &rows[0]["run"];
+    assert_eq!(rows[0]["step"], 0);
+    assert!(rows[0]["volume"].is_number(), "the contract's keys are in the first row too");
+    assert!(rows[1..].iter().all(|r| r.get("run").is_none()), "only the first row records the run");
+    assert_eq!(run["version"], env!("CARGO_PKG_VERSION"));
+    assert!(run["command"].as_array().unwrap().iter().any(|a| a == "--stiffness"), "{run}");
+    assert_eq!(run["bodies"]["body"]["stiffness"], 250.0);
+    // (nRT is kept as an amount n: 3 J back to within rounding.)
+    assert!((run["bodies"]["body"]["gas.nrt"].as_f64().unwrap() - 3.0).abs() < 1e-12, "{run}");
+    assert_eq!(run["world"]["integrator"], "symplectic");
+    assert_eq!(run["world"]["dt"], 0.001);
+    let hex: String = sha2::Sha256::digest(std::fs::read(&mesh).unwrap()).iter().map(|b| format!("{b:02x}")).collect();
+    assert_eq!(run["inputs"][0]["sha256"], hex);
+    assert_eq!(run["inputs"][0]["name"], mesh);
 }

@@ -166,7 +166,7 @@ fn a_full_output_directory_is_refused_unless_overwrite_empties_it() {
     let out = dir.path().join("out");
     let o = softsculpt(&["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap(), "--frames", "4"]);
     assert!(o.status.success(), "{}", err(&o));
-    let said = String::from_utf8_lossy(&o.stdout);
+    let said = err(&o);
     assert!(said.starts_with(&format!("wrote {}: 2 bodies (ball.obj, tet.obj), summary.json, 4 frames and animation.glb; after 300 steps", out.display())), "{said}");
     let before = std::fs::read(out.join("summary.json")).unwrap();
     // Again without --overwrite: refused, nothing touched.
@@ -180,6 +180,12 @@ fn a_full_output_directory_is_refused_unless_overwrite_empties_it() {
     assert!(o.status.success(), "{}", err(&o));
     assert!(!out.join("animation.glb").exists() && !out.join("frames").exists());
     assert!(out.join("ball.obj").is_file() && out.join("summary.json").is_file());
+    // A directory holding anything a run did not write (here the scene's own folder) is never
+    // emptied: --overwrite is refused, every file kept.
+    let o = softsculpt(&["run", scene.to_str().unwrap(), "--out", dir.path().to_str().unwrap(), "--overwrite"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(err(&o).contains("replaces only an earlier run's outputs") && err(&o).lines().count() == 1, "{}", err(&o));
+    assert!(scene.is_file() && dir.path().join("tetra.obj").is_file() && out.join("ball.obj").is_file());
 }
 
 /// A scene whose explicit step is far above a body's stability bound is refused before it runs,
@@ -220,4 +226,24 @@ fn a_bad_value_is_cited_at_its_own_line() {
         assert_eq!(o.status.code(), Some(1), "{e}");
         assert!(e.contains(&format!("line {line}: {key}:")) && e.lines().count() == 1, "{text}\n{e}");
     }
+}
+
+/// `summary.json` records the run: the scene file and the mesh files it read, each with the
+/// SHA-256 of its bytes, and every body's parameters by table id.
+#[test]
+fn the_summary_records_the_run_and_its_files() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("scene.toml"), SCENE).unwrap();
+    std::fs::write(dir.path().join("tetra.obj"), TETRA).unwrap();
+    let out = dir.path().join("out");
+    let o = softsculpt(&["run", dir.path().join("scene.toml").to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", err(&o));
+    let summary: Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let run = &summary["run"];
+    let files: Vec<&str> = run["inputs"].as_array().unwrap().iter().map(|i| i["name"].as_str().unwrap()).collect();
+    assert!(files[0].ends_with("scene.toml") && files.contains(&"tetra.obj"), "{files:?}");
+    assert!(run["inputs"].as_array().unwrap().iter().all(|i| i["sha256"].as_str().is_some_and(|h| h.len() == 64)), "{run}");
+    assert!((run["bodies"]["ball"]["gas.nrt"].as_f64().unwrap() - 5.0).abs() < 1e-12, "{run}");
+    assert_eq!(run["world"]["dt"], 0.001);
+    assert_eq!(summary["steps"], 300, "the summary's own keys are kept");
 }

@@ -86,7 +86,8 @@ export class Importer {
       return;
     }
     if (l.a.up === up) return;
-    this.build(l.p, { ...l.a, up }, `turned ${up === 'z' ? 'from Z-up' : 'back to Y-up as in the file'}`);
+    // (The file as read, so without a remesh chosen at import: Model › Remesh gives it again.)
+    this.build(l.p, { ...l.a, up, remesh: false }, `turned ${up === 'z' ? 'from Z-up' : 'back to Y-up as in the file'}`);
   }
 
   /**
@@ -146,7 +147,10 @@ export class Importer {
     // Long thin triangles make poor springs: say so, and what evens them.
     // (Not when the answer remeshes it: that says what it did.)
     const cost = p.question.cost;
-    if (!a.remesh && cost?.why) parts.push(`${cost.why}: Model › Remesh evens them`);
+    const quality = w.quality(0);
+    // The trial's reason, or (no trial: interrupted) the core's poor-triangles verdict.
+    const uneven = cost?.why || (quality.poor ? `uneven triangles (${Math.round(100 * quality.small_angle_share)} % of angles below 25°)` : '');
+    if (!a.remesh && uneven) parts.push(`${uneven}: Model › Remesh evens them`);
     this.hooks.message(parts.filter(Boolean).join('; '));
     // The file's warnings were said when it was imported, not again when it is turned.
     if (p.warnings.length && !why) this.hooks.message(p.warnings.join('\n'), 'warn');

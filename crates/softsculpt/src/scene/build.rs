@@ -69,6 +69,11 @@ impl<'a> Ctx<'a> {
 /// searched up to the next table that is not one of its own sub-tables; None if it does not.
 fn key_line(text: &str, from: usize, table: &str, key: &str) -> Option<usize> {
     let base = table.split('[').next().unwrap_or(table);
+    // An entry of a list (`masses[0].mass`): its own key names recur in the table (the body's
+    // `mass`), so the table's header is cited instead.
+    if key.contains('[') {
+        return None;
+    }
     let last = key.rsplit('.').next().filter(|k| !k.is_empty())?;
     let mut offset = from.min(text.len());
     for (i, line) in text[offset..].split_inclusive('\n').enumerate() {
