@@ -534,7 +534,7 @@ export class Document {
     // What to expect, said before it runs: Loop subdivision makes V + E ≈ 4V − 6 vertices of a
     // closed mesh of V (E = 3V − 6 edges).
     const next = this.everyBody.reduce((n, b) => n + 4 * this.world.body(b).vertexCount - 6, 0);
-    if (next > REAL_TIME_VERTICES) this.hooks.message(`subdividing to about ${next.toLocaleString('en-US')} vertices: past ~${REAL_TIME_VERTICES.toLocaleString('en-US')} the steps here no longer converge in real time — expect slow motion and time-limited accuracy (the HUD says both); Ctrl+Z undoes`, 'warn');
+    if (next > REAL_TIME_VERTICES) this.hooks.message(`subdividing to about ${next.toLocaleString('en-US')} vertices: past ~${REAL_TIME_VERTICES.toLocaleString('en-US')} the steps here cannot all converge in real time while you shape it — expect slow motion and time-limited accuracy then (the HUD says both); Ctrl+Z undoes`, 'warn');
     this.edit('subdivide', true, () => {
       this.hooks.progress('subdividing');
       let dropped = 0, underLoad = false;
