@@ -2,8 +2,7 @@
 //! command line, the engine's version, every world and body parameter by its table id
 //! (`softsculpt::params::TABLE`, the ids `World::param` takes), and each input file with the
 //! SHA-256 of its bytes (what `sha256sum` prints). `simulate --stats` puts it in its first row
-//! (step 0) under `"run"`, `run` in `summary.json` under `"run"` (docs/parameters.md, "Run
-//! records").
+//! (step 0) under `"run"`, `run` in `summary.json` under `"run"` (docs/records.md).
 
 use serde_json::{json, Map, Value};
 use sha2::{Digest, Sha256};
