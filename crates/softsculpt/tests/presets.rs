@@ -97,11 +97,12 @@ fn scene_bodies_take_presets_and_plasticity() {
     assert_eq!(w.param(1, "flow").unwrap(), Value::Number(1.5));
     assert_eq!(w.param(1, "stiffness").unwrap(), Value::Number(300.0));
 
+    // Each cited at the line that sets it (line 3; the body's header is line 1).
     for (body, line, key, says) in [
-        ("preset = \"marble\"", 1, "body[0].preset", "unknown preset 'marble'"),
-        ("preset = \"modeler\"", 1, "body[0].preset", "a body takes a material preset"),
-        ("yield = -0.1", 1, "body[0].yield", "must be 0 or more"),
-        ("flow = nan", 1, "body[0].flow", "must be 0 or more"),
+        ("preset = \"marble\"", 3, "body[0].preset", "unknown preset 'marble'"),
+        ("preset = \"modeler\"", 3, "body[0].preset", "a body takes a material preset"),
+        ("yield = -0.1", 3, "body[0].yield", "must be 0 or more"),
+        ("flow = nan", 3, "body[0].flow", "must be 0 or more"),
     ] {
         let e = load(&format!("[[body]]\nmodel = \"sphere\"\n{body}\n")).map(|_| ()).unwrap_err();
         assert_eq!((e.line, e.key.as_deref()), (Some(line), Some(key)), "{e}");

@@ -47,7 +47,8 @@ fn a_syntax_error_gives_its_line() {
 fn a_missing_mesh_file_is_named() {
     let e = error("\n[[body]]\nmesh = \"nowhere.obj\"\n");
     eprintln!("{e}");
-    assert_eq!(e.line, Some(2));
+    // At the line that names it (the table's header is line 2).
+    assert_eq!(e.line, Some(3));
     assert!(e.to_string().contains("body[0].mesh") && e.to_string().contains("nowhere.obj"), "{e}");
 }
 
@@ -55,11 +56,12 @@ fn a_missing_mesh_file_is_named() {
 fn events_out_of_order_and_negative_times_are_refused() {
     let e = error(&format!("{BODY}[[event]]\ntime = 2\naction = \"freeze\"\n[[event]]\ntime = 1\naction = \"freeze\"\n"));
     eprintln!("{e}");
-    assert_eq!(e.line, Some(6));
+    // The out-of-order time's own line (its event's header is line 6).
+    assert_eq!(e.line, Some(7));
     assert!(e.to_string().contains("event[1].time") && e.to_string().contains("order"), "{e}");
     let e = error(&format!("{BODY}[[event]]\ntime = -1\naction = \"freeze\"\n"));
     eprintln!("{e}");
-    assert_eq!(e.line, Some(3));
+    assert_eq!(e.line, Some(4));
     assert!(e.to_string().contains("event[0].time"), "{e}");
 }
 
