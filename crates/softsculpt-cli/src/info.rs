@@ -100,12 +100,8 @@ fn remesh_flags(m: &softsculpt::mesh::TriMesh, mean: f64) -> String {
     use softsculpt::mesh::remesh::remesh_keeping_shape;
     let tried = (m.triangles.len() <= TRIED_UP_TO).then(|| remesh_keeping_shape(m, mean, None).ok()).flatten();
     match tried.map(|k| k.report) {
-        Some(r) => format!("--edge {}{}", sig3(r.edge), r.crease_deg.map_or(String::new(), |c| format!(" --crease {c}"))),
-        None => format!("--edge {}", sig3(mean)),
+        Some(r) => format!("--edge {}{}", softsculpt::world::sig3(r.edge), r.crease_deg.map_or(String::new(), |c| format!(" --crease {c}"))),
+        None => format!("--edge {}", softsculpt::world::sig3(mean)),
     }
 }
 
-/// Three significant digits (0.0159, 0.064), shortest form.
-fn sig3(x: f64) -> String {
-    format!("{:.2e}", x).parse::<f64>().map_or_else(|_| x.to_string(), |v| v.to_string())
-}

@@ -1,12 +1,12 @@
 //! What a run was, recorded with its results so a file of statistics describes itself: the
 //! command line, the engine's version, every world and body parameter by its table id
-//! (`softsculpt::params::TABLE`, the ids `World::param` takes), and each input file with the
+//! (`World::param_values`: the table's ids), and each input file with the
 //! SHA-256 of its bytes (what `sha256sum` prints). `simulate --stats` puts it in its first row
 //! (step 0) under `"run"`, `run` in `summary.json` under `"run"` (docs/records.md).
 
 use serde_json::{json, Map, Value};
 use sha2::{Digest, Sha256};
-use softsculpt::params::{Scope, TABLE};
+use softsculpt::params::Scope;
 use softsculpt::world::World;
 use std::path::Path;
 
@@ -30,11 +30,7 @@ pub fn input(name: &str) -> Value {
 /// The parameters of `scope` for body `body` of `world`, by table id (null where a parameter
 /// has no value, such as the ground's without a ground).
 pub fn parameters(world: &World, body: usize, scope: Scope) -> Map<String, Value> {
-    TABLE
-        .iter()
-        .filter(|p| p.scope == scope)
-        .map(|p| (p.id.to_string(), world.param(body, p.id).ok().and_then(|v| serde_json::to_value(v).ok()).unwrap_or(Value::Null)))
-        .collect()
+    world.param_values(body, &[scope]).into_iter().map(|(id, v)| (id.to_string(), v.and_then(|v| serde_json::to_value(v).ok()).unwrap_or(Value::Null))).collect()
 }
 
 /// The record of a run of `world` whose bodies are `names` (by index), read from `inputs`.

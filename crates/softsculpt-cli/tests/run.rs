@@ -52,6 +52,15 @@ action = "freeze"
 
 const TETRA: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
 
+/// A folder holding SCENE and the mesh it names; returns it, the scene's path and an `out` path in it.
+fn scene_folder() -> (tempfile::TempDir, std::path::PathBuf, std::path::PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("scene.toml"), SCENE).unwrap();
+    std::fs::write(dir.path().join("tetra.obj"), TETRA).unwrap();
+    let (scene, out) = (dir.path().join("scene.toml"), dir.path().join("out"));
+    (dir, scene, out)
+}
+
 fn read_obj_positions(path: &std::path::Path) -> Vec<f64> {
     std::fs::read_to_string(path)
         .unwrap()
@@ -63,11 +72,8 @@ fn read_obj_positions(path: &std::path::Path) -> Vec<f64> {
 
 #[test]
 fn a_scene_writes_final_meshes_frames_summary_and_a_gltf_animation() {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("scene.toml"), SCENE).unwrap();
-    std::fs::write(dir.path().join("tetra.obj"), TETRA).unwrap();
-    let out = dir.path().join("out");
-    let o = softsculpt(&["run", dir.path().join("scene.toml").to_str().unwrap(), "--out", out.to_str().unwrap(), "--frames", "4"]);
+    let (_dir, scene, out) = scene_folder();
+    let o = softsculpt(&["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap(), "--frames", "4"]);
     assert!(o.status.success(), "{}", err(&o));
     for f in ["ball.obj", "tet.obj", "summary.json", "animation.glb", "frames/ball_0000.obj", "frames/ball_0003.obj", "frames/tet_0003.obj"] {
         assert!(out.join(f).is_file(), "{f} missing");
@@ -159,11 +165,7 @@ fn every_shipped_scene_runs_from_the_command_line() {
 /// succeeded; the run ends with one line saying what it wrote.
 #[test]
 fn a_full_output_directory_is_refused_unless_overwrite_empties_it() {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("scene.toml"), SCENE).unwrap();
-    std::fs::write(dir.path().join("tetra.obj"), TETRA).unwrap();
-    let scene = dir.path().join("scene.toml");
-    let out = dir.path().join("out");
+    let (dir, scene, out) = scene_folder();
     let o = softsculpt(&["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap(), "--frames", "4"]);
     assert!(o.status.success(), "{}", err(&o));
     let said = err(&o);
@@ -232,11 +234,8 @@ fn a_bad_value_is_cited_at_its_own_line() {
 /// SHA-256 of its bytes, and every body's parameters by table id.
 #[test]
 fn the_summary_records_the_run_and_its_files() {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("scene.toml"), SCENE).unwrap();
-    std::fs::write(dir.path().join("tetra.obj"), TETRA).unwrap();
-    let out = dir.path().join("out");
-    let o = softsculpt(&["run", dir.path().join("scene.toml").to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let (_dir, scene, out) = scene_folder();
+    let o = softsculpt(&["run", scene.to_str().unwrap(), "--out", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", err(&o));
     let summary: Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     let run = &summary["run"];

@@ -457,19 +457,12 @@ pub extern "C" fn ss_set_deadline(w: u32, seconds: f64, accept: f64) -> i32 {
 pub extern "C" fn ss_params(w: u32, b: u32) -> i32 {
     status(|| {
         with_body(w, b, |h, i| {
-            let mut out = serde_json::Map::new();
-            for p in params::TABLE
-                .iter()
-                .filter(|p| matches!(p.scope, Scope::Body | Scope::World))
-            {
-                let v = h
-                    .world
-                    .param(i, p.id)
-                    .ok()
-                    .and_then(|v| serde_json::to_value(v).ok())
-                    .unwrap_or(serde_json::Value::Null);
-                out.insert(p.id.to_string(), v);
-            }
+            let out: serde_json::Map<String, serde_json::Value> = h
+                .world
+                .param_values(i, &[Scope::Body, Scope::World])
+                .into_iter()
+                .map(|(id, v)| (id.to_string(), v.and_then(|v| serde_json::to_value(v).ok()).unwrap_or(serde_json::Value::Null)))
+                .collect();
             set_result(serde_json::Value::Object(out).to_string().into_bytes());
             Ok(())
         })

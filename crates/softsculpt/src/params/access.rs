@@ -16,6 +16,12 @@ pub fn choice(id: &str, name: &str) -> Result<Value, ParamError> {
 }
 
 impl World {
+    /// Every parameter of the `scopes` by its table id, in table order, with its current value
+    /// (body parameters body `body`'s); None where it has none (the ground's without a ground).
+    pub fn param_values(&self, body: usize, scopes: &[Scope]) -> Vec<(&'static str, Option<Value>)> {
+        super::TABLE.iter().filter(|p| scopes.contains(&p.scope)).map(|p| (p.id, self.param(body, p.id).ok())).collect()
+    }
+
     /// The current value of parameter `id`; body parameters are body `body`'s.
     pub fn param(&self, body: usize, id: &str) -> Result<Value, ParamError> {
         let p = find(id)?;
