@@ -22,6 +22,7 @@ suite() { # name, command...
 suite setup scripts/setup.sh browser
 suite cargo cargo test --workspace --color never
 suite wasm make --no-print-directory web
+suite python scripts/python_tests.sh
 suite vitest bash -c 'cd web && npx vitest run --reporter=default'
 suite e2e bash -c 'cd web && node e2e/run.mjs'
 

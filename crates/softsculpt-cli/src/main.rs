@@ -1,7 +1,7 @@
 //! `softsculpt`: the headless front end of the SoftSculpt engine.
 //!
 //! Subcommands: `simulate` (run a body and write the result), `run` (play a scene file), `info` (what a mesh is made of), `remesh`, `sketch` (an outline becomes a balloon),
-//! `bench` (the standard workload). Every failure prints one line starting `error:` on stderr
+//! `bench` (the standard workload), `sweep` (a parameter sweep on Dask, through the Python package). Every failure prints one line starting `error:` on stderr
 //! and exits with status 1 (2 for a malformed command line); nothing panics on bad input. A
 //! reader that closes the output pipe early ends the command quietly, by SIGPIPE (status 141 in
 //! a shell), as other Unix tools.
@@ -17,6 +17,7 @@ mod remesh;
 mod run;
 mod simulate;
 mod sketch;
+mod sweep;
 
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::process::ExitCode;
@@ -46,6 +47,8 @@ enum Command {
     Sketch(sketch::SketchArgs),
     /// Run the standard benchmark workload (icospheres of increasing size).
     Bench(bench::BenchArgs),
+    /// Run a scene over a grid of parameters on Dask (needs the Python package, docs/python.md).
+    Sweep(sweep::SweepArgs),
 }
 
 fn main() -> ExitCode {
@@ -75,6 +78,7 @@ fn main() -> ExitCode {
         Command::Bench(a) => bench::run(a),
         Command::Remesh(a) => remesh::run(a),
         Command::Sketch(a) => sketch::run(a),
+        Command::Sweep(a) => sweep::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

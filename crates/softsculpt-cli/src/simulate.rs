@@ -5,7 +5,6 @@ use crate::progress::Progress;
 use crate::{input, output};
 use softsculpt::params::{self as table, Value};
 use clap::Args;
-use serde_json::json;
 use softsculpt::body::{Material, SoftBody, VolumeMode};
 use softsculpt::world::{Ground, Integrator, World, WorldSettings};
 use std::path::PathBuf;
@@ -163,24 +162,9 @@ fn parse_volume(s: &str) -> Result<VolumeMode, String> {
 /// Consecutive calm steps that count as "at rest" for --until-rest.
 pub const REST_WINDOW: u64 = 100;
 
-/// The stats keys of the contract, in order.
+/// The stats keys of the contract, in order (`Stats::to_json`, in the core).
 pub fn stats_json(s: &softsculpt::Stats) -> serde_json::Value {
-    json!({
-        "step": s.step,
-        "time": s.time,
-        "volume": s.volume,
-        "pressure": s.pressure,
-        "kinetic_energy": s.kinetic_energy,
-        "elastic_energy": s.elastic_energy,
-        "gas_energy": s.gas_energy,
-        "gravity_energy": s.gravity_energy,
-        "total_energy": s.total_energy,
-        "momentum": s.momentum,
-        "center_of_mass": s.center_of_mass,
-        "max_speed": s.max_speed,
-        "solver_iterations": {"newton": s.solver_iterations.newton, "linear": s.solver_iterations.linear},
-        "plastic_dissipation": s.plastic_dissipation,
-    })
+    s.to_json()
 }
 
 /// How far above the stability bound (`World::dt_limit`) a step is refused. The bound is

@@ -473,3 +473,19 @@ fn the_first_stats_row_records_the_run() {
     assert_eq!(run["inputs"][0]["sha256"], hex);
     assert_eq!(run["inputs"][0]["name"], mesh);
 }
+
+#[test]
+fn sweep_without_the_python_package_says_how_to_get_it() {
+    // The sweep runs in Python (softsculpt.sweep): a Python that cannot import the package is
+    // one error line naming what to install, before anything runs.
+    let d = Dir::new();
+    let grid = d.file("grid.toml", b"stiffness = [100.0]\n");
+    for python in ["/no/such/python", "false"] {
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_softsculpt"))
+            .args(["sweep", "scene.toml", "--grid", &grid, "--out", "o"])
+            .env("SOFTSCULPT_PYTHON", python)
+            .output()
+            .unwrap();
+        assert_clean_error(&o, "SOFTSCULPT_PYTHON");
+    }
+}

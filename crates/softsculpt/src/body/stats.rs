@@ -37,6 +37,31 @@ pub struct Stats {
     pub plastic_dissipation: f64,
 }
 
+impl Stats {
+    /// The row of the statistics contract (`simulate --stats`, `run`'s summary.json, the
+    /// Python package's `stats()`), its keys in order: step, time (s), volume (m³), pressure
+    /// (Pa), the energies (J), momentum (kg·m/s), centre of mass (m), largest speed (m/s), the
+    /// last step's solver iterations and the plastic dissipation so far (J).
+    pub fn to_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "step": self.step,
+            "time": self.time,
+            "volume": self.volume,
+            "pressure": self.pressure,
+            "kinetic_energy": self.kinetic_energy,
+            "elastic_energy": self.elastic_energy,
+            "gas_energy": self.gas_energy,
+            "gravity_energy": self.gravity_energy,
+            "total_energy": self.total_energy,
+            "momentum": self.momentum,
+            "center_of_mass": self.center_of_mass,
+            "max_speed": self.max_speed,
+            "solver_iterations": {"newton": self.solver_iterations.newton, "linear": self.solver_iterations.linear},
+            "plastic_dissipation": self.plastic_dissipation,
+        })
+    }
+}
+
 impl SoftBody {
     /// The statistics of the body under `gravity` (m/s² along −y), at world step `step` and time
     /// `time` (s): see `World::stats`.
