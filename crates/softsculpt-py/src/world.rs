@@ -43,8 +43,14 @@ pub fn load_scene(path: &Path) -> PyResult<(String, SceneRun, Vec<(String, Vec<u
 }
 
 impl World {
+    /// A world on every core, as the CLI's default (`threads` sets fewer).
+    fn wrap(mut core: Core, names: Vec<String>, meshes: Vec<Option<LoadedMesh>>, duration: Option<f64>) -> World {
+        let _ = core.set_threads(0); // (0 is always valid: one per core)
+        World { core, names, meshes, duration }
+    }
+
     fn of_scene(run: SceneRun) -> World {
-        World { core: run.world, names: run.names, meshes: run.meshes.into_iter().map(Some).collect(), duration: Some(run.duration) }
+        World::wrap(run.world, run.names, run.meshes.into_iter().map(Some).collect(), Some(run.duration))
     }
 
     pub fn body_index(&self, body: isize) -> PyResult<usize> {
@@ -147,7 +153,7 @@ impl World {
             loaded.set_up_axis(axis);
         }
         let body = SoftBody::new(&loaded.mesh, params::MASS.number(), Material::default()).map_err(|e| PyValueError::new_err(format!("mesh: {e}")))?;
-        let mut w = World { core: Core::single(body, WorldSettings::default()), names: vec!["body".into()], meshes: vec![Some(loaded)], duration: None };
+        let mut w = World::wrap(Core::single(body, WorldSettings::default()), vec!["body".into()], vec![Some(loaded)], None);
         if let Some(name) = preset {
             w.core.apply_preset(0, name).map_err(param_error)?;
         }
@@ -160,13 +166,23 @@ impl World {
         Ok(w)
     }
 
+    /// The standard benchmark workload at icosphere `level` (`softsculpt bench`'s, defined in
+    /// the core's `workload`): for measuring the binding against the CLI.
+    #[staticmethod]
+    fn workload(level: u32) -> PyResult<World> {
+        if level > 9 {
+            return Err(PyValueError::new_err(format!("level {level} is too large (at most 9: 2,621,442 vertices)")));
+        }
+        Ok(World::wrap(softsculpt::workload::world(level), vec!["body".into()], vec![None], None))
+    }
+
     /// A world from `snapshot()`'s bytes (the modeler's and the CLI's snapshot format).
     #[staticmethod]
     fn restore(data: &[u8]) -> PyResult<World> {
         let core = Core::restore(data).map_err(|e| PyValueError::new_err(format!("snapshot: {e}")))?;
         let n = core.bodies.len();
         let names = if n == 1 { vec!["body".to_string()] } else { (0..n).map(|i| format!("body{i}")).collect() };
-        Ok(World { core, names, meshes: vec![None; n], duration: None })
+        Ok(World::wrap(core, names, vec![None; n], None))
     }
 
     /// The whole state as bytes (positions, velocities, materials, settings, clock, pending
@@ -258,7 +274,8 @@ impl World {
         self.duration
     }
 
-    /// Threads the force stages and the implicit solver use (0: every core).
+    /// Threads the force stages and the implicit solver use: every core unless set (0: every
+    /// core). A sweep runs each world on one.
     #[getter]
     fn threads(&self) -> usize {
         self.core.threads()
