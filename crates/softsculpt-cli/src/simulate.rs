@@ -146,6 +146,26 @@ fn apply_preset(world: &mut World, name: &str, a: &SimulateArgs) -> Result<(), S
     Ok(())
 }
 
+/// A preset carries what it needs to run: the presets are tuned for the implicit integrator
+/// (the modeler's), and a stiff one (stiff_rubber, clay) is above what the default explicit
+/// step can take (on the sphere: stable below ~2.6e-4 s against the default 1e-3 s). So when
+/// neither `--integrator` nor `--dt` was given and the explicit step is above the model's
+/// stability bound (`World::dt_limit`), the implicit integrator steps it, with a note saying so.
+fn implicit_for_preset(world: &mut World, name: &str, a: &SimulateArgs) {
+    let s = &world.settings;
+    let chosen = a.explicit.iter().any(|e| e == "integrator" || e == "dt");
+    if chosen || world.dt_limit(s.integrator).map_or(true, |limit| s.dt <= limit) {
+        return;
+    }
+    let limit = world.dt_limit(s.integrator).unwrap_or(s.dt);
+    eprintln!(
+        "note: --preset {name}: {} is stable only below ~{limit:.1e} s for this model, not at --dt {} s; the implicit integrator steps it (give --integrator or --dt to choose)",
+        s.integrator.name(),
+        s.dt
+    );
+    world.settings.integrator = Integrator::Implicit;
+}
+
 /// The ids of the arguments given on the command line (not defaulted).
 pub fn explicit(m: &clap::ArgMatches) -> Vec<String> {
     m.ids().filter(|id| m.value_source(id.as_str()) == Some(clap::parser::ValueSource::CommandLine)).map(|id| id.to_string()).collect()
@@ -233,6 +253,7 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     world.set_threads(a.threads.unwrap_or(0) as usize).map_err(|e| format!("--threads: {e}"))?;
     if let Some(name) = &a.preset {
         apply_preset(&mut world, name, &a)?;
+        implicit_for_preset(&mut world, name, &a);
     }
     check_stable(&world, a.force, "--dt")?;
     if let Some(h) = a.ground {
