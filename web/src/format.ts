@@ -8,3 +8,18 @@ export function sig3(v: number): string {
   if (a >= 1e-4 && a < 1e5) return String(Number(v.toPrecision(3)));
   return v.toExponential(2);
 }
+
+/** Significant digits of a panel field's number. */
+export const FIELD_DIGITS = 5;
+
+/**
+ * A number in a panel field: at most FIELD_DIGITS significant digits, without float noise
+ * (0.35000000000000003 → "0.35", 0.20254629629629634 → "0.20255", 1e-6 → "0.000001"). Only the
+ * text: the value kept is the one given, unless the user types another.
+ */
+export function fieldText(v: number, digits = FIELD_DIGITS): string {
+  if (!Number.isFinite(v)) return String(v);
+  if (v === 0) return '0';
+  return String(Number(v.toPrecision(digits)));
+}
+

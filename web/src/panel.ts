@@ -13,6 +13,7 @@ import type { ParamValue } from './protocol';
 import { MODELS, type ModelName } from './models';
 import { sig3 } from './format';
 import { viewWindSpeed } from './tools/wind';
+import { showSignificantDigits } from './panel-numbers';
 
 export interface PanelActions {
   importFile(): void;
@@ -22,6 +23,7 @@ export interface PanelActions {
 }
 
 export function buildPanel(app: App, actions: PanelActions): GUI {
+  showSignificantDigits();
   const gui = new GUI({ title: 'SoftSculpt', width: 290 });
   const tip = (c: Controller, text: string) => { c.domElement.title = text; c.domElement.setAttribute('data-tip', text); return c; };
   /** The parameters' values the controllers bind to (table ids). */

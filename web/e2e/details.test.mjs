@@ -1,0 +1,57 @@
+// The page's small defects of issue 37, found by a new user's trial in Chromium: panel fields
+// showing float noise, Escape not leaving a panel field, red messages that never go, "restart
+// scene" with no scene, a volume for an open surface, a help overlay cut off on a small window,
+// and re-choosing the loaded built-in model doing nothing. Each test was run against the page
+// before its fix and failed there.
+
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { mkdirSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { browserSuite, inspect, openModeler, shot } from './harness.mjs';
+
+const suite = browserSuite();
+/** A fresh page on the modeler, closed after test `t` whether it passes or not (a failed test's page would keep simulating). */
+async function open(t, context) {
+  const opened = await openModeler(suite.browser, suite.server.url, context);
+  t.after(() => opened.ctx.close());
+  return opened;
+}
+const FIXTURES = fileURLToPath(new URL('./fixtures/', import.meta.url));
+
+const control = (page, name) => page.locator('.lil-controller', { hasText: name });
+const radiusField = (page) => control(page, 'brush radius').first().locator('input');
+const readout = (page) => page.evaluate(() => document.querySelector('#hud .readout')?.textContent ?? '');
+/** Open folder `title` of the panel (closed ones are rarely used). */
+async function openFolder(page, title) {
+  const t = page.locator('.lil-title', { hasText: title }).first();
+  if ((await t.getAttribute('aria-expanded')) === 'false') await t.click();
+}
+/** Significant digits of a number as written ("0.20255" → 5, "0.35" → 2, "100" → 1). */
+const significant = (text) => text.replace(/^[-−]?0*\.?0*/, '').replace(/\.|e.*$/g, '').replace(/0+$/, '').length;
+
+test('panel number fields show a few significant digits, not float noise, and keep the value', async (t) => {
+  const { page, errors } = await open(t);
+  // [ three times: 0.35 / 1.2³ = 0.20254629629629634 m (the issue's field).
+  for (let i = 0; i < 3; i++) await page.keyboard.press('[');
+  await page.waitForFunction(() => Math.abs(window.softsculpt.brush().radius - 0.35 / 1.2 ** 3) < 1e-12);
+  const stored = await inspect(page, () => window.softsculpt.brush().radius);
+  const text = await radiusField(page).inputValue();
+  // Before: "0.20254629629629634".
+  assert.ok(significant(text) <= 6, `the radius field reads "${text}"`);
+  // Within the display's precision (5 significant digits: half a unit of the fifth).
+  assert.ok(Math.abs(Number(text) - stored) <= 5e-5 * stored, `"${text}" for ${stored}`);
+  // Back up three times: 0.35000000000000003 m, shown as 0.35.
+  for (let i = 0; i < 3; i++) await page.keyboard.press(']');
+  await page.waitForFunction(() => Math.abs(window.softsculpt.brush().radius - 0.35) < 1e-12);
+  assert.equal(await radiusField(page).inputValue(), '0.35');
+  // Entering and leaving the field without typing keeps the value (nothing rounded into it).
+  const before = await inspect(page, () => window.softsculpt.brush().radius);
+  await radiusField(page).focus();
+  await radiusField(page).press('Tab');
+  assert.equal(await inspect(page, () => window.softsculpt.brush().radius), before);
+  await shot(page, 'details-01-fields');
+  assert.deepEqual(errors, []);
+});
