@@ -55,3 +55,20 @@ test('panel number fields show a few significant digits, not float noise, and ke
   await shot(page, 'details-01-fields');
   assert.deepEqual(errors, []);
 });
+
+test('Escape leaves a panel text field: the next key is a shortcut again', async (t) => {
+  const { page, errors } = await open(t);
+  await page.keyboard.press('p');
+  await page.waitForFunction(() => window.softsculpt.tool() === 'press');
+  const field = radiusField(page);
+  const value = await field.inputValue();
+  await field.click();
+  assert.equal(await field.evaluate((e) => e === document.activeElement), true);
+  await page.keyboard.press('Escape');
+  await page.keyboard.press('g');
+  // Before: "g" was typed into the field and the tool stayed the press.
+  await page.waitForFunction(() => window.softsculpt.tool() === 'grab', null, { timeout: 5000 });
+  assert.equal(await field.evaluate((e) => e === document.activeElement), false);
+  assert.equal(await field.inputValue(), value);
+  assert.deepEqual(errors, []);
+});

@@ -95,7 +95,12 @@ function main(): void {
   });
 
   window.addEventListener('keydown', (ev) => {
-    if (isTextField(ev.target as HTMLElement)) return;
+    if (isTextField(ev.target as HTMLElement)) {
+      // Escape leaves a panel field (what was typed stays, as with Enter), so that the next
+      // keys are shortcuts again (before, a "g" after Escape was typed into the field).
+      if (ev.key === 'Escape' && gui.domElement.contains(ev.target as Node)) { ev.preventDefault(); (ev.target as HTMLElement).blur(); }
+      return;
+    }
     // A question on screen (the import dialog) has the keys: nothing acts behind it.
     if (document.querySelector('.import-dialog')) return;
     // Anything else focused (a list, a checkbox, a button): the key is a shortcut, not for it.
