@@ -72,3 +72,33 @@ test('Escape leaves a panel text field: the next key is a shortcut again', async
   assert.equal(await field.inputValue(), value);
   assert.deepEqual(errors, []);
 });
+
+test('a red message goes by itself after some seconds, and a click still dismisses one', async (t) => {
+  const { page, errors } = await open(t);
+  const file = join(tmpdir(), 'garbage.obj');
+  writeFileSync(file, 'this is not a mesh\n\u0001\u0002');
+  // When the error appeared and when it went, in the page's clock.
+  await page.evaluate(() => {
+    const w = window;
+    w.__error = {};
+    new MutationObserver(() => {
+      const shown = document.querySelector('#hud .message.error') !== null;
+      if (shown && !w.__error.shown) w.__error.shown = performance.now();
+      if (!shown && w.__error.shown && !w.__error.gone) w.__error.gone = performance.now();
+    }).observe(document.querySelector('#hud .messages'), { childList: true });
+  });
+  await page.locator('input[data-picker=import]').setInputFiles(file);
+  await page.waitForFunction(() => window.__error.shown > 0);
+  await shot(page, 'details-03-error-shown');
+  // Before: it stayed until clicked (this wait timed out).
+  await page.waitForFunction(() => window.__error.gone > 0, null, { timeout: 45000, polling: 250 });
+  const lived = await page.evaluate(() => window.__error.gone - window.__error.shown);
+  assert.ok(lived >= 8000 && lived <= 30000, `the error stayed ${Math.round(lived)} ms`);
+  // A click dismisses it at once, as before.
+  await page.locator('input[data-picker=import]').setInputFiles(file);
+  const message = page.locator('#hud .message.error');
+  await message.waitFor();
+  await message.click();
+  await page.waitForFunction(() => document.querySelector('#hud .message.error') === null, null, { timeout: 2000 });
+  assert.deepEqual(errors, []);
+});

@@ -79,7 +79,8 @@ export class App implements ToolContext {
     this.cursor = new BrushCursor(this, (text) => { this.adjustText = text; if (text === null) this.sendUi(); });
     this.client = new SimulationClient(wasmUrl, {
       reply: (r) => this.onReply(r),
-      failed: (text) => { this.setBusy(null); this.message(text, 'error'); },
+      // A worker that cannot be restarted: the message stays (the page needs a reload).
+      failed: (text, final) => { this.setBusy(null); this.message(text, 'error', final); },
     });
   }
 
@@ -266,7 +267,7 @@ export class App implements ToolContext {
         this.send({ type: 'importAnswer', answer });
       }); return;
       case 'ui': return this.applyUi(r.ui);
-      case 'fatal': this.message(r.text, 'error'); return;
+      case 'fatal': this.message(r.text, 'error', true); return;
     }
   }
 
@@ -378,9 +379,10 @@ export class App implements ToolContext {
     try { localStorage.setItem(CAMERA_KEY, JSON.stringify(this.viewport.rig.state())); } catch { /* private mode: not kept */ }
   }
 
-  message(text: string, kind: MessageKind = 'info'): void {
+  /** Show a message (`sticky`: it stays until clicked; others go by themselves, view/hud.ts). */
+  message(text: string, kind: MessageKind = 'info', sticky = false): void {
     this.lastMessage = text;
-    this.hud.message(text, kind);
+    this.hud.message(text, kind, sticky);
   }
   get lastMessageText(): string { return this.lastMessage; }
 }

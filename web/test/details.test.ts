@@ -3,6 +3,7 @@
 
 import { describe, expect, it } from 'vitest';
 import { fieldText } from '../src/format';
+import { MESSAGE_MAX_MS, messageLifetime } from '../src/view/hud';
 
 describe('a panel field\'s number', () => {
   it('has no float noise (the issue\'s fields)', () => {
@@ -19,5 +20,22 @@ describe('a panel field\'s number', () => {
     for (const v of [0.20254629629629634, 123456.789, 3.14159265, 7.777777e-5]) {
       expect(Math.abs(Number(fieldText(v)) - v)).toBeLessThanOrEqual(5e-5 * Math.abs(v));
     }
+  });
+});
+
+describe('a message\'s time on screen', () => {
+  it('an error goes by itself after 10 s (it stayed until clicked), a long one later', () => {
+    expect(messageLifetime('could not import garbage.obj: line 1', 'error')).toBe(10000);
+    const long = messageLifetime('x'.repeat(300), 'error')!;
+    expect(long).toBeGreaterThan(20000);
+    expect(long).toBeLessThanOrEqual(MESSAGE_MAX_MS);
+    expect(messageLifetime('x'.repeat(5000), 'error')).toBe(MESSAGE_MAX_MS);
+  });
+
+  it('notes and warnings as before (4 s, 8 s), a long warning longer; a sticky message stays', () => {
+    expect(messageLifetime('playing', 'info')).toBe(4000);
+    expect(messageLifetime('paused: the grab acts while the simulation plays', 'warn')).toBe(8000);
+    expect(messageLifetime('x'.repeat(200), 'warn')!).toBeGreaterThan(8000);
+    expect(messageLifetime('the engine could not start', 'error', true)).toBeNull();
   });
 });

@@ -1,7 +1,7 @@
 // Text overlays: the readout (fps, simulation time per frame, sizes), the progress of a long
 // operation in the worker, messages, and help.
 
-import type { SceneInfo } from '../protocol';
+import type { MessageKind, SceneInfo } from '../protocol';
 
 export class Hud {
   private readonly readout: HTMLElement;
@@ -107,8 +107,11 @@ export class Hud {
   }
   get progressText(): string | null { return this.busy.hidden ? null : this.busy.textContent; }
 
-  /** A message; kind 'error' stays until dismissed, others fade after a few seconds. */
-  message(text: string, kind: 'info' | 'warn' | 'error' = 'info'): void {
+  /**
+   * A message, dismissed by a click or after `messageLifetime` (an error 10 s or longer for a
+   * long one); `sticky`: it stays until clicked (the page cannot go on: reload it).
+   */
+  message(text: string, kind: MessageKind = 'info', sticky = false): void {
     // The same text again replaces itself; at most four messages stay (the oldest go first).
     for (const old of Array.from(this.messages.children)) if (old.textContent === text) old.remove();
     while (this.messages.children.length >= 4) this.messages.firstElementChild!.remove();
@@ -117,7 +120,8 @@ export class Hud {
     m.textContent = text;
     m.title = 'click to dismiss';
     m.addEventListener('click', () => m.remove());
-    if (kind !== 'error') setTimeout(() => m.remove(), kind === 'warn' ? 8000 : 4000);
+    const lifetime = messageLifetime(text, kind, sticky);
+    if (lifetime !== null) setTimeout(() => m.remove(), lifetime);
   }
 
   toggleHelp(show?: boolean): void {
@@ -129,6 +133,24 @@ export class Hud {
   }
   get hintVisible(): boolean { return !this.hint.hidden; }
   get helpVisible(): boolean { return !this.help.hidden; }
+}
+
+/** How long a message stays on screen at least: a note, a warning, an error (ms). */
+export const MESSAGE_MS: Record<MessageKind, number> = { info: 4000, warn: 8000, error: 10000 };
+/** Reading time of a long warning or error: ms per character (about 14 characters a second), after 2 s to notice it. */
+const READ_MS_PER_CHAR = 70;
+/** The longest a message stays (ms): the HUD shows at most four, the oldest go first anyway. */
+export const MESSAGE_MAX_MS = 30000;
+
+/**
+ * How long a message stays before it goes by itself (ms), or null: until clicked (`sticky`).
+ * A note 4 s; a warning or an error 8 s or 10 s, longer when its text takes longer to read
+ * (an error used to stay until clicked, piling up red boxes over the model).
+ */
+export function messageLifetime(text: string, kind: MessageKind, sticky = false): number | null {
+  if (sticky) return null;
+  if (kind === 'info') return MESSAGE_MS.info;
+  return Math.min(MESSAGE_MAX_MS, Math.max(MESSAGE_MS[kind], 2000 + READ_MS_PER_CHAR * text.length));
 }
 
 /** The HUD line of an open scene. */
