@@ -102,3 +102,26 @@ test('a red message goes by itself after some seconds, and a click still dismiss
   await page.waitForFunction(() => document.querySelector('#hud .message.error') === null, null, { timeout: 2000 });
   assert.deepEqual(errors, []);
 });
+
+test('"restart scene" shows only while a scene is open', async (t) => {
+  const { page, errors } = await open(t);
+  await openFolder(page, 'Simulation');
+  const restart = page.locator('.lil-controller', { hasText: 'restart scene' });
+  await page.locator('.lil-title', { hasText: 'Simulation' }).first().scrollIntoViewIfNeeded();
+  await shot(page, 'details-04-no-scene');
+  // Before: shown (and clickable) on the mushroom, with no scene.
+  assert.equal(await restart.isVisible(), false, 'restart scene with no scene');
+  const dir = join(tmpdir(), 'softsculpt-details');
+  mkdirSync(dir, { recursive: true });
+  writeFileSync(join(dir, 'ball.toml'), '[world]\nduration = 2.0\nground = { height = 0.0 }\n\n[[body]]\nname = "ball"\nmodel = "sphere"\nscale = 0.5\ntranslate = [0.0, 1.0, 0.0]\ngas = { nrt = 10.0 }\n');
+  await page.locator('input[data-picker=scene]').setInputFiles([join(dir, 'ball.toml')]);
+  await page.waitForFunction(() => window.softsculpt.scene()?.name === 'ball.toml', null, { timeout: 30000 });
+  await restart.waitFor({ state: 'visible', timeout: 5000 });
+  await restart.scrollIntoViewIfNeeded();
+  await shot(page, 'details-04-restart-with-scene');
+  // Another model: no scene, no restart.
+  await control(page, 'built-in').locator('select').selectOption('sphere');
+  await page.waitForFunction(() => window.softsculpt.scene() === null && window.softsculpt.settings().model === 'sphere' && !window.softsculpt.busy(), null, { timeout: 60000 });
+  await restart.waitFor({ state: 'hidden', timeout: 5000 });
+  assert.deepEqual(errors, []);
+});

@@ -129,7 +129,8 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   const settings = app.mirror.settings;
   tip(sim.add(settings, 'playing').name('play (Space)').onChange((v: boolean) => app.setSettings({ playing: v })), 'Play / pause the simulation (Space)');
   tip(sim.add({ f: () => app.step() }, 'f').name('single step (.)'), 'Advance one frame of steps while paused (.)');
-  tip(sim.add({ f: () => app.restartScene() }, 'f').name('restart scene'), 'Play the open scene again from its start');
+  // Only while a scene is open (before, it showed on a plain model and did nothing).
+  const restart = tip(sim.add({ f: () => app.restartScene() }, 'f').name('restart scene'), 'Play the open scene again from its start').hide();
   tip(sim.add(settings, 'dt', 1e-6, 0.02).decimals(5).name('dt (s)').onFinishChange((v: number) => app.setSettings({ dt: v })), 'Time step in seconds: implicit (the default) is stable at 1/60 s; the explicit integrators need small steps (picked when chosen)');
   tip(sim.add(settings, 'realTime').name('real time').onChange((v: boolean) => app.setSettings({ realTime: v })), 'Simulated time follows the clock (steps per frame follow the frame rate); off: a fixed number of steps per frame');
   tip(sim.add(settings, 'substeps', 1, 500, 1).name('steps per frame').onFinishChange((v: number) => app.setSettings({ substeps: v })), 'Steps per frame when not in real time');
@@ -189,6 +190,7 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
     gas.title(closed ? 'Gas' : 'Gas — off: open surface (cloth-like)');
     for (const c of gas.controllers) if (typeof c.property === 'string' && c.property.startsWith('gas.')) c.enable(closed);
     rec.name(app.mirror.recording ? '■ Stop recording' : '● Record');
+    restart.show(app.mirror.scene !== null);
     gravity.on = g() !== 0;
     if (g() !== 0) gravity.last = g();
     if (view.tool !== app.tools.tool.name) showStrength();
