@@ -125,3 +125,22 @@ test('"restart scene" shows only while a scene is open', async (t) => {
   await restart.waitFor({ state: 'hidden', timeout: 5000 });
   assert.deepEqual(errors, []);
 });
+
+test('an open surface shows no volume in the HUD or the Gas panel', async (t) => {
+  const { page, errors } = await open(t);
+  assert.match(await readout(page), /V \d[\d.]* m³/, 'a closed model shows its volume');
+  await page.locator('input[data-picker=import]').setInputFiles(join(FIXTURES, 'cloth.obj'));
+  await page.waitForSelector('.import-dialog', { timeout: 15000 });
+  await page.keyboard.press('Enter');
+  await page.waitForFunction(() => window.softsculpt.settings().model === 'cloth.obj', null, { timeout: 15000 });
+  // Some simulated time (the cloth falls and folds: its signed "volume" moves away from 0).
+  await page.waitForFunction(() => window.softsculpt.stats().time > 1, null, { timeout: 30000 });
+  const text = await readout(page);
+  // Before: "V -1.08 m³" (or another number).
+  assert.doesNotMatch(text, /V [-−]?\d/, text);
+  assert.match(text, /open surface/, text);
+  const gasV = await control(page, 'V (m³)').locator('input').inputValue();
+  assert.doesNotMatch(gasV, /\d/, `the Gas panel's V reads "${gasV}"`);
+  await shot(page, 'details-05-open-surface');
+  assert.deepEqual(errors, []);
+});

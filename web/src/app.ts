@@ -24,7 +24,7 @@ import { download, exportShape, type ExportFormat } from './io/export';
 import { askImport } from './io/dialog';
 import { rememberedUp, rememberUp } from './io/upaxis';
 import { baseName } from './project';
-import { sig3 } from './format';
+import { sig3, volumeText } from './format';
 import { boxCentre, isSymmetric, meanEdge, type Axes, type Symmetry } from './tools/symmetry';
 import { divergingColor } from './tools/brush';
 import { BrushCursor, clampRadius, clampStrength } from './tools/cursor';
@@ -354,7 +354,7 @@ export class App implements ToolContext {
         `simulation: ${pace}   ${m.simMs.toFixed(1)} ms of steps/frame   ${viewText(this.hud.fps, this.hud.shapesPerSecond, m.slowMotion)}` +
           (m.recording ? `   ● REC ${m.recording.frames} frames, ${m.recording.seconds.toFixed(1)} s` : ''),
         `${m.vertexCount} vertices   ${m.springCount} springs   ${m.faceCount} faces   tool: ${this.tools.tool.label}`,
-        `t ${s.time.toFixed(2)} s   V ${sig3(s.volume)} m³   P ${sig3(s.pressure)} Pa   max speed ${sig3(s.maxSpeed)} m/s`,
+        `t ${s.time.toFixed(2)} s   ${volumeText(s.volume, m.closed)}   P ${sig3(s.pressure)} Pa   max speed ${sig3(s.maxSpeed)} m/s`,
         ...(this.windStrength > 0 ? [windLine(this.wind, this.viewport.camera)] : []),
         ...(m.scene ? [sceneLine(m.scene)] : []),
       ]);

@@ -23,3 +23,10 @@ export function fieldText(v: number, digits = FIELD_DIGITS): string {
   return String(Number(v.toPrecision(digits)));
 }
 
+/**
+ * The volume as the HUD reads it ("V 2.45 m³"): an open surface (cloth-like) encloses none, and
+ * the signed volume of its triangles (e.g. −1.08 m³ for a draped cloth) means nothing to the user.
+ */
+export function volumeText(volume: number, closed: boolean): string {
+  return closed ? `V ${sig3(volume)} m³` : 'open surface (no volume)';
+}

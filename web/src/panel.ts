@@ -228,7 +228,8 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   const live = gas.controllers.filter((c) => c.property === 'pressure' || c.property === 'volume');
   app.hud.onShow(() => {
     const s = app.mirror.stats;
-    const [pressure, volume] = [sig3(s.pressure), sig3(s.volume)];
+    // An open surface encloses no volume (its triangles' signed volume means nothing).
+    const [pressure, volume] = [sig3(s.pressure), app.mirror.closed ? sig3(s.volume) : '— (open surface)'];
     if (pressure === view.pressure && volume === view.volume) return;
     view.pressure = pressure;
     view.volume = volume;

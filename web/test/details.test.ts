@@ -2,7 +2,7 @@
 // volume of an open surface, how long a message stays. (The page itself: e2e/details.test.mjs.)
 
 import { describe, expect, it } from 'vitest';
-import { fieldText } from '../src/format';
+import { fieldText, volumeText } from '../src/format';
 import { MESSAGE_MAX_MS, messageLifetime } from '../src/view/hud';
 
 describe('a panel field\'s number', () => {
@@ -20,6 +20,14 @@ describe('a panel field\'s number', () => {
     for (const v of [0.20254629629629634, 123456.789, 3.14159265, 7.777777e-5]) {
       expect(Math.abs(Number(fieldText(v)) - v)).toBeLessThanOrEqual(5e-5 * Math.abs(v));
     }
+  });
+});
+
+describe('the HUD\'s volume', () => {
+  it('is a volume for a closed body and none for an open surface (no "V −1.08 m³" for a cloth)', () => {
+    expect(volumeText(2.4512, true)).toBe('V 2.45 m³');
+    expect(volumeText(-1.08, false)).not.toMatch(/\d/);
+    expect(volumeText(-1.08, false)).toMatch(/open surface/);
   });
 });
 
