@@ -144,3 +144,30 @@ test('an open surface shows no volume in the HUD or the Gas panel', async (t) =>
   await shot(page, 'details-05-open-surface');
   assert.deepEqual(errors, []);
 });
+
+test('the help overlay fits a small window, above the panel, and scrolls', async (t) => {
+  const ctx = await suite.browser.newContext({ viewport: { width: 800, height: 420 } });
+  const { page, errors } = await open(t, ctx);
+  await page.keyboard.press('?');
+  assert.equal(await inspect(page, () => window.softsculpt.helpVisible()), true);
+  const box = await page.evaluate(() => {
+    const h = document.querySelector('#hud .help'), r = h.getBoundingClientRect();
+    // What is drawn at points along its right and bottom edges (the panel covered its right part).
+    const probes = [];
+    for (let f = 0.1; f < 1; f += 0.2) probes.push([r.right - 6, r.top + f * r.height], [r.left + f * r.width, r.bottom - 6]);
+    const covered = probes.filter(([x, y]) => !h.contains(document.elementFromPoint(x, y))).length;
+    return { left: r.left, top: r.top, right: r.right, bottom: r.bottom, covered, overflow: getComputedStyle(h).overflowY, scrollable: h.scrollHeight > h.clientHeight };
+  });
+  await shot(page, 'details-06-help-small-window');
+  // Before: its right part, with the scrollbar, lay under the panel.
+  assert.equal(box.covered, 0, JSON.stringify(box));
+  assert.ok(box.left >= 0 && box.top >= 0 && box.right <= 800 && box.bottom <= 420, JSON.stringify(box));
+  assert.ok(box.scrollable && /auto|scroll/.test(box.overflow), JSON.stringify(box));
+  // The wheel over it scrolls it to its last line.
+  await page.mouse.move((box.left + box.right) / 2, (box.top + box.bottom) / 2);
+  for (let i = 0; i < 10; i++) await page.mouse.wheel(0, 200);
+  await page.waitForFunction(() => { const h = document.querySelector('#hud .help'); return h.scrollTop + h.clientHeight >= h.scrollHeight - 2; }, null, { timeout: 5000 });
+  assert.ok(await page.getByText('restored on reload').isVisible());
+  await shot(page, 'details-06-help-scrolled');
+  assert.deepEqual(errors, []);
+});
