@@ -21,6 +21,7 @@ suite() { # name, command...
 
 suite setup scripts/setup.sh browser
 suite cargo cargo test --workspace --color never
+suite clippy cargo clippy --workspace --all-targets --color never -- -D warnings
 suite wasm make --no-print-directory web
 suite python scripts/python_tests.sh
 suite vitest bash -c 'cd web && npx vitest run --reporter=default'

@@ -154,7 +154,7 @@ fn apply_preset(world: &mut World, name: &str, a: &SimulateArgs) -> Result<(), S
 fn implicit_for_preset(world: &mut World, name: &str, a: &SimulateArgs) {
     let s = &world.settings;
     let chosen = a.explicit.iter().any(|e| e == "integrator" || e == "dt");
-    if chosen || world.dt_limit(s.integrator).map_or(true, |limit| s.dt <= limit) {
+    if chosen || world.dt_limit(s.integrator).is_none_or(|limit| s.dt <= limit) {
         return;
     }
     let limit = world.dt_limit(s.integrator).unwrap_or(s.dt);

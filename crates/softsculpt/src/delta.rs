@@ -170,6 +170,8 @@ struct Timeline {
     loads: Vec<snapshot::LoadV1>,
 }
 
+// One per undo step, never in an array: the size of its largest variant costs nothing.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Serialize, Deserialize)]
 enum Kind {
     /// The structure changed: the whole earlier world, as a snapshot.

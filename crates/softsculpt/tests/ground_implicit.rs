@@ -56,7 +56,7 @@ fn a_body_at_rest_on_the_ground_has_the_explicit_models_equilibrium() {
     assert!((si.center_of_mass[1] - se.center_of_mass[1]).abs() < 1e-4, "centre {} vs {}", si.center_of_mass[1], se.center_of_mass[1]);
     assert!((si.volume / se.volume - 1.0).abs() < 1e-4, "volume {} vs {}", si.volume, se.volume);
     let lowest = imp.bodies[0].positions().chunks_exact(3).map(|p| p[1]).fold(f64::INFINITY, f64::min);
-    assert!(lowest >= 0.0 && lowest < 1e-9, "the implicit body rests on the plane: lowest vertex at {lowest}");
+    assert!((0.0..1e-9).contains(&lowest), "the implicit body rests on the plane: lowest vertex at {lowest}");
 }
 
 /// At rest on a ground with friction (the modeler's μ = 0.5, tolerance 1e-3), the plane carries

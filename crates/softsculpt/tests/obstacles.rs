@@ -45,10 +45,8 @@ fn throw_at_wall(wall: Obstacle, face: f64) {
 /// The same throw against a rotated box and a capsule: nothing ends up inside either.
 #[test]
 fn nothing_ends_inside_a_rotated_box_or_a_capsule() {
-    let obstacles = vec![
-        Obstacle::rotated_box([3.0, 0.0, 0.0], [0.05, 2.0, 2.0], [0.0, 1.0, 0.0], 0.6),
-        Obstacle::capsule([-3.0, -2.0, 0.0], [-3.0, 2.0, 0.0], 0.05),
-    ];
+    let obstacles = [Obstacle::rotated_box([3.0, 0.0, 0.0], [0.05, 2.0, 2.0], [0.0, 1.0, 0.0], 0.6),
+        Obstacle::capsule([-3.0, -2.0, 0.0], [-3.0, 2.0, 0.0], 0.05)];
     for (dir, o) in [(1.0, &obstacles[0]), (-1.0, &obstacles[1])] {
         let mut w = balloon(WorldSettings { gravity: 0.0, obstacles: vec![o.clone()], dt: 1e-3, ..still() });
         shifted(&mut w.bodies[0], [0.0; 3], [40.0 * dir, 0.0, 0.0]);

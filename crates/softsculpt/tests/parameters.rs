@@ -41,8 +41,7 @@ fn every_default_is_valid_and_ids_are_unique() {
 /// table's: read back by id, every body and world parameter is its default.
 #[test]
 fn materials_worlds_and_scene_files_default_to_the_table() {
-    let mut settings = WorldSettings::default();
-    settings.ground = Some(Ground::at(params::GROUND_HEIGHT.number())); // to read its fields
+    let settings = WorldSettings { ground: Some(Ground::at(params::GROUND_HEIGHT.number())), ..WorldSettings::default() }; // to read its fields
     let world = World::single(SoftBody::new(&icosphere(1, 1.0), params::MASS.number(), Material::default()).unwrap(), settings);
     for p in TABLE {
         match (p.scope, p.id) {

@@ -28,7 +28,7 @@ struct Builder {
 
 impl Builder {
     fn push(&mut self, bytes: &[u8], accessor: Value) -> usize {
-        while self.bin.len() % 4 != 0 {
+        while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
         self.views.push(json!({ "buffer": 0, "byteOffset": self.bin.len(), "byteLength": bytes.len() }));
@@ -100,7 +100,7 @@ pub fn animation_glb(tracks: &[Track], times: &[f64], generator: &str) -> Vec<u8
         samplers.push(json!({ "input": time_acc, "output": out, "interpolation": "LINEAR" }));
         channels.push(json!({ "sampler": ti, "target": { "node": ti, "path": "weights" } }));
     }
-    while b.bin.len() % 4 != 0 {
+    while !b.bin.len().is_multiple_of(4) {
         b.bin.push(0);
     }
     let doc = json!({

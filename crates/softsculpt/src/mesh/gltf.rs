@@ -89,7 +89,7 @@ impl Reader {
                 read.into_u32().collect()
             }
         };
-        if indices.len() % 3 != 0 {
+        if !indices.len().is_multiple_of(3) {
             return Err(self.err(format!("{at}: {} indices is not a whole number of triangles", indices.len())));
         }
         if let Some(bad) = indices.iter().find(|&&i| i as usize >= n) {
@@ -252,10 +252,10 @@ pub fn write_glb(positions: &[f64], polygons: &ObjData, header: &str) -> Vec<u8>
 /// the BIN chunk padded with zeros to 4 bytes.
 pub fn glb_container(doc: &serde_json::Value, mut bin: Vec<u8>) -> Vec<u8> {
     let mut text = serde_json::to_vec(doc).unwrap_or_default();
-    while text.len() % 4 != 0 {
+    while !text.len().is_multiple_of(4) {
         text.push(b' ');
     }
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let total = 12 + 8 + text.len() + 8 + bin.len();

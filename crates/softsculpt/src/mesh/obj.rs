@@ -98,7 +98,7 @@ pub fn parse(bytes: &[u8]) -> Result<ObjData, MeshError> {
                         .map_err(|_| err(line_no, format!("face vertex '{w}' is not a vertex index")))?;
                     let zero_based = if idx > 0 {
                         let i = idx as u64;
-                        if max_ref.map_or(true, |(_, m)| i > m) {
+                        if max_ref.is_none_or(|(_, m)| i > m) {
                             max_ref = Some((line_no, i));
                         }
                         idx - 1

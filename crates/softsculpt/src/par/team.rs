@@ -183,7 +183,7 @@ fn wait(sh: &Shared, w: usize, seen: u64) {
     let mut spins = 0u32;
     while sh.epoch.load(Acquire) == seen {
         spins = spins.wrapping_add(1);
-        if spins % 64 != 0 || since.get_or_insert_with(Instant::now).elapsed() < SPIN {
+        if !spins.is_multiple_of(64) || since.get_or_insert_with(Instant::now).elapsed() < SPIN {
             std::hint::spin_loop();
             continue;
         }

@@ -11,7 +11,7 @@
 //!    a vertex that went behind the face is put back on it along n (only that: pushing it out to
 //!    the thickness would do work and inject energy), and the relative normal velocity removed
 //!    (inelastic) by an impulse J shared by inverse masses,
-//!        J = −(v_p − Σ b_k v_k) · n / (1/m_p + Σ b_k² / m_k),
+//!    `J = −(v_p − Σ b_k v_k) · n / (1/m_p + Σ b_k² / m_k)`,
 //!    so momentum is conserved exactly; Coulomb friction removes up to μ J of relative tangential
 //!    velocity the same way. Corrections move the centre of mass of the pair not at all.
 //!
@@ -207,7 +207,7 @@ impl World {
                         n = scale(n, side);
                         s *= side;
                     }
-                    if s < self.settings.contact.thickness && s > -max_depth && best.as_ref().map_or(true, |bst| s < bst.4) {
+                    if s < self.settings.contact.thickness && s > -max_depth && best.as_ref().is_none_or(|bst| s < bst.4) {
                         best = Some((ob, f as usize, w, n, s));
                     }
                 }

@@ -216,7 +216,7 @@ impl MeshShape {
                     return;
                 }
                 let tt = inv * dot(e2, q);
-                if (0.0..=1.0).contains(&tt) && best.map_or(true, |b| tt < b) {
+                if (0.0..=1.0).contains(&tt) && best.is_none_or(|b| tt < b) {
                     best = Some(tt);
                 }
             },

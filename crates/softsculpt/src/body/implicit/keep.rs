@@ -263,7 +263,7 @@ mod tests {
     fn levels_assembled_under_a_grab_are_not_kept() {
         let mut w = on_the_ground(210);
         let x = w.bodies[0].positions().to_vec();
-        let grab: Vec<Target> = (0..40).map(|i| Target { vertex: i, anchor: [x[3 * i as usize], x[3 * i as usize + 1], x[3 * i as usize + 2]], stiffness: 50.0, damping: 0.5 }).collect();
+        let grab: Vec<Target> = (0..40).map(|i| Target { vertex: i, anchor: [x[3 * i], x[3 * i + 1], x[3 * i + 2]], stiffness: 50.0, damping: 0.5 }).collect();
         w.bodies[0].set_targets(&grab).unwrap();
         let grabbed = run(&mut w, 20);
         assert!(grabbed.iter().any(|s| s.0 > 0), "the grabbed steps solve: {grabbed:?}");

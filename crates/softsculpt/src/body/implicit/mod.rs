@@ -357,7 +357,7 @@ impl Implicit {
             }
             // Vertices the iterate puts below the plane are taken into the set, each once in a
             // step (no cycling), at iterations 1, 2, 4, …, `ground::ADD_UNTIL` (`ground.rs`).
-            if let (Some(g), true) = (ground, !converged && k >= 1 && k <= ground::ADD_UNTIL && k.is_power_of_two() && added != Some(k)) {
+            if let (Some(g), true) = (ground, !converged && (1..=ground::ADD_UNTIL).contains(&k) && k.is_power_of_two() && added != Some(k)) {
                 added = Some(k);
                 if self.sys.ground.add(m, g, fr.dt, fr.x, &self.xt) {
                     self.held_any = true;
@@ -589,7 +589,7 @@ impl Implicit {
     fn keep_momentum(&mut self, fr: &Frame) {
         let (w, m) = (fr.w, fr.m);
         let wind = w.wind_drag > 0.0 && w.wind != [0.0; 3];
-        if wind || m.targets.active() || self.sys.ground.active() || m.inv_mass.iter().any(|&im| im == 0.0) {
+        if wind || m.targets.active() || self.sys.ground.active() || m.inv_mass.contains(&0.0) {
             return;
         }
         let mut net = [0.0; 3];

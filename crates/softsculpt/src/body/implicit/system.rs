@@ -492,9 +492,9 @@ impl Rows<'_> {
             let mut f = [0.0; 3];
             let mut blk = [0.0; 6];
             let mut abs = 0.0;
-            gather_springs(&sys.edges, &m.springs.rest, (p.stiffness, p.spring_damping, sys.absolute), dt, (xt, vp), i, &mut f, &mut blk, &mut abs, ecoef, ebase);
+            gather_springs(sys.edges, &m.springs.rest, (p.stiffness, p.spring_damping, sys.absolute), dt, (xt, vp), i, &mut f, &mut blk, &mut abs, ecoef, ebase);
             if sys.bending {
-                gather_springs(&sys.bends, &m.bending.rest, (p.bending_stiffness, p.spring_damping, sys.absolute), dt, (xt, vp), i, &mut f, &mut blk, &mut abs, bcoef, bbase);
+                gather_springs(sys.bends, &m.bending.rest, (p.bending_stiffness, p.spring_damping, sys.absolute), dt, (xt, vp), i, &mut f, &mut blk, &mut abs, bcoef, bbase);
             }
             if self.hinged {
                 // Σ over the hinges around i: −D w (θ − θ̄ + τ θ̇) ∇_i θ, and c_h ∇_i θ ∇_i θᵀ.
