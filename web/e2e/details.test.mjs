@@ -171,3 +171,32 @@ test('the help overlay fits a small window, above the panel, and scrolls', async
   await shot(page, 'details-06-help-scrolled');
   assert.deepEqual(errors, []);
 });
+
+test('choosing the loaded built-in model again starts it over, undoably', async (t) => {
+  const { page, errors } = await open(t);
+  await openFolder(page, 'Simulation');
+  const stiffness = control(page, 'stiffness k').locator('input').first();
+  await stiffness.fill('250');
+  await stiffness.press('Enter');
+  await page.waitForFunction(() => window.softsculpt.param('stiffness') === 250);
+  const [undo] = await inspect(page, () => window.softsculpt.history());
+  const opened = await inspect(page, () => window.softsculpt.settings().opened);
+  const list = control(page, 'built-in').locator('select');
+  assert.equal(await list.inputValue(), 'mushroom');
+  // As a user chooses it: the list opened with the mouse, its first entry (the mushroom) taken
+  // in the list's menu with the keys.
+  await list.click();
+  await page.keyboard.press('ArrowDown');
+  await page.keyboard.press('Enter');
+  // Before: the menu opened on the mushroom, so the arrow went on to the next model, and a
+  // mushroom chosen again did nothing (a <select> fires no change for its own value).
+  await page.waitForFunction((o) => window.softsculpt.settings().opened !== o && !window.softsculpt.busy(), opened, { timeout: 60000 });
+  assert.equal(await inspect(page, () => window.softsculpt.settings().model), 'mushroom');
+  await page.waitForFunction(() => window.softsculpt.param('stiffness') === 100);
+  assert.equal(await list.inputValue(), 'mushroom');
+  assert.equal((await inspect(page, () => window.softsculpt.history()))[0], undo + 1, 'one undo step');
+  await page.mouse.move(100, 700);
+  await page.keyboard.press('Control+z');
+  await page.waitForFunction(() => window.softsculpt.param('stiffness') === 250, null, { timeout: 30000 });
+  assert.deepEqual(errors, []);
+});

@@ -4,7 +4,7 @@
 // The parameters' controls are made from the engine's parameter table when it arrives
 // (panel-params.ts).
 
-import GUI, { type Controller } from 'lil-gui';
+import GUI, { type Controller, type OptionController } from 'lil-gui';
 import type { App } from './app';
 import { addParams, decimalsFor, scaleSliders, takeParams } from './panel-params';
 import { CUSTOM, MaterialTracker, MODELER } from './panel-material';
@@ -74,7 +74,18 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   tools.$children.appendChild(keysTip);
 
   const model = gui.addFolder('Model');
-  tip(model.add(view, 'model', [...MODELS]).name('built-in').onChange((v: ModelName) => app.loadBuiltin(v)), 'Load a built-in model (undoable)');
+  const builtIn = tip(model.add(view, 'model', [...MODELS]).name('built-in'), 'Load a built-in model (undoable); choosing the loaded one again starts it over');
+  // Every choice loads, the loaded model's too: a fresh start, undoable. lil-gui calls onChange
+  // only for another value, and a <select> fires no change for the option already selected, so
+  // the list's own change is heard, and its selection is cleared when the user opens it (the
+  // name shown is lil-gui's, over the list) and put back when it closes without a choice.
+  const select = (builtIn as OptionController).$select;
+  select.addEventListener('mousedown', () => { select.selectedIndex = -1; });
+  select.addEventListener('blur', () => builtIn.updateDisplay());
+  select.addEventListener('change', () => {
+    const name = MODELS[select.selectedIndex] as ModelName | undefined;
+    if (name) app.loadBuiltin(name);
+  });
   // Material presets, from the core (balloon, jelly, clay, cloth, stiff rubber): when they arrive.
   // The list shows the body's material: the modeler's own, a preset, or custom (panel-material.ts).
   const material = { name: '' };
