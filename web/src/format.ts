@@ -9,12 +9,12 @@ export function sig3(v: number): string {
   return v.toExponential(2);
 }
 
-/** Significant digits of a panel field's number. */
-export const FIELD_DIGITS = 5;
+/** Significant digits of a panel field's number (the fields are narrow: 1/60 reads 0.01667). */
+export const FIELD_DIGITS = 4;
 
 /**
  * A number in a panel field: at most FIELD_DIGITS significant digits, without float noise
- * (0.35000000000000003 → "0.35", 0.20254629629629634 → "0.20255", 1e-6 → "0.000001"). Only the
+ * (0.35000000000000003 → "0.35", 0.20254629629629634 → "0.2025", 1e-6 → "0.000001"). Only the
  * text: the value kept is the one given, unless the user types another.
  */
 export function fieldText(v: number, digits = FIELD_DIGITS): string {

@@ -7,18 +7,18 @@ import { MESSAGE_MAX_MS, messageLifetime } from '../src/view/hud';
 
 describe('a panel field\'s number', () => {
   it('has no float noise (the issue\'s fields)', () => {
-    expect(fieldText(0.35 / 1.2 ** 3)).toBe('0.20255'); // was 0.20254629629629634
+    expect(fieldText(0.35 / 1.2 ** 3)).toBe('0.2025'); // was 0.20254629629629634
     expect(fieldText(0.35 * 1.2 / 1.2 + 5e-17)).toBe('0.35'); // 0.35000000000000003
     expect(fieldText(0.1 + 0.2)).toBe('0.3');
   });
 
   it('keeps every digit of everyday values, and small values readable', () => {
-    for (const [v, t] of [[100, '100'], [9.81, '9.81'], [5000, '5000'], [1 / 60, '0.016667'], [1e-6, '0.000001'], [2.5e-8, '2.5e-8'], [0, '0'], [-0.25, '-0.25'], [600, '600']] as const) expect(fieldText(v)).toBe(t);
+    for (const [v, t] of [[100, '100'], [9.81, '9.81'], [5000, '5000'], [1 / 60, '0.01667'], [1e-6, '0.000001'], [2.5e-8, '2.5e-8'], [0, '0'], [-0.25, '-0.25'], [600, '600']] as const) expect(fieldText(v)).toBe(t);
   });
 
-  it('changes a value by less than the display precision (5 significant digits)', () => {
+  it('changes a value by less than the display precision (4 significant digits)', () => {
     for (const v of [0.20254629629629634, 123456.789, 3.14159265, 7.777777e-5]) {
-      expect(Math.abs(Number(fieldText(v)) - v)).toBeLessThanOrEqual(5e-5 * Math.abs(v));
+      expect(Math.abs(Number(fieldText(v)) - v)).toBeLessThanOrEqual(5e-4 * Math.abs(v));
     }
   });
 });
