@@ -8,6 +8,12 @@ use crate::params as table;
 /// Ideal gas constant R (J/(mol·K)).
 pub const GAS_CONSTANT: f64 = 8.314462618;
 
+/// The amount of gas n (mol) whose product n R T is `nrt` (J) at `temperature` (K): the one
+/// place nRT becomes n (the table's `gas.nrt`, a scene's `nrt`, an event's, `set_nrt`).
+pub fn moles(nrt: f64, temperature: f64) -> f64 {
+    nrt / (GAS_CONSTANT * temperature)
+}
+
 /// Default temperature (K) used when a total nRT is given.
 pub const DEFAULT_TEMPERATURE: f64 = table::TEMPERATURE.number();
 
@@ -150,7 +156,7 @@ impl Material {
 
     /// Set the gas by its product nRT (J), keeping the temperature.
     pub fn set_nrt(&mut self, nrt: f64) {
-        self.gas_amount = nrt / (GAS_CONSTANT * self.temperature);
+        self.gas_amount = moles(nrt, self.temperature);
     }
 
     /// Reject non-finite or out-of-range values with a message naming the parameter.

@@ -42,7 +42,7 @@ pub use faces::Faces;
 pub use freeze::{FreezeOptions, FreezeReport, Supports};
 pub use gas::GasReference;
 pub use plastic::PlasticState;
-pub use material::{Material, VolumeMode, DEFAULT_TEMPERATURE, GAS_CONSTANT};
+pub use material::{moles, Material, VolumeMode, DEFAULT_TEMPERATURE, GAS_CONSTANT};
 pub use springs::Springs;
 pub use implicit::{Relaxed, SolverIterations};
 pub use stats::Stats;

@@ -2,7 +2,7 @@
 //! settings. Every value is checked against the table's range first.
 
 use super::{find, ParamError, Scope, Value};
-use crate::body::{GasReference, SoftBody, VolumeMode, GAS_CONSTANT};
+use crate::body::{GasReference, SoftBody, VolumeMode};
 use crate::world::{Ground, Integrator, World, WorldSettings};
 
 fn err(id: &str, message: impl Into<String>) -> ParamError {
@@ -90,7 +90,7 @@ pub(crate) fn set_body_param(b: &mut SoftBody, id: &str, value: Value) -> Result
         ("damping", Value::Number(x)) => b.material.damping = x,
         ("gas.amount", Value::Number(x)) => b.set_gas(x, t).map_err(sim)?,
         ("gas.temperature", Value::Number(x)) => b.set_gas(n, x).map_err(sim)?,
-        ("gas.nrt", Value::Number(x)) => b.set_gas(x / (GAS_CONSTANT * t), t).map_err(sim)?,
+        ("gas.nrt", Value::Number(x)) => b.set_gas(crate::body::moles(x, t), t).map_err(sim)?,
         ("gas.volume", Value::Choice(c)) => b.material.volume_mode = VolumeMode::from_name(c).ok_or_else(|| err(id, "unknown volume mode"))?,
         ("gas.ambient", Value::Number(x)) => b.set_gas_reference(GasReference { ambient_pressure: x, ..b.gas_reference() }).map_err(sim)?,
         ("self_collision", Value::Flag(f)) => b.material.self_collision = f,

@@ -4,7 +4,7 @@
 use super::events::{check_keys, Action, Event};
 use super::spec::{BodySpec, ObstacleSpec, RegionSpec, RotateSpec, SceneSpec};
 use super::{line_of, SceneError};
-use crate::body::{GasReference, Material, SoftBody, VolumeMode, DEFAULT_TEMPERATURE, GAS_CONSTANT};
+use crate::body::{GasReference, Material, SoftBody, VolumeMode, DEFAULT_TEMPERATURE};
 use crate::geometry::rotate;
 use crate::world::{ContactSettings, Ground, Integrator, Obstacle, WorldSettings};
 use crate::mesh::{builtin, load, load_obj, LoadedMesh, MeshFormat};
@@ -309,7 +309,7 @@ fn body(cx: &Ctx, b: &BodySpec, ground: Option<Ground>, index: usize, resolve: R
         material.gas_amount = match (g.amount, g.nrt) {
             (Some(_), Some(_)) => return Err(cx.err("gas", "give `amount` (mol) or `nrt` (J), not both")),
             (Some(a), None) => cx.non_negative("gas.amount", a)?,
-            (None, Some(n)) => cx.non_negative("gas.nrt", n)? / (GAS_CONSTANT * material.temperature),
+            (None, Some(n)) => crate::body::moles(cx.non_negative("gas.nrt", n)?, material.temperature),
             (None, None) => return Err(cx.err("gas", "needs `amount` (mol) or `nrt` (J)")),
         };
         if let Some(v) = &g.volume {

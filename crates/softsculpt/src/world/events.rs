@@ -159,7 +159,7 @@ impl World {
                 let t = temperature.unwrap_or(b.material.temperature);
                 let n = match (amount, nrt) {
                     (Some(a), _) => *a,
-                    (None, Some(n)) => n / (crate::GAS_CONSTANT * t),
+                    (None, Some(n)) => crate::body::moles(*n, t),
                     (None, None) => b.material.gas_amount,
                 };
                 b.set_gas(n, t)?
