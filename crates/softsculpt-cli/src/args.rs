@@ -52,10 +52,7 @@ pub fn count(s: &str) -> Result<u64, String> {
 /// machine (`--threads 99999`: 2,498 threads after four minutes, load average 2,300).
 pub fn threads(s: &str) -> Result<u64, String> {
     let n = count(s)?;
-    let most = softsculpt::par::max_threads();
-    if n > most as u64 {
-        return Err(format!("this machine runs {most} threads at once: give at most {most} (0 or absent: every core)"));
-    }
+    softsculpt::par::check_threads(n)?;
     Ok(n)
 }
 

@@ -283,10 +283,7 @@ impl World {
 
     #[setter]
     fn set_threads(&mut self, n: usize) -> PyResult<()> {
-        let most = softsculpt::par::max_threads();
-        if n > most {
-            return Err(PyValueError::new_err(format!("threads: this machine runs {most} threads at once: give at most {most} (0: every core)")));
-        }
+        softsculpt::par::check_threads(n as u64).map_err(|e| PyValueError::new_err(format!("threads: {e}")))?;
         self.core.set_threads(n).map_err(|e| PyValueError::new_err(format!("threads: {e}")))
     }
 

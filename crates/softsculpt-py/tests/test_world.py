@@ -171,3 +171,11 @@ def test_a_missing_or_unreadable_file_is_one_clear_error(tmp_path):
         World.from_mesh(tmp_path)
     with pytest.raises(ValueError, match="builtin:teapot"):
         World.from_mesh("builtin:teapot")
+
+
+def test_more_threads_than_the_machine_runs_are_refused_as_the_cli_refuses_them():
+    w = World.from_mesh("builtin:sphere")
+    with pytest.raises(ValueError, match="threads at once"):
+        w.threads = (os.cpu_count() or 1) + 1000
+    w.threads = 1
+    assert w.threads == 1

@@ -101,6 +101,17 @@ pub fn max_threads() -> usize {
     1
 }
 
+/// A thread count a caller may ask for: 0 (every core) up to [`max_threads`]. More would only
+/// take turns (1,000 threads ran ~500× slower on 2 cores) and thousands stopped the machine, so
+/// the command line and the Python package refuse them up front with this message.
+pub fn check_threads(n: u64) -> Result<(), String> {
+    let most = max_threads();
+    if n > most as u64 {
+        return Err(format!("this machine runs {most} threads at once: give at most {most} (0 or absent: every core)"));
+    }
+    Ok(())
+}
+
 impl Threads {
     /// Threads that [`Threads::blocks`] uses for `n` chunks of `min_len` items or more: one
     /// below `min_len` items per thread (a pass that short costs less than a fork and join).
