@@ -32,7 +32,8 @@ fn top(w: &World) -> f64 {
 }
 
 /// Every material preset on every built-in model, as loaded and after two subdivisions (16× the
-/// faces), 1 s of the modeler's implicit steps (60): every step converges, the state stays
+/// faces), 1 s of the modeler's implicit steps (60, a refused one split as the modeler splits
+/// it: jelly's hinges on the subdivided mushroom need it once): every step converges, the state stays
 /// finite, the volume stays within a factor 2 of the start (the gas presets hold it; cloth has
 /// none, so only its height is bounded: it falls onto the ground, no higher than it started),
 /// and the two resolutions agree, though at 1 s the bodies still move (up to 1.7 m/s: the gas
@@ -53,11 +54,14 @@ fn every_material_preset_is_stable_at_every_resolution() {
             for subdivisions in [0, 2] {
                 let mut w = world(&mesh, subdivisions, name);
                 let (v0, h0) = (w.bodies[0].exact_volume(), top(&w));
-                w.step_n(60).unwrap_or_else(|e| panic!("{name} on {model} ×{subdivisions}: {e}"));
+                // As the modeler steps (`World::advance`): a step the solver refuses is split
+                // (up to dt/8) and first retried with hinges let go; counted, and printed.
+                let budget = softsculpt::world::Budget { splits: 3, relax: true, ..softsculpt::world::Budget::converge() };
+                let a = w.advance(1.0, &budget).unwrap_or_else(|e| panic!("{name} on {model} ×{subdivisions}: {e}"));
                 let b = &w.bodies[0];
                 assert!(b.is_finite(), "{name} on {model} ×{subdivisions}");
                 let (ratio, height) = (b.exact_volume() / v0, top(&w) / h0);
-                println!("{name:>12} {model:>8} ×{subdivisions}: {:>6} vertices, V/V0 {ratio:.3}, top/top0 {height:.3}, max speed {:.3}", b.vertex_count(), b.max_speed());
+                println!("{name:>12} {model:>8} ×{subdivisions}: {:>6} vertices, V/V0 {ratio:.3}, top/top0 {height:.3}, max speed {:.3}, split steps {}", b.vertex_count(), b.max_speed(), a.splits);
                 if name == "cloth" {
                     assert!(height <= 1.01, "{name} on {model} ×{subdivisions}: rose to {height}× its height");
                 } else {
@@ -110,30 +114,34 @@ fn scene_bodies_take_presets_and_plasticity() {
     }
 }
 
-/// A balloon springs back from a press (its hinges, `presets.rs`): the modeler's rooted mushroom
-/// (foot pinned), settled, its weight carried by a freeze under load as the modeler applies a
-/// preset, then the balloon preset; a dent of 15 cm (cosine profile, 35 cm radius) at its
-/// front-most point, let go: after 12 s the point is back within 1 cm (measured 0.1 mm; without
-/// the hinges 12.6 cm stayed, a snapped-through skin).
+/// Balloon, jelly and stiff rubber spring back from a press (their hinges, `presets.rs`): the
+/// modeler's rooted mushroom (foot pinned), settled, its weight carried by a freeze under load
+/// as the modeler applies a preset, then the preset, settled; a dent of 15 cm (cosine profile,
+/// 35 cm radius) at its front-most point, let go: 5 s later the point is back within 5 mm
+/// (issue #37; measured 0.5 mm balloon, 0.8 mm jelly, 0.1 mm stiff rubber; without hinges the
+/// balloon kept 12.6 cm and jelly 14.1 cm: a snapped-through skin is an equilibrium too).
 #[test]
-fn a_dented_balloon_springs_back() {
-    let mut w = common::rooted_mushroom();
-    w.step_n(120).unwrap();
-    w.freeze(0, softsculpt::body::FreezeOptions { under_load: true, keep_tension: false }).unwrap();
-    w.apply_preset(0, "balloon").unwrap();
-    w.step_n(120).unwrap();
-    let x0 = w.bodies[0].positions().to_vec();
-    let n = x0.len() / 3;
-    let c = (0..n).max_by(|&a, &b| x0[3 * a + 2].total_cmp(&x0[3 * b + 2])).unwrap();
-    let mut x = x0.clone();
-    for i in 0..n {
-        let d = (0..3).map(|k| (x0[3 * i + k] - x0[3 * c + k]).powi(2)).sum::<f64>().sqrt();
-        if d < 0.35 {
-            x[3 * i + 2] -= 0.15 * 0.5 * (1.0 + (std::f64::consts::PI * d / 0.35).cos());
+fn a_dented_balloon_jelly_or_stiff_rubber_springs_back() {
+    for preset in ["balloon", "jelly", "stiff_rubber"] {
+        let mut w = common::rooted_mushroom();
+        w.step_n(120).unwrap();
+        w.freeze(0, softsculpt::body::FreezeOptions { under_load: true, keep_tension: false }).unwrap();
+        w.apply_preset(0, preset).unwrap();
+        // Jelly is barely damped (0.3 1/s): 10 s to settle before the press.
+        w.step_n(600).unwrap();
+        let x0 = w.bodies[0].positions().to_vec();
+        let n = x0.len() / 3;
+        let c = (0..n).max_by(|&a, &b| x0[3 * a + 2].total_cmp(&x0[3 * b + 2])).unwrap();
+        let mut x = x0.clone();
+        for i in 0..n {
+            let d = (0..3).map(|k| (x0[3 * i + k] - x0[3 * c + k]).powi(2)).sum::<f64>().sqrt();
+            if d < 0.35 {
+                x[3 * i + 2] -= 0.15 * 0.5 * (1.0 + (std::f64::consts::PI * d / 0.35).cos());
+            }
         }
+        w.bodies[0].set_state(&x, &vec![0.0; x.len()]).unwrap();
+        w.step_n(300).unwrap();
+        let left = x0[3 * c + 2] - w.bodies[0].positions()[3 * c + 2];
+        assert!(left.abs() < 0.005, "{preset}: a dent of {left} m stayed");
     }
-    w.bodies[0].set_state(&x, &vec![0.0; x.len()]).unwrap();
-    w.step_n(720).unwrap();
-    let left = x0[3 * c + 2] - w.bodies[0].positions()[3 * c + 2];
-    assert!(left.abs() < 0.01, "a dent of {left} m stayed");
 }
