@@ -152,18 +152,17 @@ fn apply_preset(world: &mut World, name: &str, a: &SimulateArgs) -> Result<(), S
 /// neither `--integrator` nor `--dt` was given and the explicit step is above the model's
 /// stability bound (`World::dt_limit`), the implicit integrator steps it, with a note saying so.
 fn implicit_for_preset(world: &mut World, name: &str, a: &SimulateArgs) {
-    let s = &world.settings;
-    let chosen = a.explicit.iter().any(|e| e == "integrator" || e == "dt");
-    if chosen || world.dt_limit(s.integrator).is_none_or(|limit| s.dt <= limit) {
+    if a.explicit.iter().any(|e| e == "integrator" || e == "dt") {
         return;
     }
-    let limit = world.dt_limit(s.integrator).unwrap_or(s.dt);
-    eprintln!(
-        "note: --preset {name}: {} is stable only below ~{limit:.1e} s for this model, not at --dt {} s; the implicit integrator steps it (give --integrator or --dt to choose)",
-        s.integrator.name(),
-        s.dt
-    );
-    world.settings.integrator = Integrator::Implicit;
+    let was = world.settings.integrator;
+    if let Some(limit) = world.implicit_if_unstable() {
+        eprintln!(
+            "note: --preset {name}: {} is stable only below ~{limit:.1e} s for this model, not at --dt {} s; the implicit integrator steps it (give --integrator or --dt to choose)",
+            was.name(),
+            world.settings.dt
+        );
+    }
 }
 
 /// The ids of the arguments given on the command line (not defaulted).

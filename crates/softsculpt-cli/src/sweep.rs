@@ -28,16 +28,19 @@ pub struct SweepArgs {
     /// Also write N OBJ frames of every run (N ≥ 2).
     #[arg(long, value_parser = crate::args::count_positive, value_name = "N")]
     pub frames: Option<u64>,
+    /// Replace an earlier sweep's outputs in --out (a folder holding anything else is refused).
+    #[arg(long)]
+    pub overwrite: bool,
 }
 
 pub fn run(a: SweepArgs) -> Result<(), String> {
     let python = std::env::var("SOFTSCULPT_PYTHON").unwrap_or_else(|_| "python3".into());
-    let found = Command::new(&python).args(["-c", "import softsculpt.sweeps, dask.distributed, pandas"]).output();
+    let found = Command::new(&python).args(["-c", "import softsculpt.sweeps, dask.distributed, pandas, pyarrow"]).output();
     match found {
         Err(e) => return Err(format!("sweep runs in Python, and '{python}' did not start ({e}): set SOFTSCULPT_PYTHON to a Python with the softsculpt package (docs/python.md)")),
         Ok(o) if !o.status.success() => {
             let why = String::from_utf8_lossy(&o.stderr).lines().last().unwrap_or("").to_string();
-            return Err(format!("sweep runs in Python, and '{python}' cannot import the softsculpt package with Dask and pandas ({why}): install it (pip install 'crates/softsculpt-py[sweep]', docs/python.md) or set SOFTSCULPT_PYTHON"));
+            return Err(format!("sweep runs in Python, and '{python}' cannot import the softsculpt package with Dask, pandas and pyarrow ({why}): install it (pip install 'crates/softsculpt-py[sweep]', docs/python.md) or set SOFTSCULPT_PYTHON"));
         }
         Ok(_) => {}
     }
@@ -51,6 +54,9 @@ pub fn run(a: SweepArgs) -> Result<(), String> {
     }
     if let Some(n) = a.frames {
         cmd.arg("--frames").arg(n.to_string());
+    }
+    if a.overwrite {
+        cmd.arg("--overwrite");
     }
     let status = cmd.status().map_err(|e| format!("'{python}' did not start: {e}"))?;
     if status.success() {

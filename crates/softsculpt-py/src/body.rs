@@ -20,21 +20,22 @@ pub struct Body {
 impl Body {
     /// The body's name (the scene's table name, or "body").
     #[getter]
-    fn name(&self, py: Python<'_>) -> String {
-        self.world.borrow(py).names[self.index].clone()
+    fn name(&self, py: Python<'_>) -> PyResult<String> {
+        Ok(crate::world::read(&self.world, py)?.names[self.index].clone())
     }
 
     /// Vertex positions (N, 3), metres.
     #[getter]
     fn positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        to_numpy(py, self.world.borrow(py).core.bodies[self.index].positions())
+        to_numpy(py, crate::world::read(&self.world, py)?.core.bodies[self.index].positions())
     }
 
     #[setter]
     fn set_positions(&self, py: Python<'_>, value: &Bound<'_, PyAny>) -> PyResult<()> {
-        let mut w = self.world.borrow_mut(py);
+        let n = crate::world::read(&self.world, py)?.core.bodies[self.index].positions().len() / 3;
+        let x = from_numpy(value, "positions", n)?;
+        let mut w = crate::world::write(&self.world, py)?;
         let b = &mut w.core.bodies[self.index];
-        let x = from_numpy(value, "positions", b.positions().len() / 3)?;
         let v = b.velocities().to_vec();
         b.set_state(&x, &v).map_err(sim_error)
     }
@@ -42,14 +43,15 @@ impl Body {
     /// Vertex velocities (N, 3), m/s.
     #[getter]
     fn velocities<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        to_numpy(py, self.world.borrow(py).core.bodies[self.index].velocities())
+        to_numpy(py, crate::world::read(&self.world, py)?.core.bodies[self.index].velocities())
     }
 
     #[setter]
     fn set_velocities(&self, py: Python<'_>, value: &Bound<'_, PyAny>) -> PyResult<()> {
-        let mut w = self.world.borrow_mut(py);
+        let n = crate::world::read(&self.world, py)?.core.bodies[self.index].velocities().len() / 3;
+        let v = from_numpy(value, "velocities", n)?;
+        let mut w = crate::world::write(&self.world, py)?;
         let b = &mut w.core.bodies[self.index];
-        let v = from_numpy(value, "velocities", b.velocities().len() / 3)?;
         let x = b.positions().to_vec();
         b.set_state(&x, &v).map_err(sim_error)
     }
@@ -57,7 +59,7 @@ impl Body {
     /// Triangles (F, 3) as vertex indices, counter-clockwise seen from outside.
     #[getter]
     fn triangles<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let w = self.world.borrow(py);
+        let w = crate::world::read(&self.world, py)?;
         let flat: Vec<u32> = w.core.bodies[self.index].triangles().iter().flatten().copied().collect();
         let n = flat.len() / 3;
         Ok(PyArray1::from_vec(py, flat).reshape([n, 3])?.into_any())
@@ -65,25 +67,25 @@ impl Body {
 
     /// Number of vertices.
     #[getter]
-    fn vertex_count(&self, py: Python<'_>) -> usize {
-        self.world.borrow(py).core.bodies[self.index].positions().len() / 3
+    fn vertex_count(&self, py: Python<'_>) -> PyResult<usize> {
+        Ok(crate::world::read(&self.world, py)?.core.bodies[self.index].positions().len() / 3)
     }
 
     /// The volume the surface encloses (m³); None for an open surface.
     #[getter]
-    fn volume(&self, py: Python<'_>) -> Option<f64> {
-        let w = self.world.borrow(py);
+    fn volume(&self, py: Python<'_>) -> PyResult<Option<f64>> {
+        let w = crate::world::read(&self.world, py)?;
         let b = &w.core.bodies[self.index];
-        b.is_closed().then(|| b.exact_volume())
+        Ok(b.is_closed().then(|| b.exact_volume()))
     }
 
     /// This body's statistics (`World.stats`).
     fn stats(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
-        json_to_py(py, &self.world.borrow(py).core.stats(self.index).to_json())
+        json_to_py(py, &crate::world::read(&self.world, py)?.core.stats(self.index).to_json())
     }
 
-    fn __repr__(&self, py: Python<'_>) -> String {
-        let w = self.world.borrow(py);
-        format!("<softsculpt.Body '{}': {} vertices>", w.names[self.index], w.core.bodies[self.index].positions().len() / 3)
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        let w = crate::world::read(&self.world, py)?;
+        Ok(format!("<softsculpt.Body '{}': {} vertices>", w.names[self.index], w.core.bodies[self.index].positions().len() / 3))
     }
 }

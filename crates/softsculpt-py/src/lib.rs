@@ -13,11 +13,12 @@ mod convert;
 mod files;
 mod world;
 
+// (Named by its full module path, so that it pickles: Dask and multiprocessing carry it.)
 pyo3::create_exception!(
-    _core,
+    softsculpt._core,
     SimulationError,
     pyo3::exceptions::PyRuntimeError,
-    "A step failed (the body blew up, collapsed, or the implicit solve did not converge); the world is as it was after the last step that succeeded."
+    "A step failed (the body blew up, collapsed, or the implicit solve did not converge); the world is rolled back to the start of the failing batch of steps (at most 16 steps earlier: the message says the time)."
 );
 
 #[pymodule]

@@ -1,7 +1,8 @@
 //! `softsculpt.World`: a world of soft bodies, made from a scene file or a mesh, stepped in
-//! place. Stepping releases the GIL (other Python threads run) and checks for Ctrl+C between
-//! steps; a failed step raises `SimulationError` and leaves the world as after the last step
-//! that succeeded (the core's rollback).
+//! place. Stepping releases the GIL (other Python threads run) and checks for Ctrl+C every
+//! [`STEPS_PER_CHECK`] steps; a failed step raises `SimulationError` and rolls the world back to
+//! the start of its batch of steps (the core's `World::step_n`). While a world steps, another
+//! thread that reads or changes it gets a RuntimeError ("the world is stepping"), not a wait.
 
 use crate::body::Body;
 use crate::convert::{from_numpy, json_to_py, param_error, py_to_value, sim_error, step_error, value_to_py};
@@ -75,6 +76,20 @@ impl World {
         }
         Ok(())
     }
+}
+
+/// `world.borrow()` / `borrow_mut()` without the panic: a RuntimeError while another thread
+/// steps the world (stepping releases the GIL and holds it mutably borrowed).
+pub fn read<'py>(w: &'py Py<World>, py: Python<'py>) -> PyResult<PyRef<'py, World>> {
+    w.bind(py).try_borrow().map_err(|_| stepping())
+}
+
+pub fn write<'py>(w: &'py Py<World>, py: Python<'py>) -> PyResult<PyRefMut<'py, World>> {
+    w.bind(py).try_borrow_mut().map_err(|_| stepping())
+}
+
+fn stepping() -> PyErr {
+    pyo3::exceptions::PyRuntimeError::new_err("the world is stepping in another thread: read or change it between steps")
 }
 
 /// A mesh given as arrays: vertices (N, 3) and triangles (F, 3) of vertex indices.
@@ -157,10 +172,24 @@ impl World {
         if let Some(name) = preset {
             w.core.apply_preset(0, name).map_err(param_error)?;
         }
+        let mut ids = Vec::new();
         if let Some(params) = params {
-            for (k, v) in params.iter() {
-                let id = param_id(&k.extract::<String>()?);
+            let mut given: Vec<(String, Bound<'_, PyAny>)> = params.iter().map(|(k, v)| Ok((param_id(&k.extract::<String>()?), v))).collect::<PyResult<_>>()?;
+            // `ground` before `ground.height` and the other ground keys (they need a ground).
+            given.sort_by_key(|(id, _)| id != "ground");
+            for (id, v) in given {
                 w.set_param(&id, &v, 0)?;
+                ids.push(id);
+            }
+        }
+        // A preset carries what it needs to run, as `simulate --preset` (the CLI's note).
+        if let Some(name) = preset {
+            let was = w.core.settings.integrator;
+            if !ids.iter().any(|id| id == "integrator" || id == "dt") {
+                if let Some(limit) = w.core.implicit_if_unstable() {
+                    let note = format!("preset {name}: {} is stable only below ~{limit:.1e} s for this model, not at dt {} s; the implicit integrator steps it (give integrator= or dt= to choose)", was.name(), w.core.settings.dt);
+                    pyo3::PyErr::warn(mesh.py(), &mesh.py().get_type::<pyo3::exceptions::PyUserWarning>(), &std::ffi::CString::new(note).unwrap_or_default(), 1)?;
+                }
             }
         }
         Ok(w)
@@ -193,7 +222,7 @@ impl World {
 
     /// Pickling: the snapshot, the names and the run's length.
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (Bound<'py, PyBytes>, Vec<String>, Option<f64>))> {
-        let me = slf.borrow();
+        let me = slf.try_borrow().map_err(|_| stepping())?;
         let rebuild = slf.py().import("softsculpt._core")?.getattr("World")?.getattr("_unpickle")?;
         Ok((rebuild, (me.snapshot(slf.py()), me.names.clone(), me.duration)))
     }
@@ -240,9 +269,9 @@ impl World {
 
     /// The bodies, in the world's order.
     #[getter]
-    fn bodies(slf: &Bound<'_, Self>) -> Vec<Body> {
-        let n = slf.borrow().core.bodies.len();
-        (0..n).map(|index| Body { world: slf.clone().unbind(), index }).collect()
+    fn bodies(slf: &Bound<'_, Self>) -> PyResult<Vec<Body>> {
+        let n = slf.try_borrow().map_err(|_| stepping())?.core.bodies.len();
+        Ok((0..n).map(|index| Body { world: slf.clone().unbind(), index }).collect())
     }
 
     #[getter]

@@ -18,6 +18,7 @@ GRID = {"stiffness": [60.0, 100.0, 150.0, 250.0], "gas.nrt": [20.0, 40.0]}
 
 @pytest.fixture(scope="module")
 def client():
+    """A 2-worker LocalCluster's client (its scheduler's address: client.scheduler.address)."""
     from dask.distributed import Client, LocalCluster
 
     cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None)
@@ -72,7 +73,7 @@ def test_the_command_line_sweep_writes_its_table(tmp_path):
     if not cli:
         pytest.skip("SOFTSCULPT_CLI not set")
     grid = tmp_path / "grid.toml"
-    grid.write_text('stiffness = [80.0, 120.0]\n"gas.nrt" = [30.0]\n')
+    grid.write_text('stiffness = [80.0, 120.0]\ngas.nrt = [30.0]\n')  # a dotted key, unquoted
     env = {**os.environ, "SOFTSCULPT_PYTHON": sys.executable}
     r = subprocess.run([cli, "sweep", str(SCENE), "--grid", str(grid), "--workers", "0", "--out", str(tmp_path / "o"), "--frames", "3"],
                        capture_output=True, text=True, env=env)
@@ -83,3 +84,42 @@ def test_the_command_line_sweep_writes_its_table(tmp_path):
     assert sorted(os.listdir(tmp_path / "o" / "run_0001" / "frames")) == [f"{n}_{i:04d}.obj" for n in ("ball", "sphere") for i in range(3)]
     bad = subprocess.run([cli, "sweep", str(SCENE), "--grid", str(tmp_path / "none.toml"), "--out", str(tmp_path / "p")], capture_output=True, text=True, env=env)
     assert bad.returncode == 1 and bad.stderr.startswith("error:") and len(bad.stderr.strip().splitlines()) == 1
+
+
+def test_a_scheduler_address_runs_the_sweep_on_that_cluster(client):
+    table = softsculpt.sweep(SCENE, {"stiffness": [100.0, 150.0]}, client=client.scheduler.address)
+    assert list(table["error"].isna()) == [True, True]
+
+
+def test_array_values_expand_and_a_tuple_is_one_vector_value():
+    rows = rows_of({"stiffness": np.linspace(50.0, 200.0, 4), "wind": (1.0, 0.0, 0.0)})
+    assert [r["stiffness"] for r in rows] == [50.0, 100.0, 150.0, 200.0]
+    assert all(r["wind"] == (1.0, 0.0, 0.0) for r in rows)
+    table = softsculpt.sweep(SCENE, {"stiffness": np.array([80.0, 120.0]), "wind": (0.5, 0.0, 0.0)}, workers=0)
+    assert table["error"].isna().all() and list(table["stiffness"]) == [80.0, 120.0]
+
+
+def test_bad_keys_an_empty_grid_and_too_many_workers_fail_before_any_run(tmp_path):
+    for grid, says in [({"duration": [1.0]}, "scene file"), ({"nobody:stiffness": [1.0]}, "no body 'nobody'"),
+                       ({"ball:dt": [0.001]}, "world parameter"), ({"stiffness": []}, "no runs")]:
+        with pytest.raises(ValueError, match=says):
+            softsculpt.sweep(SCENE, grid, workers=0, out=tmp_path / "never")
+        assert not (tmp_path / "never").exists()
+    with pytest.raises(ValueError, match="processes at once"):
+        softsculpt.sweep(SCENE, {"stiffness": [1.0]}, workers=10_000)
+
+
+def test_a_failed_run_keeps_its_statistics_and_outputs_are_not_mixed(tmp_path):
+    table = softsculpt.sweep(SCENE, [{"dt": 0.01}], workers=0, out=tmp_path)
+    assert table["error"][0].startswith("SimulationError")
+    stats = pd.read_parquet(tmp_path / "run_0000" / "stats.parquet")
+    assert stats["step"].min() == 0 and len(stats) >= 2  # the rows up to the failure
+    assert pd.read_parquet(tmp_path / "sweep.parquet")["error"][0] == table["error"][0]
+    with pytest.raises(ValueError, match="earlier sweep"):
+        softsculpt.sweep(SCENE, [{"dt": 0.001}], workers=0, out=tmp_path)
+    softsculpt.sweep(SCENE, [{"dt": 0.001}], workers=0, out=tmp_path, overwrite=True)
+    assert pd.read_parquet(tmp_path / "sweep.parquet")["error"].isna().all()
+    (tmp_path / "notes.txt").write_text("mine")
+    with pytest.raises(ValueError, match="other files"):
+        softsculpt.sweep(SCENE, [{"dt": 0.001}], workers=0, out=tmp_path, overwrite=True)
+    assert (tmp_path / "notes.txt").read_text() == "mine"

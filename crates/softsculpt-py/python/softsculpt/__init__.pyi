@@ -15,4 +15,5 @@ def sweep(
     workers: Optional[int] = None,
     out: Union[str, os.PathLike[str], None] = None,
     frames: Optional[int] = None,
+    overwrite: bool = False,
 ) -> pandas.DataFrame: ...

@@ -224,6 +224,20 @@ impl World {
         Some([5.0, 2.0, 1.0].iter().map(|f| f * ten).find(|&v| v <= dt).unwrap_or(ten))
     }
 
+    /// Step with the implicit integrator if the explicit one's step is above the model's
+    /// stability bound ([`World::dt_limit`]): what a material preset tuned for the implicit
+    /// integrator needs when the caller chose neither the integrator nor the step (the CLI's
+    /// `simulate --preset`, the Python package's `World.from_mesh(preset=…)`). Returns the
+    /// bound (s) when it switched, for the caller's note.
+    pub fn implicit_if_unstable(&mut self) -> Option<f64> {
+        let limit = self.dt_limit(self.settings.integrator)?;
+        if self.settings.dt <= limit {
+            return None;
+        }
+        self.settings.integrator = Integrator::Implicit;
+        Some(limit)
+    }
+
     /// The largest step (s) the explicit integrator `integrator` is linearly stable at for
     /// every body: [`World::stable_dt`]'s bounds without its safety factor (`safety` 1 in place
     /// of [`SAFETY`]), its 1 ms cap and its rounding (forward Euler keeps [`EULER_SHARE`]).
