@@ -40,6 +40,11 @@ export function addModel(world: World, name: ModelName): number {
 
 /** The modeler's step: one backward-Euler step of 1/60 s per frame. */
 export const FRAME_DT = 1 / 60;
+
+/** Steps of `dt` (s) in one frame of FRAME_DT: the nearest whole number, at least one. */
+export function stepsPerFrame(dt: number): number {
+  return Math.max(1, Math.round(FRAME_DT / dt));
+}
 /**
  * The modeler's default world for body `b`: gravity, ground at y = 0, gas, damping, implicit
  * stepping at dt = 1/60 s (set as the world's dt, returned).

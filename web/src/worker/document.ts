@@ -13,7 +13,7 @@
 import { initEngine } from '../engine/wasm';
 import { World, type DeltaScope, type FreezeReport, type ParamInfo, type ParamValue, type RemeshReport } from '../engine/world';
 import { sig3 } from '../format';
-import { addModel, dtFor, useDefaults } from '../engine/models';
+import { addModel, dtFor, stepsPerFrame, useDefaults } from '../engine/models';
 import { stepSplitting } from './split';
 import { NEWTON_MOST, NEWTON_STALLED, Pace, stepPaced } from './pace';
 import { History, travel } from '../history';
@@ -240,7 +240,7 @@ export class Document {
     this.pace.reset();
     this.paceSaid = false;
     this.settings.dt = this.world.params(0).dt as number;
-    this.settings.substeps = Math.max(1, Math.round(1 / 60 / this.settings.dt));
+    this.settings.substeps = stepsPerFrame(this.settings.dt);
     this.settings.model = model;
     this.settings.frame = frame;
   }
@@ -256,7 +256,7 @@ export class Document {
     this.pace.reset();
     this.paceSaid = false;
     this.settings.dt = dt;
-    this.settings.substeps = Math.max(1, Math.round(1 / 60 / dt));
+    this.settings.substeps = stepsPerFrame(dt);
     this.settings.model = model;
   }
 
@@ -353,7 +353,7 @@ export class Document {
     if (ok && id === 'integrator') {
       this.pace.reset();
       this.setDt(dtFor(this.world, value as string));
-      this.settings.substeps = Math.max(1, Math.round(1 / 60 / this.settings.dt));
+      this.settings.substeps = stepsPerFrame(this.settings.dt);
       this.hooks.message(`${value}: dt = ${fmt(this.settings.dt)} s`);
     }
     // After a stop, another integrator or dt is the remedy the stop's message names: play again
@@ -568,7 +568,7 @@ export class Document {
       // integrator needs the finer mesh's stable step.
       const integrator = String(this.world.params(0).integrator);
       if (integrator !== 'implicit') this.setDt(Math.min(this.settings.dt, this.world.stableDt(integrator)));
-      this.settings.substeps = Math.max(1, Math.round(1 / 60 / this.settings.dt));
+      this.settings.substeps = stepsPerFrame(this.settings.dt);
     });
   }
 
@@ -782,7 +782,7 @@ export class Document {
       this.session = { name, text, files, duration: opened.duration };
       this.settings.frame = null;
       this.settings.dt = opened.dt;
-      this.settings.substeps = Math.max(1, Math.round(1 / 60 / opened.dt));
+      this.settings.substeps = stepsPerFrame(opened.dt);
       this.settings.model = name;
       // A scene opens paused at t = 0, so its first events are seen when the user plays it.
       this.newModel();
