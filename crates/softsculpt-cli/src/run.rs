@@ -117,7 +117,7 @@ pub fn run(a: RunArgs) -> Result<(), String> {
     for (k, b) in scene.world.bodies.iter().enumerate() {
         let name = &scene.names[k];
         output::write_atomic(&a.out.join(format!("{name}.obj")), &scene.meshes[k].write_obj(b.positions(), &header(scene.time())))?;
-        bodies.insert(name.clone(), crate::simulate::stats_json(&scene.world.stats(k)));
+        bodies.insert(name.clone(), scene.world.stats(k).to_json());
     }
     summary.insert("bodies".into(), json!(bodies));
     if !times.is_empty() {

@@ -181,11 +181,6 @@ fn parse_volume(s: &str) -> Result<VolumeMode, String> {
 /// Consecutive calm steps that count as "at rest" for --until-rest.
 pub const REST_WINDOW: u64 = 100;
 
-/// The stats keys of the contract, in order (`Stats::to_json`, in the core).
-pub fn stats_json(s: &softsculpt::Stats) -> serde_json::Value {
-    s.to_json()
-}
-
 /// How far above the stability bound (`World::dt_limit`) a step is refused. The bound is
 /// Gershgorin's over-estimate of the fastest mode: measured on the sphere, `--preset cloth`
 /// (bound 6.5e-4 s) ran dropped at 1e-3 s and blew up at 1.3e-3 s; `stiff_rubber` and `clay`
@@ -269,7 +264,7 @@ pub fn run(a: SimulateArgs) -> Result<(), String> {
     };
     let mut emit = |world: &World, record: Option<serde_json::Value>| -> Result<(), String> {
         if let Some(s) = stats.as_mut() {
-            let mut row = stats_json(&world.stats(0));
+            let mut row = world.stats(0).to_json();
             // The first row (step 0) also records the run (record.rs): the stats keys as every
             // row has them, and "run".
             if let (Some(r), Some(map)) = (record, row.as_object_mut()) {

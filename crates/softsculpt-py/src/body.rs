@@ -16,6 +16,19 @@ pub struct Body {
     pub index: usize,
 }
 
+impl Body {
+    /// Replace the positions (or, with `velocities`, the velocities) by an (N, 3) array,
+    /// converted and checked before the world is borrowed for writing.
+    fn set_state_part(&self, py: Python<'_>, value: &Bound<'_, PyAny>, velocities: bool) -> PyResult<()> {
+        let n = crate::world::read(&self.world, py)?.core.bodies[self.index].vertex_count();
+        let new = from_numpy(value, if velocities { "velocities" } else { "positions" }, n)?;
+        let mut w = crate::world::write(&self.world, py)?;
+        let b = &mut w.core.bodies[self.index];
+        let (x, v) = if velocities { (b.positions().to_vec(), new) } else { (new, b.velocities().to_vec()) };
+        b.set_state(&x, &v).map_err(sim_error)
+    }
+}
+
 #[pymethods]
 impl Body {
     /// The body's name (the scene's table name, or "body").
@@ -32,12 +45,7 @@ impl Body {
 
     #[setter]
     fn set_positions(&self, py: Python<'_>, value: &Bound<'_, PyAny>) -> PyResult<()> {
-        let n = crate::world::read(&self.world, py)?.core.bodies[self.index].positions().len() / 3;
-        let x = from_numpy(value, "positions", n)?;
-        let mut w = crate::world::write(&self.world, py)?;
-        let b = &mut w.core.bodies[self.index];
-        let v = b.velocities().to_vec();
-        b.set_state(&x, &v).map_err(sim_error)
+        self.set_state_part(py, value, false)
     }
 
     /// Vertex velocities (N, 3), m/s.
@@ -48,12 +56,7 @@ impl Body {
 
     #[setter]
     fn set_velocities(&self, py: Python<'_>, value: &Bound<'_, PyAny>) -> PyResult<()> {
-        let n = crate::world::read(&self.world, py)?.core.bodies[self.index].velocities().len() / 3;
-        let v = from_numpy(value, "velocities", n)?;
-        let mut w = crate::world::write(&self.world, py)?;
-        let b = &mut w.core.bodies[self.index];
-        let x = b.positions().to_vec();
-        b.set_state(&x, &v).map_err(sim_error)
+        self.set_state_part(py, value, true)
     }
 
     /// Triangles (F, 3) as vertex indices, counter-clockwise seen from outside.

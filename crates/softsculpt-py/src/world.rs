@@ -7,6 +7,7 @@
 use crate::body::Body;
 use crate::convert::{from_numpy, json_to_py, param_error, py_to_value, sim_error, step_error, value_to_py};
 use crate::files::{disk_resolver, load_mesh};
+use numpy::PyArrayMethods;
 use pyo3::exceptions::{PyIndexError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
@@ -102,7 +103,14 @@ fn mesh_of_arrays(vertices: &Bound<'_, PyAny>, triangles: &Bound<'_, PyAny>) -> 
     if shape.len() != 2 || shape[1] != 3 {
         return Err(PyValueError::new_err(format!("triangles: expected shape (F, 3), got {shape:?}")));
     }
-    let flat: Vec<i64> = t.call_method0("ravel")?.call_method0("tolist")?.extract().map_err(|_| PyValueError::new_err("triangles: not whole numbers"))?;
+    // Integers only (a float index is refused, not rounded), read as one int64 buffer.
+    let kind: String = t.getattr("dtype")?.getattr("kind")?.extract()?;
+    if kind != "i" && kind != "u" {
+        return Err(PyValueError::new_err("triangles: not whole numbers"));
+    }
+    let t = np.call_method1("ascontiguousarray", (t, "int64"))?.cast_into::<numpy::PyArrayDyn<i64>>().map_err(|_| PyValueError::new_err("triangles: not whole numbers"))?;
+    let ro = t.readonly();
+    let flat = ro.as_slice()?;
     let nv = positions.len() / 3;
     let indices = flat
         .iter()
@@ -223,7 +231,7 @@ impl World {
     /// Pickling: the snapshot, the names and the run's length.
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (Bound<'py, PyBytes>, Vec<String>, Option<f64>))> {
         let me = slf.try_borrow().map_err(|_| stepping())?;
-        let rebuild = slf.py().import("softsculpt._core")?.getattr("World")?.getattr("_unpickle")?;
+        let rebuild = slf.get_type().getattr("_unpickle")?;
         Ok((rebuild, (me.snapshot(slf.py()), me.names.clone(), me.duration)))
     }
 

@@ -1,36 +1,22 @@
 //! A material preset's spring-back from a press on the modeler's rooted mushroom (issue #37):
-//! settled, frozen under load, the preset applied, settled again; a dent of 15 cm (cosine
-//! profile, 35 cm radius) at the cap's front-most point, let go; the dent left after 1, 5 and
+//! settled, frozen under load, the preset applied, settled again (SETTLE s, default 2); the
+//! press's dent (`common::dented`, as `tests/presets.rs`), let go; the dent left after 1, 5 and
 //! 10 s. Optionally the rigidity D (J) overridden, and the mushroom subdivided.
 //!
-//!     cargo run --release -p softsculpt --example dent -- PRESET [RIGIDITY] [SUBDIVISIONS]
+//!     [SETTLE=S] cargo run --release -p softsculpt --example dent -- PRESET [RIGIDITY] [SUBDIVISIONS]
 
-use softsculpt::mesh::builtin::builtin;
+#[path = "../tests/common.rs"]
+mod common;
+
 use softsculpt::params::Value;
 use softsculpt::world::Budget;
-use softsculpt::{Material, SoftBody, World, WorldSettings};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let preset = args.get(1).map(String::as_str).unwrap_or("jelly");
     let rigidity: Option<f64> = args.get(2).and_then(|s| s.parse().ok());
     let subdivisions: u32 = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(0);
-    let mut mesh = builtin("mushroom").unwrap();
-    let lo = mesh.positions.chunks_exact(3).map(|p| p[1]).fold(f64::MAX, f64::min);
-    for p in mesh.positions.chunks_exact_mut(3) {
-        p[1] -= lo;
-    }
-    let mut body = SoftBody::new(&mesh, 1.0, Material::default()).unwrap();
-    for _ in 0..subdivisions {
-        body = body.subdivided().unwrap();
-    }
-    let mut w = World::single(body, WorldSettings::default());
-    w.apply_preset(0, "modeler").unwrap();
-    for i in 0..w.bodies[0].vertex_count() {
-        if w.bodies[0].positions()[3 * i + 1] < 0.01 {
-            w.bodies[0].set_pinned(i, true).unwrap();
-        }
-    }
+    let mut w = common::rooted_mushroom_subdivided(subdivisions);
     let budget = Budget { splits: 3, relax: true, ..Budget::converge() };
     let t0 = std::time::Instant::now();
     w.advance(2.0, &budget).unwrap();
@@ -44,14 +30,7 @@ fn main() {
     println!("settled {settle} s: largest speed {:.2e} m/s", w.bodies[0].max_speed());
     let x0 = w.bodies[0].positions().to_vec();
     let n = x0.len() / 3;
-    let c = (0..n).max_by(|&a, &b| x0[3 * a + 2].total_cmp(&x0[3 * b + 2])).unwrap();
-    let mut x = x0.clone();
-    for i in 0..n {
-        let d = (0..3).map(|k| (x0[3 * i + k] - x0[3 * c + k]).powi(2)).sum::<f64>().sqrt();
-        if d < 0.35 {
-            x[3 * i + 2] -= 0.15 * 0.5 * (1.0 + (std::f64::consts::PI * d / 0.35).cos());
-        }
-    }
+    let (x, c) = common::dented(&x0);
     w.bodies[0].set_state(&x, &vec![0.0; x.len()]).unwrap();
     let mut done = 0.0;
     for t in [1.0, 5.0, 10.0] {

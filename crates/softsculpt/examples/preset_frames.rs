@@ -1,32 +1,26 @@
 //! A material preset on a built-in model (optionally subdivided), set on the ground as the
 //! modeler makes it, stepped frame by frame as the modeler steps (`World::advance`, converge,
 //! refused steps split): per frame the wall time, split steps, Newton iterations, volume and
-//! largest speed. For finding which frames of `tests/presets.rs` are slow.
+//! largest speed. For finding which frames of `tests/presets.rs` are slow (its world:
+//! `common::on_ground`).
 //!
 //!     [RIGIDITY=D] cargo run --release -p softsculpt --example preset_frames -- PRESET MODEL [SUBDIVISIONS] [FRAMES]
 
+#[path = "../tests/common.rs"]
+mod common;
+
 use softsculpt::mesh::builtin::builtin;
 use softsculpt::world::Budget;
-use softsculpt::{Material, SoftBody, World, WorldSettings};
 
 fn main() {
     let a: Vec<String> = std::env::args().collect();
     let (preset, model) = (a.get(1).map_or("jelly", String::as_str), a.get(2).map_or("octopus", String::as_str));
     let subdivisions: u32 = a.get(3).and_then(|s| s.parse().ok()).unwrap_or(2);
     let frames: u32 = a.get(4).and_then(|s| s.parse().ok()).unwrap_or(60);
-    let mut body = SoftBody::new(&builtin(model).unwrap(), 1.0, Material::default()).unwrap();
-    for _ in 0..subdivisions {
-        body = body.subdivided().unwrap();
-    }
-    let mut w = World::single(body, WorldSettings::default());
-    w.apply_preset(0, "modeler").unwrap();
-    w.apply_preset(0, preset).unwrap();
+    let mut w = common::on_ground(&builtin(model).unwrap(), subdivisions, preset);
     if let Some(d) = std::env::var("RIGIDITY").ok().and_then(|s| s.parse().ok()) {
         w.set_param(0, "rigidity", softsculpt::params::Value::Number(d)).unwrap();
     }
-    let lowest = w.bodies[0].positions().chunks_exact(3).map(|p| p[1]).fold(f64::INFINITY, f64::min);
-    let x: Vec<f64> = w.bodies[0].positions().chunks_exact(3).flat_map(|p| [p[0], p[1] - lowest + 1e-3, p[2]]).collect();
-    w.bodies[0].set_state(&x, &vec![0.0; x.len()]).unwrap();
     let budget = Budget { splits: 3, relax: true, ..Budget::converge() };
     for f in 0..frames {
         let t0 = std::time::Instant::now();

@@ -59,18 +59,61 @@ pub fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
 /// The modeler's mushroom as it opens, not yet settled: standing on the ground (y = 0), its foot
 /// pinned (the vertices within 1 cm of the ground), the `modeler` preset.
 pub fn rooted_mushroom() -> World {
+    rooted_mushroom_subdivided(0)
+}
+
+/// [`rooted_mushroom`] subdivided `subdivisions` times before its foot is pinned.
+pub fn rooted_mushroom_subdivided(subdivisions: u32) -> World {
     let mut mesh = builtin("mushroom").unwrap();
     let lo = mesh.positions.chunks_exact(3).map(|p| p[1]).fold(f64::MAX, f64::min);
     for p in mesh.positions.chunks_exact_mut(3) {
         p[1] -= lo;
     }
-    let mut w = World::single(SoftBody::new(&mesh, 1.0, Material::default()).unwrap(), WorldSettings::default());
+    let mut body = SoftBody::new(&mesh, 1.0, Material::default()).unwrap();
+    for _ in 0..subdivisions {
+        body = body.subdivided().unwrap();
+    }
+    let mut w = World::single(body, WorldSettings::default());
     w.apply_preset(0, "modeler").unwrap();
     for i in 0..w.bodies[0].vertex_count() {
         if w.bodies[0].positions()[3 * i + 1] < 0.01 {
             w.bodies[0].set_pinned(i, true).unwrap();
         }
     }
+    w
+}
+
+/// A press's dent in positions `x0` (flat xyz): the front-most vertex (largest z) and those
+/// within 35 cm of it pushed back along −z by 15 cm × ½ (1 + cos(π d / 0.35)), the modeler's
+/// default press (a cosine profile). Returns the dented positions and the front-most vertex.
+pub fn dented(x0: &[f64]) -> (Vec<f64>, usize) {
+    let n = x0.len() / 3;
+    let c = (0..n).max_by(|&a, &b| x0[3 * a + 2].total_cmp(&x0[3 * b + 2])).unwrap();
+    let mut x = x0.to_vec();
+    for i in 0..n {
+        let d = (0..3).map(|k| (x0[3 * i + k] - x0[3 * c + k]).powi(2)).sum::<f64>().sqrt();
+        if d < 0.35 {
+            x[3 * i + 2] -= 0.15 * 0.5 * (1.0 + (std::f64::consts::PI * d / 0.35).cos());
+        }
+    }
+    (x, c)
+}
+
+/// A world as the modeler makes one (its preset: implicit at 1/60 s, gravity, ground at 0)
+/// for `mesh` subdivided `subdivisions` times, the body set on the ground, then the material
+/// `preset`.
+pub fn on_ground(mesh: &softsculpt::TriMesh, subdivisions: u32, preset: &str) -> World {
+    let mut body = SoftBody::new(mesh, 1.0, Material::default()).unwrap();
+    for _ in 0..subdivisions {
+        body = body.subdivided().unwrap();
+    }
+    let mut w = World::single(body, WorldSettings::default());
+    w.apply_preset(0, "modeler").unwrap();
+    w.apply_preset(0, preset).unwrap();
+    let lowest = w.bodies[0].positions().chunks_exact(3).map(|p| p[1]).fold(f64::INFINITY, f64::min);
+    let x: Vec<f64> = w.bodies[0].positions().chunks_exact(3).flat_map(|p| [p[0], p[1] - lowest + 1e-3, p[2]]).collect();
+    let v = vec![0.0; x.len()];
+    w.bodies[0].set_state(&x, &v).unwrap();
     w
 }
 

@@ -5,29 +5,11 @@ mod common;
 
 use softsculpt::mesh::builtin::builtin;
 use softsculpt::params::presets::PRESETS;
-use softsculpt::{Material, SoftBody, TriMesh, World, WorldSettings};
 
 const MATERIALS: [&str; 5] = ["balloon", "jelly", "clay", "cloth", "stiff_rubber"];
 
-/// A world as the modeler makes one (its preset: implicit at 1/60 s, gravity, ground at 0),
-/// the body set on the ground, then the material preset.
-fn world(mesh: &TriMesh, subdivisions: u32, preset: &str) -> World {
-    let mut body = SoftBody::new(mesh, 1.0, Material::default()).unwrap();
-    for _ in 0..subdivisions {
-        body = body.subdivided().unwrap();
-    }
-    let mut w = World::single(body, WorldSettings::default());
-    w.apply_preset(0, "modeler").unwrap();
-    w.apply_preset(0, preset).unwrap();
-    let lowest = w.bodies[0].positions().chunks_exact(3).map(|p| p[1]).fold(f64::INFINITY, f64::min);
-    let x: Vec<f64> = w.bodies[0].positions().chunks_exact(3).flat_map(|p| [p[0], p[1] - lowest + 1e-3, p[2]]).collect();
-    let v = vec![0.0; x.len()];
-    w.bodies[0].set_state(&x, &v).unwrap();
-    w
-}
-
 /// Height of the body's top above the ground (m).
-fn top(w: &World) -> f64 {
+fn top(w: &softsculpt::World) -> f64 {
     w.bodies[0].positions().chunks_exact(3).map(|p| p[1]).fold(f64::NEG_INFINITY, f64::max)
 }
 
@@ -52,7 +34,7 @@ fn every_material_preset_is_stable_at_every_resolution() {
             let mesh = builtin(model).unwrap();
             let mut results = Vec::new();
             for subdivisions in [0, 2] {
-                let mut w = world(&mesh, subdivisions, name);
+                let mut w = common::on_ground(&mesh, subdivisions, name);
                 let (v0, h0) = (w.bodies[0].exact_volume(), top(&w));
                 // As the modeler steps (`World::advance`): a step the solver refuses is split
                 // (up to dt/8) and first retried with hinges let go; counted, and printed.
@@ -130,15 +112,7 @@ fn a_dented_balloon_jelly_or_stiff_rubber_springs_back() {
         // Jelly is barely damped (0.3 1/s): 10 s to settle before the press.
         w.step_n(600).unwrap();
         let x0 = w.bodies[0].positions().to_vec();
-        let n = x0.len() / 3;
-        let c = (0..n).max_by(|&a, &b| x0[3 * a + 2].total_cmp(&x0[3 * b + 2])).unwrap();
-        let mut x = x0.clone();
-        for i in 0..n {
-            let d = (0..3).map(|k| (x0[3 * i + k] - x0[3 * c + k]).powi(2)).sum::<f64>().sqrt();
-            if d < 0.35 {
-                x[3 * i + 2] -= 0.15 * 0.5 * (1.0 + (std::f64::consts::PI * d / 0.35).cos());
-            }
-        }
+        let (x, c) = common::dented(&x0);
         w.bodies[0].set_state(&x, &vec![0.0; x.len()]).unwrap();
         w.step_n(300).unwrap();
         let left = x0[3 * c + 2] - w.bodies[0].positions()[3 * c + 2];

@@ -189,8 +189,9 @@ def _run_recording(world: World, folder: str, frames: int | None) -> None:
     import pandas as pd
 
     total = max(1, round(world.duration / world.dt))
-    marks = sorted({round(k * total / (STATS_ROWS - 1)) for k in range(STATS_ROWS)})
-    shots = sorted({round(k * total / (frames - 1)) for k in range(frames)}) if frames and frames >= 2 else []
+    marks = {round(k * total / (STATS_ROWS - 1)) for k in range(STATS_ROWS)}
+    # step -> frame number (the frames at equal steps, both ends included)
+    shots = {s: f for f, s in enumerate(sorted({round(k * total / (frames - 1)) for k in range(frames)}))} if frames and frames >= 2 else {}
     os.makedirs(os.path.join(folder, "frames") if shots else folder, exist_ok=True)
     rows = []
 
@@ -202,7 +203,7 @@ def _run_recording(world: World, folder: str, frames: int | None) -> None:
                              **{f"center_of_mass_{a}": c for a, c in zip("xyz", s["center_of_mass"])}})
         if world.steps in shots:
             for i, name in enumerate(world.names):
-                _write(os.path.join(folder, "frames", f"{name}_{shots.index(world.steps):04d}.obj"), world.obj(i, f"softsculpt sweep: t = {world.time} s"))
+                _write(os.path.join(folder, "frames", f"{name}_{shots[world.steps]:04d}.obj"), world.obj(i, f"softsculpt sweep: t = {world.time} s"))
 
     try:
         take()
