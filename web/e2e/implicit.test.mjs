@@ -212,8 +212,8 @@ test('an imported 10,242-vertex sphere lands and settles; a grab keeps its point
 });
 
 test('stiff rubber at 10,242 vertices: a lift keeps moving towards the cursor, frame after frame, instead of stalling', async () => {
-  // The imported sphere in the stiffest material, the grab's defaults. Before the adaptive
-  // substeps and the anchors' travel per step (src/worker/pace.ts, anchorpath.ts) the first
+  // The imported sphere in the stiffest material, the grab's defaults. Before the split steps
+  // and the anchors' travel per step (the core's World::advance, anchorpath.ts) the first
   // grabbed step from rest did not converge (3 x 100 Newton iterations, then a split) and each
   // slow step let the cursor run further ahead: this test on that build waited 13.7 s for a
   // step. Now: a frame every 1-2 s here (4 substeps of ~17 Newton iterations; longest wait

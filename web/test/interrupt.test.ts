@@ -5,7 +5,7 @@
 // is inside a long implicit step.
 import { beforeAll, expect, it } from 'vitest';
 import { Worker } from 'node:worker_threads';
-import { loadEngine } from './setup';
+import { loadEngine, openedDocument } from './setup';
 import { World } from '../src/engine/world';
 import { tookInterrupt, useInterrupts } from '../src/engine/wasm';
 
@@ -64,3 +64,42 @@ it('a command sent during a long step ends it at once, the world as before the s
   b.step(1);
   expect(b.snapshot()).toEqual(a.snapshot());
 }, 120_000);
+
+it('the document’s frame under a real-time budget makes way for a command: not paused, the world as before the step', async () => {
+  // The page's path (`Document.advance` → the core's `World::advance` with the worker's
+  // interrupt): the default mushroom subdivided twice (5,762 vertices), its tolerance at 1e-12
+  // and every vertex shaken at up to 0.1 m/s (a step far from rest: many Newton iterations),
+  // under a budget too long to stop the solve (1e6 s): only the command can end it.
+  const shared = new SharedArrayBuffer(16);
+  const c = new Int32Array(shared);
+  useInterrupts(shared);
+  const { doc } = openedDocument();
+  doc.subdivide(); doc.subdivide();
+  doc.setParam('tolerance', 1e-12);
+  const v = doc.world.body(0).velocities;
+  for (let k = 0; k < v.length; k++) v[k] = 0.1 * Math.sin(12.9898 * k);
+  const dt = doc.settings.dt;
+  const before = doc.world.snapshot();
+  let t0 = performance.now();
+  expect(doc.advance(dt, 1)).toBe(true); // converged, uninterrupted: how long the frame takes
+  const whole = performance.now() - t0;
+  doc.world.restore(before);
+
+  const thread = page(shared, whole / 10);
+  await new Promise((r) => setTimeout(r, 100));
+  Atomics.store(c, 2, 1);
+  Atomics.notify(c, 2);
+  t0 = performance.now();
+  const ok = doc.advance(dt, 1, 1e6);
+  const cut = performance.now() - t0;
+  await thread.terminate();
+  console.log(`whole frame ${whole.toFixed(0)} ms, interrupted after ${cut.toFixed(0)} ms`);
+  expect(ok).toBe(false);
+  expect(doc.lastAdvance).toBeNull();
+  // Interrupted, not failed: still playing, nothing to say, and the world as it was.
+  expect(doc.settings.playing).toBe(true);
+  expect(cut).toBeLessThan(whole / 2);
+  expect(doc.world.snapshot()).toEqual(before);
+  tookInterrupt();
+  expect(doc.advance(dt, 1, 1e6)).toBe(true);
+}, 300_000);

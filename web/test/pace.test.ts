@@ -39,17 +39,25 @@ describe('the worker’s fraction of real time (stepper.ts)', () => {
   const run = (costMs: number, ticks: number) => {
     let t = 1000;
     const dt = 1 / 60;
-    const doc = {
+    const doc: { lastAdvance: null | { simulated: number } } & Record<string, unknown> = {
       settings: { playing: true, realTime: true, dt, substeps: 1 },
       updateStroke() {},
-      setDeadline() {},
-      advance(_h: number, n: number) { t += costMs * n; return true; },
-    } as unknown as Document;
+      implicit: true,
+      lastAdvance: null,
+      // As `World::advance` under a real-time budget: steps while the budget lasts, at least one.
+      advance(h: number, n: number, seconds: number) {
+        const t0 = t;
+        let k = 0;
+        while (k < n && (k === 0 || t - t0 < seconds * 1000)) { t += costMs; k++; }
+        doc.lastAdvance = { simulated: k * h };
+        return true;
+      },
+    };
     const stepper = new Stepper(() => t);
     const fractions: number[] = [];
     for (let i = 0; i < ticks; i++) {
       t += 2; // the worker's wait between ticks
-      stepper.tick(doc);
+      stepper.tick(doc as unknown as Document);
       fractions.push(stepper.slowMotion ? stepper.realTimeFraction : NaN);
     }
     return fractions;
@@ -63,7 +71,7 @@ describe('the worker’s fraction of real time (stepper.ts)', () => {
 
   it('steps of 50 ms at 1/60 s read as a third of real time', () => {
     const f = run(50, 20).slice(5);
-    // The budget (30 ms) lets one 50 ms step run per tick: 16.7 ms simulated in 52 ms.
+    // The solve budget (12 ms) lets one 50 ms step run per tick: 16.7 ms simulated in 52 ms.
     for (const x of f) expect(x).toBeCloseTo((1000 / 60) / 52, 6);
   });
 

@@ -1,14 +1,14 @@
-// Implicit steps in adaptive substeps and the grab's anchors along the cursor's path
-// (src/worker/pace.ts, src/worker/anchorpath.ts), on model worlds whose Newton counts follow
-// what was measured natively on the page's stiff-rubber sphere (BENCHMARKS.md): a step of h
-// takes more Newton iterations the larger (h / dt)², and an anchor jump beyond what one step can
-// take does not converge. Then the document's substeps on the real engine.
+// The grab's anchors along the cursor's path (src/worker/anchorpath.ts), on model worlds whose
+// Newton counts follow what was measured natively on the page's stiff-rubber sphere
+// (BENCHMARKS.md): a step of h takes more Newton iterations the larger (h / dt)², and an anchor
+// jump beyond what one step can take does not converge. Then the document's frames on the real
+// engine (`World::advance`: the core splits a refused step, crates/softsculpt/src/world/advance.rs).
 import { beforeAll, describe, expect, it } from 'vitest';
 import { AnchorPath, TRAVEL_MAX } from '../src/worker/anchorpath';
-import { BRACE_STEPS, GRAB_PIECES, LOW_STEPS, MAX_PIECES, Pace, stepPaced, type Anchors } from '../src/worker/pace';
+import { SPLITS } from '../src/worker/document';
 import { loadEngine, openedDocument, topVertex, vertexAt } from './setup';
 import type { Vec3 } from '../src/protocol';
-import { makeStroke, type StrokeBody } from '../src/worker/strokes';
+import { makeStroke, type Anchors, type StrokeBody } from '../src/worker/strokes';
 
 const DT = 1 / 60;
 const unconverged = () => Object.assign(new Error('not converged'), { kind: 'step', fields: { converged: false } });
@@ -31,6 +31,24 @@ function world(stiff: number, base = 2, jump = Infinity) {
   return { w, step };
 }
 
+/**
+ * A frame of one step of `h` as the document takes it (`Document.advance` over the core's
+ * `World::advance`): the anchors aimed at the frame's end, a refused step halved up to
+ * SPLITS times (the anchors where they are), then the path moved on. Returns the splits.
+ */
+function frame(anchors: Anchors | null, step: (h: number) => number, h: number): number {
+  anchors?.aim(h);
+  let newton = 0;
+  const take = (k: number, depth: number): number => {
+    try { newton = step(k); return 0; } catch (e) { if (depth <= 0) throw e; }
+    return 1 + take(k / 2, depth - 1) + take(k / 2, depth - 1);
+  };
+  const splits = take(h, SPLITS);
+  anchors?.took(h);
+  anchors?.stepped(newton, splits > 0);
+  return splits;
+}
+
 /** The grab's path on a line (x only), wired to a model world's anchor. */
 function along(path: AnchorPath, w: { anchor: number; moved: number }): Anchors {
   return {
@@ -40,103 +58,42 @@ function along(path: AnchorPath, w: { anchor: number; moved: number }): Anchors 
   };
 }
 
-describe('substeps', () => {
-  it('a soft body is stepped one step per frame', () => {
-    const pace = new Pace(), { w, step } = world(3);
-    for (let i = 0; i < 100; i++) stepPaced(pace, null, step, DT, 1);
-    expect(pace.pieces).toBe(1);
-    expect(w.steps.every((h) => h === DT)).toBe(true);
-  });
-
-  it('a stiff body is stepped in the substeps that converge quickly, and covers the same time', () => {
-    // 62 Newton iterations a step at dt, 17 at dt/2: halves, then no further.
-    const pace = new Pace(), { w, step } = world(60);
-    for (let i = 0; i < 60; i++) stepPaced(pace, null, step, DT, 1);
-    expect(pace.pieces).toBe(2);
-    expect(w.fails).toBe(0);
-    // 60 frames of 1/60 s: one second, to the rounding of 119 additions.
-    expect(w.time).toBeCloseTo(1, 12);
-  });
-
-  it('a step that does not converge is split, and the next steps start in halves', () => {
-    // 152 Newton iterations at dt (refused), 40 at dt/2 (then quarters: 11).
-    const pace = new Pace(), { w, step } = world(150);
-    expect(stepPaced(pace, null, step, DT, 1)).toBe(1);
-    expect(pace.pieces).toBe(2);
-    for (let i = 0; i < 10; i++) stepPaced(pace, null, step, DT, 1);
-    expect(pace.pieces).toBe(4);
-    expect(w.fails).toBe(1);
-    expect(w.time).toBeCloseTo(11 * DT, 12);
-  });
-
-  it('goes back to one step per frame once the steps are quick for a while', () => {
-    const pace = new Pace();
-    pace.pieces = MAX_PIECES;
-    const { step } = world(3, 1);
-    for (let i = 0; i < LOW_STEPS - 1; i++) stepPaced(pace, null, step, DT, 1);
-    expect(pace.pieces).toBe(MAX_PIECES);
-    for (let i = 0; i < 3 * LOW_STEPS + 1; i++) stepPaced(pace, null, step, DT, 1);
-    expect(pace.pieces).toBe(1);
-  });
-
-  it('a grab starts braced in substeps, and a soft body goes back to one step per frame after the brace', () => {
-    // 12 Newton iterations a step at dt, 9 at dt/2: neither asks for substeps nor is quick
-    // enough to halve them; the brace alone sets GRAB_PIECES, for BRACE_STEPS steps.
-    const pace = new Pace(), { step } = world(4, 8);
-    pace.brace();
-    expect(pace.pieces).toBe(GRAB_PIECES);
-    for (let i = 0; i < BRACE_STEPS - 1; i++) stepPaced(pace, null, step, DT, 1);
-    expect(pace.pieces).toBe(GRAB_PIECES);
-    stepPaced(pace, null, step, DT, 1);
-    expect(pace.pieces).toBe(1);
-    // The steps never asked for substeps: nothing to tell the user.
-    expect(pace.raised).toBe(false);
-  });
-
-  it('a braced grab on a stiff body keeps the substeps its steps ask for', () => {
-    const pace = new Pace(), { step } = world(150); // dt/2: 40 Newton iterations, dt/4: 11
-    pace.brace();
-    for (let i = 0; i < 3 * BRACE_STEPS; i++) stepPaced(pace, null, step, DT, 1);
-    expect(pace.pieces).toBe(4);
-    expect(pace.raised).toBe(true);
-  });
-});
-
 describe('the grab’s anchors', () => {
   const R = 0.35;
 
   it('travel at most `travel` a step towards the cursor and arrive on it', () => {
     // A model world where no step converges with the anchors moved more than 5 cm in it and
     // 30 Newton iterations a step at dt (so the substeps double once).
-    const pace = new Pace(), { w, step } = world(28, 2, 0.05);
+    const { w, step } = world(28, 2, 0.05);
     const path = new AnchorPath([0, 0, 0], R);
     const cursor: Vec3 = [0.56, 0, 0];
     let last = 0, over = 0;
     for (let i = 0; i < 40; i++) {
       const most = path.travel;
       path.aim(cursor, DT, DT);
-      stepPaced(pace, along(path, w), step, DT, 1);
+      frame(along(path, w), step, DT);
       if (path.point[0] - last > most + 1e-12) over++;
       last = path.point[0];
     }
     expect(over).toBe(0);
     expect(path.point[0]).toBeCloseTo(0.56, 12);
     // The travel grows while the steps are quick and halves when one is refused: at most a few
-    // refusals on the way, where the whole 56 cm in one step is refused at every split level
-    // down to dt/8 (7 cm a substep).
+    // refusals on the way.
     expect(w.fails).toBeLessThanOrEqual(3);
+    // The whole 56 cm in one step is refused (the split halves take it, the anchors moved once).
     const jump = world(28, 2, 0.05);
-    expect(() => stepPaced(new Pace(), { aim: () => { jump.w.moved = 0.56; }, took: () => {}, stepped: () => {} }, jump.step, DT, 1)).toThrow('not converged');
+    expect(frame({ aim: () => { jump.w.moved = 0.56; }, took: () => {}, stepped: () => {} }, jump.step, DT)).toBe(1);
+    expect(jump.w.fails).toBe(1);
   });
 
   it('on a soft body soon follow the cursor within the step', () => {
-    const pace = new Pace(), { w, step } = world(2, 1);
+    const { w, step } = world(2, 1);
     const path = new AnchorPath([0, 0, 0], R);
     let x = 0, lagged = 0;
     for (let i = 0; i < 60; i++) {
       x += 0.1; // 6 m/s: 10 cm a frame, more than the first travel (4.4 cm)
       path.aim([x, 0, 0], DT, DT);
-      stepPaced(pace, along(path, w), step, DT, 1);
+      frame(along(path, w), step, DT);
       if (path.point[0] < x - 1e-12) lagged++;
     }
     // The travel doubles every step that held the anchors back (4.4, 8.8, 17.5 cm): two frames
@@ -144,16 +101,6 @@ describe('the grab’s anchors', () => {
     expect(path.travel).toBeGreaterThanOrEqual(0.1);
     expect(path.travel).toBeLessThanOrEqual(TRAVEL_MAX * R);
     expect(lagged).toBeLessThanOrEqual(3);
-  });
-
-  it('a split step moves them half as far in each half', () => {
-    const pace = new Pace(), { w, step } = world(150, 2); // dt refused, dt/2 converges
-    const path = new AnchorPath([0, 0, 0], R);
-    const seen: number[] = [];
-    path.aim([0.02, 0, 0], DT, DT);
-    stepPaced(pace, { ...along(path, w), aim: (h) => { seen.push(path.next(h)[0]); along(path, w).aim(h); } }, step, DT, 1);
-    expect(seen).toEqual([0.02, 0.01, 0.02]);
-    expect(path.point[0]).toBeCloseTo(0.02, 15);
   });
 });
 
@@ -205,26 +152,23 @@ describe('the document’s substeps (real engine)', () => {
 
   const opened = openedDocument;
 
-  it('a step in substeps is that many engine steps of dt/pieces, covering dt; the world’s dt stays as set', () => {
+  it('a frame of n steps is n engine steps of dt covering n dt, the world’s dt as set', () => {
     const { doc } = opened();
     const dt = doc.settings.dt, w = doc.world;
     expect(w.params(0).integrator).toBe('implicit');
-    const steps: number[] = [];
-    const engineStep = w.stepRelaxed.bind(w);
-    w.stepRelaxed = (n, stalled, most) => { for (let i = 0; i < n; i++) steps.push(w.params(0).dt as number); engineStep(n, stalled, most); };
     w.sync();
     const t0 = w.body(0).stats.time;
-    doc.pace.pieces = 4;
     expect(doc.advance(dt, 3)).toBe(true);
     w.sync();
-    expect(steps.length).toBe(12);
-    for (const h of steps) expect(h).toBeCloseTo(dt / 4, 15);
-    // 12 substeps of dt/4: three steps of dt, to the rounding of the clock's additions.
+    const a = doc.lastAdvance!;
+    expect([a.steps, a.splits]).toEqual([3, 0]);
+    // Three steps of dt, to the rounding of the clock's additions.
+    expect(a.simulated).toBeCloseTo(3 * dt, 14);
     expect(w.body(0).stats.time - t0).toBeCloseTo(3 * dt, 12);
     expect(w.params(0).dt).toBe(dt);
   });
 
-  it('a grab on the default model follows the cursor and leaves one step per frame, unannounced', () => {
+  it('a grab on the default model follows the cursor, unannounced', () => {
     const { doc, messages } = opened();
     const dt = doc.settings.dt;
     for (let i = 0; i < 30; i++) doc.advance(dt, 1);
@@ -232,7 +176,6 @@ describe('the document’s substeps (real engine)', () => {
     const top = topVertex(x);
     const p = vertexAt(x, top);
     doc.strokeStart({ tool: 'grab', point: p, radius: 0.35, strength: 600, inverted: false });
-    expect(doc.pace.pieces).toBe(GRAB_PIECES);
     doc.strokeMove([p[0], p[1] + 0.4, p[2]], false);
     const ys: number[] = [];
     for (let i = 0; i < 60; i++) { doc.updateStroke(dt); doc.advance(dt, 1); ys.push(doc.world.body(0).positions[3 * top + 1]); }
@@ -241,8 +184,8 @@ describe('the document’s substeps (real engine)', () => {
     expect(ys[0] - p[1]).toBeLessThan(0.35 / 8 + 1e-3);
     // Then it follows: within 2 cm of the 0.4 m lift (the target spring's sag under the body).
     expect(Math.abs(ys[59] - (p[1] + 0.4))).toBeLessThan(0.02);
-    expect(doc.pace.pieces).toBe(1);
-    expect(messages.filter((m) => /shorter steps/.test(m))).toEqual([]);
+    expect(doc.splitFrames).toBe(0);
+    expect(messages.filter((m) => /did not converge|shorter steps/.test(m))).toEqual([]);
   });
 
   it('a mirrored grab on the mushroom subdivided twice follows the cursor and the shape comes back', () => {

@@ -42,8 +42,6 @@
 //! | `ss_animation_glb(times, n, counts, tracks, tris, frames)` | result: the GLB of recorded frames (`softsculpt::mesh::animation`, as `softsculpt run --frames` writes) |
 //! | `ss_clear(w)` | drop bodies, events and loads, forget the open scene; keep settings |
 //! | `ss_step(w, n)` | `World::step_n`: n steps or none (the whole world rolls back; `step` error with `time`) |
-//! | `ss_step_splitting(w, n, stalled, most)` | `World::step_n_splitting`: as `ss_step`, each Newton solve giving up after `stalled` iterations without progress or `most` in all |
-//! | `ss_step_relaxed(w, n, stalled, most)` | `World::step_n_with`: as `ss_step_splitting` (`stalled` 0: no early give-up), a step no solve of the model finishes retried with hinges let go (`WorldSettings::relax`) |
 //! | `ss_advance(w, frame_dt, seconds, min_accuracy, splits, relax)` | `World::advance`: a frame under a real-time budget of `seconds` (≤ 0: converge); result `{steps, splits, simulated, residual, early, wall}` |
 //! | `ss_set_deadline(w, seconds, accept)` | the anytime step's deadline `seconds` from now for the steps that follow (< 0 clears; `WorldSettings::deadline`); the clock is the import `env.ss_now()` (ms, `performance.now`) |
 //! | `ss_stable_dt(w, name, len) -> f64` | `World::stable_dt`: the explicit integrator's largest stable step (s) for every body; 0 for implicit; −1 error |

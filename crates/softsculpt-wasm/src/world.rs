@@ -10,7 +10,7 @@ use softsculpt::mesh::{self, builtin, LoadedMesh, ObjData, TriMesh};
 use softsculpt::params::{self, ParamError, Scope, Value};
 use softsculpt::snapshot::SnapshotError;
 use softsculpt::{
-    world::{Budget, Deadline, GiveUp, Interrupt}, Material, MeshError, SimError, SoftBody, StepError, Target, World, WorldSettings,
+    world::{Budget, Deadline, Interrupt}, Material, MeshError, SimError, SoftBody, StepError, Target, World, WorldSettings,
 };
 use std::cell::RefCell;
 
@@ -330,22 +330,6 @@ pub extern "C" fn ss_step(w: u32, n: u32) -> i32 {
     status(|| with_world(w, |h| h.world.step_n(n as u64).map_err(step_fail)))
 }
 
-/// `ss_step` for a caller that splits refused steps (`World::step_n_splitting`): an implicit
-/// step's Newton solve gives up after `stalled` (≥ 1) iterations without a new lowest residual
-/// or `most` (≥ 1) in all (`GiveUp`).
-#[no_mangle]
-pub extern "C" fn ss_step_splitting(w: u32, n: u32, stalled: u32, most: u32) -> i32 {
-    status(|| with_world(w, |h| h.world.step_n_splitting(n as u64, GiveUp { stalled, most }).map_err(step_fail)))
-}
-
-/// `ss_step_splitting` with the relaxed retry on (`World::step_n_with`, `WorldSettings::relax`):
-/// a step no solve of the model finishes is taken with hinges let go before it is refused
-/// (`ss_body_relaxed` tells). `stalled` = 0: no early give-up (the caller's last split).
-#[no_mangle]
-pub extern "C" fn ss_step_relaxed(w: u32, n: u32, stalled: u32, most: u32) -> i32 {
-    status(|| with_world(w, |h| h.world.step_n_with(n as u64, (stalled > 0).then_some(GiveUp { stalled, most }), true).map_err(step_fail)))
-}
-
 /// The clock deadlines are read on (s): the page's `performance.now()`, imported as
 /// `env.ss_now` (ms); natively (the crate's tests) the core's monotonic clock.
 #[cfg(target_arch = "wasm32")]
@@ -383,7 +367,8 @@ fn interrupted() -> bool {
 /// relative residual of `min_accuracy` (≤ 0: the core's `MIN_ACCURACY`); a refused implicit
 /// step halved up to `splits` times; `relax` 1: the relaxed retry. Result
 /// `{"steps", "splits", "simulated", "residual", "early", "wall"}`; on failure the error is a
-/// step error as `ss_step`'s (the world as after the last step taken).
+/// step error as `ss_step`'s (the world as after the last step taken); under a real-time
+/// budget a step is also abandoned when the page has a command waiting (cause `interrupted`).
 #[no_mangle]
 pub extern "C" fn ss_advance(w: u32, frame_dt: f64, seconds: f64, min_accuracy: f64, splits: u32, relax: u32) -> i32 {
     status(|| {
@@ -398,7 +383,15 @@ pub extern "C" fn ss_advance(w: u32, frame_dt: f64, seconds: f64, min_accuracy: 
                 }
             }
             (budget.splits, budget.relax) = (splits, relax != 0);
-            let a = h.world.advance(frame_dt, &budget).map_err(step_fail)?;
+            // Under a real-time budget a waiting command abandons the step in progress (the
+            // world as before it), as under `ss_set_deadline`.
+            let saved = h.world.settings.interrupt;
+            if budget.real_time.is_some() {
+                h.world.settings.interrupt = Some(Interrupt(interrupted));
+            }
+            let a = h.world.advance(frame_dt, &budget);
+            h.world.settings.interrupt = saved;
+            let a = a.map_err(step_fail)?;
             let out = serde_json::json!({
                 "steps": a.steps, "splits": a.splits, "simulated": a.simulated,
                 "residual": a.residual, "early": a.early, "wall": a.wall,

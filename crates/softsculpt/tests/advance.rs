@@ -216,3 +216,55 @@ fn explicit_steps_under_an_exhausted_budget_take_one_step_and_say_so() {
     assert_eq!(done.steps, 1);
     assert!((done.simulated - 1e-4).abs() < 1e-15);
 }
+
+/// Implicit steps under a real-time budget run while it lasts, at least one: with no time at
+/// all (the `late` clock) a frame of four steps of FRAME / 4 takes one, says so in `simulated`,
+/// and the world's dt and settings are as they were.
+#[test]
+fn implicit_steps_under_an_exhausted_budget_take_one_step_and_say_so() {
+    let mut w = dropped_sphere();
+    w.settings.dt = FRAME / 4.0;
+    let t0 = w.time();
+    let done = w.advance(FRAME, &Budget::real_time(0.0, late)).unwrap();
+    assert_eq!(done.steps, 1);
+    assert_eq!(done.simulated, FRAME / 4.0);
+    assert_eq!(w.time() - t0, FRAME / 4.0);
+    assert_eq!(w.settings.dt, FRAME / 4.0);
+    // With time to spare (a clock that stands still) the frame is whole.
+    let done = w.advance(FRAME, &Budget::real_time(1.0, never)).unwrap();
+    assert_eq!(done.steps, 4);
+}
+
+/// A step the solver refuses is taken as two of half its length, split again as needed, up to
+/// the budget's `splits`: on the hard pull of `tests/implicit.rs` with the Newton cap cut to
+/// NEWTON_CAP iterations, the first frames' steps are refused under *converge* (an error, the
+/// world untouched), and with three splits every frame covers its 1/60 s exactly (the pieces'
+/// lengths are FRAME / 2^k, exact in binary, so their sum is too) in 1 + splits steps (each
+/// split turns one step into two).
+#[test]
+fn a_refused_step_is_split_and_its_pieces_cover_the_frame() {
+    const NEWTON_CAP: u32 = 5;
+    let (mut a, pull) = pulled_sphere();
+    a.settings.newton_iterations = NEWTON_CAP;
+    let mut refused = a.clone();
+    let budget = Budget { splits: 3, ..Budget::converge() };
+    let (mut frames_split, mut was_refused) = (0, 0);
+    for s in 0..30 {
+        a.bodies[0].set_targets(&pull(s)).unwrap();
+        refused.clone_from(&a);
+        let before = refused.bodies[0].positions().to_vec();
+        if refused.advance(FRAME, &Budget::converge()).is_err() {
+            was_refused += 1;
+            assert_eq!(refused.bodies[0].positions(), &before[..], "a refused step leaves the world as it was");
+        }
+        let t0 = a.time();
+        let done = a.advance(FRAME, &budget).unwrap_or_else(|e| panic!("frame {s}: {e}"));
+        assert_eq!(done.simulated, FRAME, "frame {s}");
+        assert!((a.time() - t0 - FRAME).abs() < 1e-14, "frame {s}");
+        assert_eq!(done.steps, 1 + done.splits as u64, "frame {s}");
+        frames_split += (done.splits > 0) as u32;
+        assert!(a.bodies[0].is_finite());
+    }
+    assert!(was_refused > 0 && frames_split > 0, "the cap refused {was_refused} whole steps; {frames_split} frames were split");
+    assert_eq!(a.settings.newton_iterations, NEWTON_CAP);
+}

@@ -35,14 +35,13 @@ for (let c = FROM; c < TO; c++) {
     doc.strokeEnd();
     for (let i = 0; i < 180; i++) doc.advance(dt, 1);
     t = top(doc); p = P(doc, t); p[0] += off;
-    // The document steps through `stepRelaxed` (with a give-up, or at its last split without):
-    // the world before a refused call to /tmp/fail-N.bin (last split) or giveup-N-*.bin, and
-    // before each of the drag's first four relaxed steps to /tmp/relaxed-N-K.bin, to replay.
-    const w0: any = doc.world; const origR = w0.stepRelaxed.bind(w0); let relaxed = 0;
-    w0.stepRelaxed = (n: number, a = 0, b = 0) => {
+    // The document steps through the core's `advance` (splits, the relaxed retry): the world
+    // before a refused frame to /tmp/fail-N.bin, and before each of the drag's first four frames
+    // with a relaxed step to /tmp/relaxed-N-K.bin, to replay.
+    const w0: any = doc.world; const origA = w0.advance.bind(w0); let relaxed = 0;
+    w0.advance = (...args: unknown[]) => {
       const snap = w0.snapshot();
-      try { origR(n, a, b); } catch (e) { writeFileSync(a === 0 ? `/tmp/fail-${c}.bin` : `/tmp/giveup-${c}-${Date.now()}.bin`, snap); throw e; }
-      if (w0.relaxed(0) > 0 && relaxed++ < 4) writeFileSync(`/tmp/relaxed-${c}-${relaxed}.bin`, snap);
+      try { const a = origA(...args); if (w0.relaxed(0) > 0 && relaxed++ < 4) writeFileSync(`/tmp/relaxed-${c}-${relaxed}.bin`, snap); return a; } catch (e) { writeFileSync(`/tmp/fail-${c}.bin`, snap); throw e; }
     };
     doc.strokeStart({ tool: 'grab', point: p, radius: 0.35, strength: w, inverted: false, mirror });
     const its: string[] = [];
@@ -56,7 +55,7 @@ for (let c = FROM; c < TO; c++) {
       const t0 = performance.now();
       const ok = doc.advance(dt, n);
       const ms = performance.now() - t0; worst = Math.max(worst, ms);
-      its.push(`${f}:${n}x${doc.pace.pieces}/${(doc as any).newtonIterations()}/${ms.toFixed(0)}`);
+      its.push(`${f}:${n}/${doc.lastAdvance?.splits ?? '-'}/${(doc as any).newtonIterations()}/${ms.toFixed(0)}`);
       if (!ok) { console.log(its.join(' ')); throw new Error(`tick at frame ${f} failed: ${messages.join(' | ')}`); }
     }
     console.log(`case ${c} worst tick ${worst.toFixed(0)} ms splits ${doc.splitFrames} relaxed ${doc.relaxedSteps}`);

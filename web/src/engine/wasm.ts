@@ -26,8 +26,6 @@ export interface RawEngine {
   ss_animation_glb(times: number, nFrames: number, counts: number, nTracks: number, tris: number, frames: number): number;
   ss_clear(w: number): number;
   ss_step(w: number, n: number): number;
-  ss_step_splitting(w: number, n: number, stalled: number, most: number): number;
-  ss_step_relaxed(w: number, n: number, stalled: number, most: number): number;
   ss_sync(w: number): number;
   ss_body_count(w: number): number;
   ss_body_views(w: number, b: number): number;

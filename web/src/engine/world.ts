@@ -302,10 +302,6 @@ export class World {
 
   /** `n` steps or none: on a blow-up the whole world is rolled back and this throws (kind 'step'). */
   step(n = 1): void { this.call((w) => raw().ss_step(w, n)); }
-  /** `step` for a caller that splits refused steps: an implicit step's Newton solve gives up after `stalled` iterations without progress or `most` in all. */
-  stepSplitting(n: number, stalled: number, most: number): void { this.call((w) => raw().ss_step_splitting(w, n, stalled, most)); }
-  /** `stepSplitting` that, rather than refuse a step, lets go of hinges (crushed faces', then all) for it; `stalled` 0: no early give-up. */
-  stepRelaxed(n: number, stalled = 0, most = 0): void { this.call((w) => raw().ss_step_relaxed(w, n, stalled, most)); }
   /**
    * The anytime step's deadline for the steps that follow: `seconds` of wall-clock time from
    * now, a step past it accepted at a relative residual of `accept` (0: the engine's default);
@@ -327,7 +323,8 @@ export class World {
   /**
    * `frameDt` simulated seconds (`World::advance`): under a real-time budget of `seconds`
    * (0: converge every step), refused implicit steps halved up to `splits` times, `relax`: the
-   * relaxed retry. Throws like `step` (the world as after the last step taken).
+   * relaxed retry. Throws like `step` (the world as after the last step taken); under a
+   * real-time budget a waiting command abandons the step in progress (cause `interrupted`).
    */
   advance(frameDt: number, seconds = 0, minAccuracy = 0, splits = 0, relax = false): Advance {
     this.call((w) => raw().ss_advance(w, frameDt, seconds, minAccuracy, splits, relax ? 1 : 0));

@@ -10,10 +10,10 @@
 // was larger: the grab stalled for good.
 //
 // So the anchors move towards the cursor by at most `travel` (m) per step: each tick of the
-// stepper takes them from where they are towards the cursor, linearly in simulated time over
-// the tick's steps and substeps (`pace.ts`; a substep split in halves moves them half as far in
-// each); what the travel held back follows over the next ticks (as the body lags the cursor in
-// slow motion). `travel` starts at TRAVEL_START brush radii and adapts on the ticks it held the
+// stepper takes them from where they are towards the cursor, to the point the tick's steps end
+// at (`Document.advance`, set once before the core's `World::advance`, which may split a refused
+// step: its halves pull towards the tick's point); what the travel held back follows over the
+// next ticks (as the body lags the cursor in slow motion). `travel` starts at TRAVEL_START brush radii and adapts on the ticks it held the
 // anchors back: doubled after a step whose substeps took at most NEWTON_GROW Newton iterations
 // each (once the substeps converge quickly the travel hardly matters: stiff rubber at dt/4 took
 // 133–194 Newton iterations for 4 steps whether the anchors travelled 1.5 or 24 cm a step),
@@ -28,8 +28,7 @@ export const TRAVEL_START = 1 / 8;
 export const TRAVEL_MIN = 1 / 64;
 export const TRAVEL_MAX = 4;
 /**
- * Newton iterations of a step's hardest substep (the maximum, where `pace.ts` uses the average)
- * above which the travel halves, and at or below which it doubles, on a tick it held the anchors back.
+ * Newton iterations of a tick's last step (the most over the bodies) above which the travel halves, and at or below which it doubles, on a tick it held the anchors back.
  */
 export const NEWTON_SHRINK = 48;
 export const NEWTON_GROW = 24;

@@ -11,11 +11,9 @@
 // are limited to HISTORY_STEPS and HISTORY_BYTES in all, the oldest dropped first.
 
 import { initEngine } from '../engine/wasm';
-import { World, type DeltaScope, type FreezeReport, type ParamInfo, type ParamValue, type RemeshReport } from '../engine/world';
+import { World, type Advance, type DeltaScope, type FreezeReport, type ParamInfo, type ParamValue, type RemeshReport } from '../engine/world';
 import { sig3 } from '../format';
 import { addModel, dtFor, stepsPerFrame, useDefaults } from '../engine/models';
-import { stepSplitting } from './split';
-import { NEWTON_MOST, NEWTON_STALLED, Pace, stepPaced } from './pace';
 import { History, travel } from '../history';
 import { parse, ProjectError, serialize } from '../project';
 import type { Autosave, AutosaveRecord } from '../storage';
@@ -36,6 +34,11 @@ export const HISTORY_KEPT_BYTES = 48 * 1024 * 1024;
 const SUBDIVIDE_KEPT = 0.02;
 /** Frames with split steps before the modeler says so (once per model). */
 export const SPLIT_NOTICE = 10;
+/**
+ * Halvings of a step the implicit solver refuses before the refusal stands (dt/8): the core's
+ * `world::SPLITS`, which `World::advance` takes (`crates/softsculpt/src/world/advance.rs`).
+ */
+export const SPLITS = 3;
 
 /** What a scene was opened from, to restart it (and to bring it back on undo). */
 export interface SceneSource { name: string; text: string; files: Map<string, Uint8Array>; duration: number }
@@ -237,8 +240,6 @@ export class Document {
   /** A model built in the world (an import): its name, the settings from the world's dt, its file's frame. */
   adopt(model: string, frame: ImportFrame): void {
     this.splitFrames = 0;
-    this.pace.reset();
-    this.paceSaid = false;
     this.settings.dt = this.world.params(0).dt as number;
     this.settings.substeps = stepsPerFrame(this.settings.dt);
     this.settings.model = model;
@@ -253,8 +254,6 @@ export class Document {
     if (this.pausedByError) { this.pausedByError = false; this.settings.playing = true; }
     const dt = useDefaults(this.world, 0);
     this.splitFrames = 0;
-    this.pace.reset();
-    this.paceSaid = false;
     this.settings.dt = dt;
     this.settings.substeps = stepsPerFrame(dt);
     this.settings.model = model;
@@ -272,7 +271,7 @@ export class Document {
       // Let it settle on the ground (a few simulated seconds) so it opens at rest.
       const dt = this.settings.dt, chunk = Math.max(1, Math.round(0.5 / dt));
       for (let t = 0; t < 6; t += dt * chunk) {
-        stepSplitting((h, n, last) => this.stepAt(h, n, last), dt, chunk);
+        this.world.advance(dt * chunk, 0, 0, SPLITS, true);
         this.hooks.progress(label, t / 6);
       }
     });
@@ -351,7 +350,6 @@ export class Document {
     if (ok && id === 'dt') this.settings.dt = value as number;
     // Another integrator gets a step it is stable at: 1/60 s implicit, else the explicit limit.
     if (ok && id === 'integrator') {
-      this.pace.reset();
       this.setDt(dtFor(this.world, value as string));
       this.settings.substeps = stepsPerFrame(this.settings.dt);
       this.hooks.message(`${value}: dt = ${fmt(this.settings.dt)} s`);
@@ -585,10 +583,6 @@ export class Document {
     // A brush keeps what it painted and the state of those vertices; a drag moves everything.
     this.strokeScope = s.tool === 'grab' || s.tool === 'press' ? 'all' : 'touched';
     this.stroke.start(this.strokeBody());
-    // Converged steps brace for a grab in substeps (`pace.ts`); time-limited ones need not: a
-    // step whose Newton solve wanders is accepted at its first iterate within the minimum
-    // accuracy, and four substeps would cost four times the frame's budget.
-    if (this.stroke.path(this.strokeBody()) && this.implicit && !this.timeLimited) this.pace.brace();
     if (this.stroke.paintsBodyData) this.bodyVersion++;
   }
   strokeMove(point: Vec3 | null, inverted: boolean, pressure?: number): void {
@@ -628,31 +622,33 @@ export class Document {
   }
 
   /**
-   * `n` steps of the world (contacts and scene events included). On a blow-up the engine rolls
-   * the whole world back (clock and events too); the simulation pauses and says so. False then.
+   * `n` steps of `dt` (s) of the world, contacts and scene events included, as the core's
+   * `World::advance` takes them: a step the implicit solver refuses split up to SPLITS times,
+   * the relaxed retry before a refusal, and under a wall-clock budget of `seconds` (> 0; 0:
+   * every step to the tolerance) each implicit step accepted at its deadline once within the
+   * minimum accuracy, explicit steps only while the budget lasts (`lastAdvance.simulated` says
+   * how far it got). A grab's anchors move towards the cursor over the steps' simulated time
+   * (`anchorpath.ts`). On a blow-up the engine rolls the world back to the failing step's start;
+   * the document goes back further, to the last state known good (`rewind.ts`), pauses and says
+   * so. False then, or when a waiting command interrupted a step (the world as before that step).
    */
-  advance(dt: number, n: number): boolean {
+  advance(dt: number, n: number, seconds = 0): boolean {
+    this.lastAdvance = null;
     try {
       if (dt !== this.settings.dt) this.setDt(dt);
       if (this.rewind.size === 0) this.offerRewind();
       const anchors = this.stroke?.path(this.strokeBody()) ?? null;
-      let splits = 0;
-      if (this.implicit) {
-        // Implicit steps in adaptive substeps (`pace.ts`), a grab's anchors moved across them.
-        splits = stepPaced(this.pace, anchors, (h, last) => { this.stepAt(h, 1, last); return this.newtonIterations(); }, dt, n);
-      } else {
-        // Explicit steps in batches, a grab's anchors moved once for the batch.
-        anchors?.aim(dt * n);
-        splits = stepSplitting((h, k, last) => this.stepAt(h, k, last), dt, n);
-        anchors?.took(dt * n);
-        anchors?.stepped(0, false);
-      }
-      if (splits > 0) this.splitFrame(splits);
-      if (this.pace.raised && !this.paceSaid) {
-        this.paceSaid = true;
-        this.hooks.message(`this body needs shorter steps just now: each ${fmt(this.settings.dt)} s frame is taken in ${this.pace.pieces} steps (back to one when it calms down)`, 'info');
-      }
-      this.sinceRewind += dt * n;
+      anchors?.aim(dt * n);
+      const a = this.world.advance(dt * n, seconds, 0, SPLITS, true);
+      this.lastAdvance = a;
+      anchors?.took(a.simulated);
+      anchors?.stepped(this.newtonIterations(), a.splits > 0);
+      // The frame's largest residual is an early step's when any was stopped at its deadline (a
+      // converged step's is below the tolerance, an early one's above it).
+      if (a.early > 0) this.accuracy = Math.max(this.accuracy, a.residual);
+      this.noteRelaxed();
+      if (a.splits > 0) this.splitFrame(a.splits);
+      this.sinceRewind += a.simulated;
       if (this.sinceRewind >= this.rewind.every - 1e-9) this.offerRewind();
       return true;
     } catch (e) {
@@ -661,7 +657,7 @@ export class Document {
       if ((e as { fields?: Record<string, unknown> } | null)?.fields?.cause === 'interrupted') return false;
       this.settings.playing = false;
       this.pausedByError = true;
-      // The engine put the world back to the start of the failing call, which may be collapsing
+      // The engine put the world back to the start of the failing step, which may be collapsing
       // already: back further, to the last state known good (worker/rewind.ts).
       const rewoundTo = this.rewindToGood();
       this.stroke?.rebase(this.strokeBody());
@@ -673,6 +669,8 @@ export class Document {
       return false;
     }
   }
+  /** What the last `advance` did (null if it failed or was interrupted). */
+  lastAdvance: Advance | null = null;
 
   /** Simulated seconds since the last rewind point was offered. */
   private sinceRewind = 0;
@@ -701,45 +699,12 @@ export class Document {
     return p.time;
   }
 
-  /** Substeps per implicit step (`pace.ts`), per model; whether the user was told they are above 1. */
-  readonly pace = new Pace();
-  private paceSaid = false;
   /** Whether body 0 steps with the implicit integrator. */
-  private get implicit(): boolean { return this.world.params(0).integrator === 'implicit'; }
+  get implicit(): boolean { return this.world.params(0).integrator === 'implicit'; }
   /** Newton iterations of the last step, the most over the bodies. */
   private newtonIterations(): number {
     return Math.max(0, ...this.everyBody.map((b) => this.world.newtonIterations(b)));
   }
-
-  /**
-   * `n` steps of `h` (s), the world's dt back to the settings' after a split step. A Newton
-   * solve that stalls or runs long gives up early and the step is split (`pace.ts`), except at
-   * the last split (`last`), where only the engine's cap refuses it. Before a step is refused,
-   * the engine takes it with the hinges of crushed faces let go, then with none, if one of its
-   * iterates crushed a face (the relaxed retry, `body/implicit/mod.rs` `Relaxed`): measured on
-   * the bunny's strongest drags (BENCHMARKS.md), 8 of 18 paused the page without it, none with
-   * it, and a retry at every split rather than only the last took the worst frame from 2–11 s
-   * to 0.5–1.8 s.
-   */
-  private stepAt(h: number, n: number, last = false): void {
-    const step = () => this.world.stepRelaxed(n, last ? 0 : NEWTON_STALLED, last ? 0 : NEWTON_MOST);
-    if (h === this.settings.dt) { step(); } else {
-      this.world.setParam(0, 'dt', h);
-      try { step(); } finally { this.world.setParam(0, 'dt', this.settings.dt); }
-    }
-    this.noteRelaxed();
-  }
-
-  /**
-   * The anytime step's deadline for the steps that follow (`World.setDeadline`): `seconds` of
-   * wall-clock time from now for implicit solves; < 0 clears it (every step to the tolerance).
-   */
-  setDeadline(seconds: number): void {
-    if (seconds >= 0) this.timeLimited = true;
-    if (seconds < 0 || this.implicit) this.world.setDeadline(seconds);
-  }
-  /** The steps run under a solve budget (the page's ticks: `setDeadline`), not to convergence. */
-  private timeLimited = false;
 
   /** The largest relative residual an implicit step stopped by its deadline was accepted at since `takeAccuracy`. */
   private accuracy = 0;
@@ -752,9 +717,8 @@ export class Document {
 
   /** Steps that let go of hinges to finish (since the model was opened: reset in `newModel`). */
   relaxedSteps = 0;
-  /** After a step that may have been relaxed (`World.stepRelaxed`): count it, and say so once. */
+  /** After steps that may have been relaxed (the core's relaxed retry): count it, and say so once. */
   private noteRelaxed(): void {
-    this.accuracy = Math.max(this.accuracy, ...this.everyBody.map((b) => this.world.accuracy(b)));
     const r = Math.max(0, ...this.everyBody.map((b) => this.world.relaxed(b)));
     if (r === 0 || ++this.relaxedSteps !== 1) return;
     this.synced();

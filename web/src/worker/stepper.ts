@@ -1,13 +1,11 @@
-// Real-time stepping in the worker: each tick runs as many steps as the wall-clock time since
-// the last tick holds (at most 0.1 s of it; fractions of a step carry over), in chunks of about
-// 2 ms, within a time budget so that commands (the grab's cursor, a press) are read between
-// ticks. If the steps do not fit in the budget the simulation runs in slow motion and says so.
-//
-// Implicit steps are anytime steps under a solve budget (SOLVE_BUDGET_MS per tick): past it the
-// engine stops each step's Newton solve at its first iterate within its minimum accuracy
-// (`WorldSettings::deadline`, crates/softsculpt/src/world/advance.rs), so a frame of a large or
-// poorly shaped mesh ends about on time instead of waiting for a converged step; the HUD shows
-// the accuracy reached (`Document.takeAccuracy`).
+// Real-time stepping in the worker: each tick asks the core for as many steps as the wall-clock
+// time since the last tick holds (at most 0.1 s of it; fractions of a step carry over), in one
+// `World::advance` under a wall-clock budget, so that commands (the grab's cursor, a press) are
+// read between ticks. The core owns how the frame is stepped (crates/softsculpt/src/world/
+// advance.rs): implicit steps are anytime steps (past the budget each is accepted at its first
+// iterate within the minimum accuracy, and the HUD shows the accuracy reached:
+// `Document.takeAccuracy`), refused ones are split, explicit steps run while the budget lasts.
+// If the steps do not fit in the budget the simulation runs in slow motion and says so.
 
 import type { Document } from './document';
 
@@ -21,8 +19,6 @@ export const SOLVE_BUDGET_MS = 12;
 export class Stepper {
   private last = 0;
   private carry = 0;
-  /** Measured cost of one step (ms), to size the chunks of steps between budget checks. */
-  private stepCostMs = 0.05;
   /** Wall-clock ms spent stepping since `take()`. */
   private spent = 0;
   slowMotion = false;
@@ -36,6 +32,10 @@ export class Stepper {
   /** When the last tick ended (ms), 0 before the first. */
   private lastEnd = 0;
 
+  /**
+   * `budgetMs`: the wall-clock budget of a tick's explicit steps; `solveBudgetMs`: of its
+   * implicit solves (an implicit step's solve stops at its deadline, drawing then takes the rest).
+   */
   constructor(private readonly now: () => number, private readonly budgetMs = 30, private readonly solveBudgetMs = SOLVE_BUDGET_MS) {}
 
   /** One tick; returns whether it stepped. */
@@ -57,13 +57,7 @@ export class Stepper {
     const n = s.realTime ? Math.floor(want + 0.1) : want;
     this.carry = s.realTime ? want - n : 0;
     doc.updateStroke(s.dt * n);
-    doc.setDeadline(this.solveBudgetMs / 1000);
-    let done = 0;
-    try {
-      done = this.run(doc, s.dt, n, this.budgetMs);
-    } finally {
-      doc.setDeadline(-1);
-    }
+    const done = this.run(doc, s.dt, n, doc.implicit ? this.solveBudgetMs : this.budgetMs);
     this.slowMotion = done < n;
     if (this.slowMotion) this.carry = 0;
     const end = this.now();
@@ -73,20 +67,18 @@ export class Stepper {
     return done > 0;
   }
 
-  /** `n` steps of `dt` in chunks, stopping once `budgetMs` is spent or a step fails; returns how many ran. */
+  /**
+   * `n` steps of `dt` under a wall-clock budget of `budgetMs` (Infinity: every step to the
+   * tolerance, all of them); returns how many steps of `dt` they covered (0 if a step failed or
+   * a command interrupted it).
+   */
   run(doc: Document, dt: number, n: number, budgetMs = Infinity): number {
-    let done = 0;
+    if (n <= 0) return 0;
     const t0 = this.now();
-    while (done < n) {
-      const chunk = Math.min(n - done, Math.max(1, Math.floor(2 / this.stepCostMs)));
-      const c0 = this.now();
-      if (!doc.advance(dt, chunk)) break;
-      this.stepCostMs = 0.8 * this.stepCostMs + 0.2 * Math.max(1e-4, (this.now() - c0) / chunk);
-      done += chunk;
-      if (this.now() - t0 > budgetMs) break;
-    }
+    const ok = doc.advance(dt, n, Number.isFinite(budgetMs) ? budgetMs / 1000 : 0);
     this.spent += this.now() - t0;
-    return done;
+    const a = doc.lastAdvance;
+    return ok && a ? Math.min(n, Math.round(a.simulated / dt)) : 0;
   }
 
   /** Wall-clock ms spent stepping since the last call (for the frame). */

@@ -14,11 +14,20 @@ import type { BodyView } from '../engine/world';
 import { inflateFactor, targetSpring, vertexNormals, verticesAround, type Weighted } from '../tools/brush';
 import { reflect, reflections, type Symmetry } from '../tools/symmetry';
 import { AnchorPath } from './anchorpath';
-import type { Anchors } from './pace';
 
 /** Pen pressure as a strength scale: (0, 1], 1 when not given (a mouse). */
 function clampPressure(p: number | undefined): number {
   return p === undefined || !Number.isFinite(p) || p <= 0 ? 1 : Math.min(1, Math.max(0.05, p));
+}
+
+/** The anchors of a stroke moving within the tick (the grab's: `anchorpath.ts`), bound to its body. */
+export interface Anchors {
+  /** Before steps of `h` s: the anchors where the path is at their end. */
+  aim(h: number): void;
+  /** Steps of `h` s were taken (the path moves on). */
+  took(h: number): void;
+  /** Steps were taken: `newton` Newton iterations in the last (the most over the bodies); `split`: one had to be split. */
+  stepped(newton: number, split: boolean): void;
 }
 
 /** What a stroke needs from the body (the document hands over its active body). */
@@ -90,7 +99,7 @@ export abstract class Stroke {
   move(point: Vec3 | null, inverted: boolean, _body: StrokeBody): void { this.point = point; this.inverted = inverted; }
   /** Every tick before the steps (dt: simulated seconds this tick, 0 when paused; step: the world's dt). */
   update(_body: StrokeBody, _dt: number, _step?: number): void {}
-  /** Anchors that move along a path within the tick (the grab), as the document steps them (`pace.ts`). */
+  /** Anchors that move along a path within the tick (the grab), as the document steps them (`Document.advance`). */
   path(_body: StrokeBody): Anchors | null { return null; }
   /** The body was put back (a rewind after a failed step): start again from where it is. */
   rebase(_body: StrokeBody): void {}

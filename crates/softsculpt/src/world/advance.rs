@@ -9,9 +9,9 @@
 //! - **Real time** ([`Budget::real_time`], the modeler): the frame's implicit solves share a
 //!   wall-clock budget. Step i of n gets the deadline t₀ + seconds (i + 1) / n
 //!   (`WorldSettings::deadline`): past it a step is accepted at its current iterate if that is
-//!   within `min_accuracy` (the anytime step, `body/implicit/mod.rs`). Explicit steps run while
-//!   the budget lasts (at least one): the rest of the frame is not simulated (slow motion, told
-//!   by [`Advance::simulated`]).
+//!   within `min_accuracy` (the anytime step, `body/implicit/mod.rs`). Steps run while the
+//!   budget lasts (at least one): the rest of the frame is not simulated (slow motion, told by
+//!   [`Advance::simulated`]).
 
 use super::{GiveUp, Integrator, StepError, World};
 use crate::error::SimError;
@@ -77,8 +77,8 @@ pub struct Advance {
     pub steps: u64,
     /// Steps that had to be split.
     pub splits: u32,
-    /// Simulated seconds advanced: the frame's, unless a real-time budget ran out on explicit
-    /// steps.
+    /// Simulated seconds advanced: the frame's, unless a real-time budget ran out before its
+    /// last steps.
     pub simulated: f64,
     /// The largest relative residual any implicit step of the frame was accepted at (0 for the
     /// explicit integrators): the frame's accuracy.
@@ -121,11 +121,16 @@ impl World {
         result.map(|()| out)
     }
 
-    /// `n` implicit steps, each with its share of a real-time budget's deadline.
+    /// `n` implicit steps, each with its share of a real-time budget's deadline; under a
+    /// real-time budget no step starts once the budget is spent (at least one runs), so a frame
+    /// ends within the budget and one Newton iteration (slow motion, told by `simulated`).
     fn advance_implicit(&mut self, n: u64, budget: &Budget, t0: Option<f64>, out: &mut Advance) -> Result<(), StepError> {
         let dt = self.settings.dt;
         for i in 0..n {
             if let (Some(r), Some(t0)) = (budget.real_time, t0) {
+                if i > 0 && (r.now)() - t0 >= r.seconds {
+                    break;
+                }
                 let at = t0 + r.seconds * (i + 1) as f64 / n as f64;
                 self.settings.deadline = Some(super::Deadline { now: r.now, at, accept: r.min_accuracy });
             }

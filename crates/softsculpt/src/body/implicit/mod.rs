@@ -402,7 +402,7 @@ impl Implicit {
             // thrown to 2–50 by the line search's extrapolation, wandered back to ~1e-2 and
             // stayed there until the cap — in each of the step's attempts (warm, cold, and
             // without the ground if it held vertices). Not at the caller's last split
-            // (`web/src/worker/split.ts`): there a slow step that converges beats a refusal.
+            // (`World::advance`, `world/advance.rs`): there a slow step that converges beats a refusal.
             if rho < best.0 {
                 best = (rho, k);
             }
