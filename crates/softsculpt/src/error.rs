@@ -1,4 +1,6 @@
-//! Errors of the core, each with a message fit to show a user as it is.
+//! Errors of the core, each with a message fit to show a user as it is, and what those messages
+//! are made with: the checks that refuse a parameter ([`check_positive`],
+//! [`check_non_negative`]) and numbers written to three significant digits ([`sig3`]).
 
 use std::fmt;
 
@@ -53,7 +55,7 @@ impl fmt::Display for MeshError {
             MeshError::UnknownBuiltin(name) => write!(
                 f,
                 "unknown built-in model '{name}' (available: {})",
-                crate::mesh::builtin::NAMES.join(", ")
+                BUILTIN_NAMES.join(", ")
             ),
             MeshError::Format { format, message } => write!(f, "not a valid {format} file: {message}"),
             MeshError::Invalid(m) => write!(f, "{m}"),
@@ -101,12 +103,12 @@ impl fmt::Display for SimError {
                 "the implicit step at t = {} s (step {step}) did not converge: relative residual {residual:.3e} \
                  after {iterations} Newton iterations, tolerance {tolerance:e}; the state is unchanged. \
                  Try a smaller dt (e.g. half), a looser --tolerance, or more --newton-iterations",
-                crate::world::sig3(*time)
+                sig3(*time)
             ),
             SimError::Interrupted { step, time } => write!(
                 f,
                 "the step at t = {} s (step {step}) was interrupted by its caller; the state is unchanged",
-                crate::world::sig3(*time)
+                sig3(*time)
             ),
             SimError::Length { what, expected, got } => {
                 write!(f, "{what}: expected {expected} values, got {got}")
@@ -116,3 +118,48 @@ impl fmt::Display for SimError {
 }
 
 impl std::error::Error for SimError {}
+
+/// The built-in models' names (`mesh::builtin` builds them, as `mesh::builtin::NAMES`): here so
+/// that [`MeshError::UnknownBuiltin`]'s message can list them without this module importing the
+/// mesh module above it.
+pub(crate) const BUILTIN_NAMES: &[&str] = &["sphere", "mushroom", "octopus", "kangaroo"];
+
+pub(crate) fn bad(name: &'static str, message: String) -> SimError {
+    SimError::BadParameter { name, message }
+}
+
+/// `value` must be finite and ≥ 0.
+pub fn check_non_negative(name: &'static str, value: f64) -> Result<(), SimError> {
+    if !value.is_finite() {
+        return Err(bad(name, format!("must be a finite number, got {value}")));
+    }
+    if value < 0.0 {
+        return Err(bad(name, format!("must not be negative, got {value}")));
+    }
+    Ok(())
+}
+
+/// `value` must be finite and > 0.
+pub fn check_positive(name: &'static str, value: f64) -> Result<(), SimError> {
+    if !(value.is_finite() && value > 0.0) {
+        return Err(bad(name, format!("must be a finite number greater than 0, got {value}")));
+    }
+    Ok(())
+}
+
+/// `x` with three significant digits ("0.250", "12.0", "1.23e-5").
+pub fn sig3(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let e = x.abs().log10().floor() as i32;
+    if !(-4..6).contains(&e) {
+        return format!("{x:.2e}");
+    }
+    if e >= 2 {
+        let unit = 10f64.powi(e - 2);
+        return format!("{:.0}", (x / unit).round() * unit);
+    }
+    let decimals = (2 - e) as usize;
+    format!("{x:.decimals$}")
+}

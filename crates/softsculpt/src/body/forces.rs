@@ -4,7 +4,7 @@ use super::{external, gas, Material, Model};
 use super::parforces::{Coefficients, ParForces};
 use crate::error::SimError;
 use crate::par::{Out, Threads};
-use crate::world::WorldSettings;
+use crate::settings::WorldSettings;
 
 /// A failure inside a step, before the step number is known.
 #[derive(Debug, Clone, Copy)]

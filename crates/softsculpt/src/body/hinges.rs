@@ -136,7 +136,7 @@ pub fn bend(x: &[f64], h: &[u32; 4], rest: f64, thin: [f64; 2]) -> Option<(f64, 
 /// [`bend`], and whether a face of the hinge is crushed (below its `thin`: the hinge fades).
 /// `let_go`: a hinge with a crushed face gives nothing at all (`None`, as a degenerate one)
 /// instead of its faded force: the implicit integrator's relaxed retry of a step it could not
-/// finish (`implicit/mod.rs` `Relaxed`, [`crate::world::WorldSettings::relax`]).
+/// finish (`implicit/mod.rs` `Relaxed`, [`crate::settings::WorldSettings::relax`]).
 #[inline(always)]
 pub fn bend_crushed(x: &[f64], h: &[u32; 4], rest: f64, thin: [f64; 2], let_go: bool) -> (Option<(f64, [V3; 4])>, bool) {
     let Some((theta, g, u)) = angle_gradient_heights(x, h) else {

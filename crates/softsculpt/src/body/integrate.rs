@@ -5,7 +5,7 @@ use super::parforces::ParForces;
 use super::implicit::{Implicit, SolverIterations};
 use super::{Material, Model, State, Work};
 use crate::par::{Out, Threads};
-use crate::world::{Integrator, WorldSettings};
+use crate::settings::{Integrator, WorldSettings};
 
 /// a(x, v) into `a` (m/s²); `x` and `v` are only read.
 #[allow(clippy::too_many_arguments)]

@@ -1,7 +1,8 @@
 //! A body's material: what the body itself is made of, with units. Everything the world imposes
 //! (gravity, wind, ground, obstacles, integrator, time step, contacts) is in
-//! [`crate::world::WorldSettings`] instead. All of it can change between steps.
+//! [`crate::settings::WorldSettings`] instead. All of it can change between steps.
 
+pub use crate::error::{check_non_negative, check_positive};
 use crate::error::SimError;
 use crate::params as table;
 
@@ -35,7 +36,7 @@ pub enum VolumeMode {
 }
 
 impl VolumeMode {
-    pub const NAMES: &'static [&'static str] = &["exact", "box", "sphere", "ellipsoid"];
+    pub const NAMES: &'static [&'static str] = table::VOLUME_CHOICES;
     pub fn name(self) -> &'static str {
         match self {
             VolumeMode::Exact => "exact",
@@ -108,29 +109,6 @@ impl Default for Material {
             flow_rate: table::FLOW.number(),
         }
     }
-}
-
-pub(crate) fn bad(name: &'static str, message: String) -> SimError {
-    SimError::BadParameter { name, message }
-}
-
-/// `value` must be finite and ≥ 0.
-pub fn check_non_negative(name: &'static str, value: f64) -> Result<(), SimError> {
-    if !value.is_finite() {
-        return Err(bad(name, format!("must be a finite number, got {value}")));
-    }
-    if value < 0.0 {
-        return Err(bad(name, format!("must not be negative, got {value}")));
-    }
-    Ok(())
-}
-
-/// `value` must be finite and > 0.
-pub fn check_positive(name: &'static str, value: f64) -> Result<(), SimError> {
-    if !(value.is_finite() && value > 0.0) {
-        return Err(bad(name, format!("must be a finite number greater than 0, got {value}")));
-    }
-    Ok(())
 }
 
 impl Material {

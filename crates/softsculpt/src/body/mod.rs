@@ -50,7 +50,7 @@ pub use targets::Target;
 
 use crate::error::{MeshError, SimError};
 use crate::mesh::{topology, TriMesh};
-use crate::world::WorldSettings;
+use crate::settings::WorldSettings;
 
 /// Per-vertex and per-face data that the force stages read.
 #[derive(Debug, Clone)]

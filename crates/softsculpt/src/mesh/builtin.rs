@@ -7,8 +7,9 @@ use crate::vec3::{add, normalize, scale, sub, V3};
 use std::collections::HashMap;
 use std::f64::consts::PI;
 
-/// Names accepted by [`builtin`].
-pub const NAMES: &[&str] = &["sphere", "mushroom", "octopus", "kangaroo"];
+/// Names accepted by [`builtin`] (listed in `error.rs`, whose message for an unknown name lists
+/// them too).
+pub const NAMES: &[&str] = crate::error::BUILTIN_NAMES;
 
 /// A built-in model by name.
 pub fn builtin(name: &str) -> Result<TriMesh, MeshError> {

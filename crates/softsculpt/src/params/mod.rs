@@ -5,16 +5,15 @@
 //! ([`markdown`], checked by a test).
 //!
 //! Get and set by id: [`crate::world::World::param`] and [`crate::world::World::set_param`]
-//! route body parameters to a body's material and world parameters to the world's settings,
-//! checking the range with a message that names the parameter and its unit.
+//! (`world/params.rs`) route body parameters to a body's material and world parameters to the
+//! world's settings, checking the range with a message that names the parameter and its unit.
+//! This module is plain data and pure functions: it imports nothing of bodies or worlds, which
+//! read it for their defaults (`tests/layers.rs`).
 
-mod access;
 pub mod presets;
 pub mod similarity;
 pub mod table;
 
-pub use access::choice;
-pub(crate) use access::set_body_param;
 pub use table::*;
 
 use serde::Serialize;
@@ -110,8 +109,8 @@ impl Param {
     /// The valid names of a choice parameter.
     pub fn choices(&self) -> &'static [&'static str] {
         match self.id {
-            "integrator" => crate::world::Integrator::NAMES,
-            "gas.volume" => crate::body::VolumeMode::NAMES,
+            "integrator" => INTEGRATOR_CHOICES,
+            "gas.volume" => VOLUME_CHOICES,
             _ => &[],
         }
     }
@@ -178,6 +177,16 @@ impl std::error::Error for ParamError {}
 /// The entry of `id`.
 pub fn find(id: &str) -> Result<&'static Param, ParamError> {
     TABLE.iter().find(|p| p.id == id).ok_or_else(|| ParamError { id: id.to_string(), message: "no such parameter".into() })
+}
+
+/// The table's own spelling of choice `name` of parameter `id` (choices are `&'static str`).
+pub fn choice(id: &str, name: &str) -> Result<Value, ParamError> {
+    let p = find(id)?;
+    p.choices()
+        .iter()
+        .find(|c| **c == name)
+        .map(|c| Value::Choice(c))
+        .ok_or_else(|| ParamError { id: id.to_string(), message: format!("unknown choice '{name}' (one of: {})", p.choices().join(", ")) })
 }
 
 /// The whole table as JSON: an array of `{id, scope, unit, default, min, max, min_open,

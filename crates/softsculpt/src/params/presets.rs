@@ -1,6 +1,8 @@
 //! Presets: named sets of parameter values, defined once here beside the table. Applying one
-//! sets each listed parameter (in order) through [`World::set_param`], so every value is checked
-//! against the table's range like any other.
+//! ([`World::apply_preset`](crate::world::World::apply_preset), `world/params.rs`) sets each
+//! listed parameter (in order) through
+//! [`World::set_param`](crate::world::World::set_param), so every value is checked against the
+//! table's range like any other.
 //!
 //! - `modeler`: the world and material the modeler opens a model with — stiff enough bending to
 //!   carry a mushroom's cap (bending springs k_b = k, and hinges of flexural rigidity
@@ -60,7 +62,6 @@
 //!   them, no fold and no loss.
 
 use super::{find, ParamError, Value};
-use crate::world::World;
 
 /// A named set of parameter values.
 #[derive(Debug, Clone, Copy)]
@@ -138,19 +139,4 @@ pub fn preset(name: &str) -> Result<&'static Preset, ParamError> {
         id: "preset".into(),
         message: format!("unknown preset '{name}' (one of: {})", PRESETS.iter().map(|p| p.name).collect::<Vec<_>>().join(", ")),
     })
-}
-
-impl World {
-    /// Set every value of preset `name` (body parameters on body `body`). Checked first, so a
-    /// preset either applies whole or not at all.
-    pub fn apply_preset(&mut self, body: usize, name: &str) -> Result<(), ParamError> {
-        let p = preset(name)?;
-        for (id, v) in p.values {
-            find(id)?.check(v)?;
-        }
-        for (id, v) in p.values {
-            self.set_param(body, id, *v)?;
-        }
-        Ok(())
-    }
 }

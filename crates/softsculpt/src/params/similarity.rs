@@ -21,15 +21,16 @@
 //! against the ground's reaction) holds at the scaled positions, and a body that rests at x
 //! rests, scaled, at s x: the test below settles both. The modeler opens an imported model at
 //! the file's own size with the `modeler` preset scaled this way from the size it was tuned on
-//! (a 2.5 m bounding-box diagonal), instead of rescaling the mesh.
+//! (a 2.5 m bounding-box diagonal), instead of rescaling the mesh
+//! ([`World::apply_preset_scaled`](crate::world::World::apply_preset_scaled),
+//! `world/params.rs`).
 //!
 //! The time step: smaller models get `dt × s^½` (the same number of steps per sway, so the
 //! backward-Euler steps damp them no more than the original: at a fixed 1/60 s a 2.5 cm ball
 //! comes to rest in another, collapsed shape); larger ones keep `dt` (the modeler's frame), more
 //! accurate than needed. The implicit tolerance is relative: as it is.
 
-use super::{find, presets::preset, ParamError, Value};
-use crate::world::World;
+use super::{find, ParamError, Value};
 
 /// The exponent `e` of a unit (as written in the parameter table: `N·s/m³`, `m/s²`, `1/s`, …):
 /// a value in that unit becomes `value × s^e` for the model `s` times as large. None for a unit
@@ -82,39 +83,6 @@ pub fn scaled(id: &str, value: Value, s: f64) -> Result<Value, ParamError> {
 /// Parameters a scaled preset also sets, from the table's defaults, scaled: they depend on the
 /// model's size too (the body's mass, the distance kept in contact).
 pub const SIZED_DEFAULTS: &[&str] = &["mass", "contact_thickness"];
-
-impl World {
-    /// Preset `name` for a model `size` times as large as the one it was tuned for: its values,
-    /// and the [`SIZED_DEFAULTS`], scaled by similarity (the module's table); `dt` × min(1, s^½). An
-    /// open body (cloth-like) gets no gas — the gas law needs a closed surface — and the gas
-    /// parameters skipped are returned. Checked whole first: all or nothing.
-    pub fn apply_preset_scaled(&mut self, body: usize, name: &str, size: f64) -> Result<Vec<&'static str>, ParamError> {
-        if !(size.is_finite() && size > 0.0) {
-            return Err(ParamError { id: "preset".into(), message: format!("the model's size factor must be positive and finite (got {size})") });
-        }
-        let open = self.bodies.get(body).is_some_and(|b| !b.is_closed());
-        let mut values = Vec::new();
-        let mut skipped = Vec::new();
-        let defaults = SIZED_DEFAULTS.iter().map(|id| find(id).map(|p| (p.id, p.default)));
-        for entry in preset(name)?.values.iter().map(|&(id, v)| Ok((id, v))).chain(defaults) {
-            let (id, v) = entry?;
-            if open && matches!(id, "gas.nrt" | "gas.amount") {
-                skipped.push(id);
-                continue;
-            }
-            let v = match (id, v) {
-                ("dt", Value::Number(dt)) => Value::Number(dt * size.sqrt().min(1.0)),
-                _ => scaled(id, v, size)?,
-            };
-            find(id)?.check(&v)?;
-            values.push((id, v));
-        }
-        for (id, v) in values {
-            self.set_param(body, id, v)?;
-        }
-        Ok(skipped)
-    }
-}
 
 #[cfg(test)]
 mod tests {

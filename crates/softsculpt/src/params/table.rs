@@ -91,6 +91,8 @@ pub const VOLUME: Param = Param {
     range: ANY,
     help: "volume the gas law uses: exact, or the body's bounding box, sphere or ellipsoid",
 };
+/// The names `gas.volume` takes (`VolumeMode::NAMES`, `body/material.rs`).
+pub const VOLUME_CHOICES: &[&str] = &["exact", "box", "sphere", "ellipsoid"];
 pub const AMBIENT: Param = Param {
     id: "gas.ambient",
     scope: Scope::Body,
@@ -142,6 +144,8 @@ pub const INTEGRATOR: Param = Param {
     range: ANY,
     help: "time integrator: euler, midpoint, rk4, symplectic (explicit) or implicit (backward Euler, stable at any dt)",
 };
+/// The names `integrator` takes (`Integrator::NAMES`, `settings.rs`).
+pub const INTEGRATOR_CHOICES: &[&str] = &["euler", "midpoint", "rk4", "symplectic", "implicit"];
 pub const TOLERANCE: Param = Param {
     id: "tolerance",
     scope: Scope::World,

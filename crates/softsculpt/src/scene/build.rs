@@ -110,8 +110,8 @@ pub fn build(spec: &SceneSpec, text: &str, resolve: Resolver) -> Result<Built, S
     let integrator = Integrator::from_name(&w.integrator)
         .ok_or_else(|| cx.err("integrator", format!("unknown integrator '{}' (euler, midpoint, rk4, symplectic, implicit)", w.integrator)))?;
     cx.positive("tolerance", w.tolerance)?;
-    if !(1..=crate::world::settings::MAX_NEWTON).contains(&w.newton_iterations) {
-        return Err(cx.err("newton_iterations", format!("must be a whole number from 1 to {}, got {}", crate::world::settings::MAX_NEWTON, w.newton_iterations)));
+    if !(1..=crate::settings::MAX_NEWTON).contains(&w.newton_iterations) {
+        return Err(cx.err("newton_iterations", format!("must be a whole number from 1 to {}, got {}", crate::settings::MAX_NEWTON, w.newton_iterations)));
     }
     cx.finite("gravity", w.gravity)?;
     cx.vec("wind", w.wind)?;
@@ -356,7 +356,7 @@ fn apply_preset(cx: &Ctx, body: &mut SoftBody, name: &str, given: &toml::Table) 
     };
     for (id, v) in p.values.iter().filter(|(id, _)| !has(id)) {
         crate::params::find(id).and_then(|t| t.check(v)).map_err(|e| cx.err("preset", format!("'{name}': {e}")))?;
-        crate::params::set_body_param(body, id, *v).map_err(|e| cx.err("preset", format!("'{name}': {e}")))?;
+        crate::world::set_body_param(body, id, *v).map_err(|e| cx.err("preset", format!("'{name}': {e}")))?;
     }
     Ok(())
 }

@@ -1,5 +1,6 @@
 //! The world: the only unit of simulation. It owns its soft bodies, the settings every body
-//! shares (gravity, wind, ground, obstacles, integrator, dt, contacts: `settings.rs`), the clock
+//! shares (gravity, wind, ground, obstacles, integrator, dt, contacts: [`crate::settings`],
+//! defined below the bodies, which step with them, and re-exported here), the clock
 //! (`clock.rs`), and an open scene's pending events and active loads (`events.rs`). A lone body
 //! is a one-body world ([`World::single`]).
 //!
@@ -14,8 +15,8 @@
 //! 2. **ground**   – vertices below the plane go back onto it (`ground.rs`).
 //! 3. **obstacles** – vertices whose path entered a rigid obstacle stop at the entry point, any
 //!    inside are pushed out; then edges are kept out of thin spheres and capsules
-//!    (`obstacles.rs`, `mesh_obstacle.rs`). Ground before obstacles, as a body's own step always
-//!    did them, so every result is bit for bit what it was before the world owned them.
+//!    ([`crate::obstacles`]). Ground before obstacles, as a body's own step always did them,
+//!    so every result is bit for bit what it was before the world owned them.
 //! 4. **contacts** – between bodies, and within self-colliding ones (`contacts.rs`, `edges.rs`).
 //! 5. **plastic**  – each plastic body's rest lengths flow toward its current lengths where the
 //!    strain exceeds the yield strain, and its gas reference follows (`body/plastic.rs`). Its own
@@ -34,11 +35,9 @@ mod edges;
 mod events;
 mod freeze;
 pub mod ground;
-pub mod mesh_obstacle;
-pub mod obstacles;
+mod params;
 mod rollback;
 mod selfpairs;
-pub(crate) mod settings;
 
 pub use advance::{Advance, Budget, RealTime, GIVE_UP_MOST, GIVE_UP_STALLED, MIN_ACCURACY, SPLITS};
 #[cfg(not(target_arch = "wasm32"))]
@@ -46,8 +45,12 @@ pub use advance::wall_clock;
 pub use clock::Clock;
 pub use events::{Action, Event, Events, Load};
 pub use freeze::SUPPORT_GAP;
-pub use obstacles::{Obstacle, Shape};
-pub use settings::{check_dt, ContactSettings, Deadline, GiveUp, Ground, Integrator, Interrupt, WorldSettings};
+pub(crate) use params::set_body_param;
+// Under their old paths: the settings and obstacles, moved below the bodies (`crate::settings`,
+// `crate::obstacles`), and `sig3`, moved to the leaf `crate::error`.
+pub use crate::error::sig3;
+pub use crate::obstacles::{self, mesh_obstacle, Obstacle, Shape};
+pub use crate::settings::{check_dt, ContactSettings, Deadline, GiveUp, Ground, Integrator, Interrupt, WorldSettings};
 
 use crate::body::{SoftBody, Stats};
 use crate::error::SimError;
@@ -97,23 +100,6 @@ impl std::fmt::Display for StepError {
 }
 
 impl std::error::Error for StepError {}
-
-/// `x` with three significant digits ("0.250", "12.0", "1.23e-5").
-pub fn sig3(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() {
-        return format!("{x}");
-    }
-    let e = x.abs().log10().floor() as i32;
-    if !(-4..6).contains(&e) {
-        return format!("{x:.2e}");
-    }
-    if e >= 2 {
-        let unit = 10f64.powi(e - 2);
-        return format!("{:.0}", (x / unit).round() * unit);
-    }
-    let decimals = (2 - e) as usize;
-    format!("{x:.decimals$}")
-}
 
 impl World {
     pub fn new(bodies: Vec<SoftBody>, settings: WorldSettings) -> Self {

@@ -88,7 +88,7 @@
 //! restored snapshot takes the same steps.
 
 use super::super::Model;
-use crate::world::Ground;
+use crate::settings::Ground;
 
 /// The last Newton iteration at which vertices the iterate puts below the plane are taken into
 /// the set (at 1, 2, 4, …, this): later the set only shrinks.

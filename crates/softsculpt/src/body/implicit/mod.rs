@@ -77,7 +77,7 @@ pub use keep::Kept;
 use super::forces::Fault;
 use super::{Material, Model, State};
 use crate::par::Threads;
-use crate::world::WorldSettings;
+use crate::settings::WorldSettings;
 use system::{Frame, System};
 
 /// Iterations of the last step: Newton iterations and conjugate-gradient iterations (summed

@@ -68,7 +68,7 @@ use super::super::external;
 use super::super::selfcontact::ContactTerms;
 use crate::body::Material;
 use crate::par::{chunk, chunks, Out, Threads};
-use crate::world::WorldSettings;
+use crate::settings::WorldSettings;
 
 /// Vertices per chunk of a vertex pass (independent of the thread count).
 pub(crate) const VCHUNK: usize = 2048;

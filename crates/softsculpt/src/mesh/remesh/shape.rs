@@ -16,10 +16,9 @@
 //! exactly what [`super::remesh`] makes: nothing changes for a mesh that was fine.
 
 use super::{check_edge_length, remesh_measured, Surface};
-use crate::error::MeshError;
+use crate::error::{sig3, MeshError};
 use crate::mesh::TriMesh;
 use crate::vec3::{add, get, norm, scale, sub, V3};
-use crate::world::sig3;
 
 /// A result keeps the input's shape if no sampled point of either surface lies farther than
 /// `SHAPE` × the input's bounding-box diagonal from the other surface, and ...

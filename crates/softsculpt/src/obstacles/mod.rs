@@ -1,19 +1,24 @@
 //! Rigid obstacles: spheres, boxes (axis-aligned or rotated) and capsules that soft-body vertices
 //! cannot enter. Usable as floors, walls and tools.
 //!
-//! Contact is handled like the ground (see `ground.rs`), after the integrator: a vertex whose
-//! straight path during the step (from x_prev to x) enters an obstacle is stopped at the entry
-//! point — a continuous check, so a fast vertex cannot tunnel through a thin wall — and a vertex
-//! found inside is pushed out to the nearest surface point. Then, with n the outward normal there,
-//! the velocity loses its inward normal part (inelastic: impulse per unit mass j = −v·n) and
-//! Coulomb friction removes up to μ j of its tangential part.
+//! Contact is handled like the ground (see `world/ground.rs`), after the integrator: a vertex
+//! whose straight path during the step (from x_prev to x) enters an obstacle is stopped at the
+//! entry point — a continuous check, so a fast vertex cannot tunnel through a thin wall — and a
+//! vertex found inside is pushed out to the nearest surface point. Then, with n the outward
+//! normal there, the velocity loses its inward normal part (inelastic: impulse per unit mass
+//! j = −v·n) and Coulomb friction removes up to μ j of its tangential part ([`bounce`]).
 //! Then the edges (`resolve_edges`): spheres and capsules thinner than the mesh's edges would
 //! otherwise pass between two vertices.
+//!
+//! Below the settings that hold them and the world that runs them (`tests/layers.rs`); the world
+//! re-exports this module under its old paths, `world::obstacles` and `world::mesh_obstacle`.
 
-use super::mesh_obstacle::MeshShape;
+pub mod mesh_obstacle;
+
 use crate::geometry::{closest_segments, lerp, rotate};
 use crate::mesh::TriMesh;
 use crate::vec3::{add, dot, norm, scale, sub, V3};
+use mesh_obstacle::MeshShape;
 use std::sync::Arc;
 
 /// The shape of an obstacle (metres).
@@ -190,6 +195,24 @@ impl Shape {
     }
 }
 
+/// The velocity change of a vertex touching any rigid surface (an obstacle, the ground:
+/// `world/ground.rs`): with n the surface's outward unit normal and u·n < 0 (moving in),
+///   normal:     u·n ← −e (u·n), an impulse per unit mass j = (1 + e)|u·n|;
+///   tangential: Coulomb friction removes up to μ j of the tangential speed |u_t|.
+/// A vertex moving out (u·n ≥ 0) keeps its velocity.
+pub fn bounce(u: V3, n: V3, friction: f64, restitution: f64) -> V3 {
+    let un = dot(u, n);
+    if un >= 0.0 {
+        return u;
+    }
+    let j = (1.0 + restitution) * -un;
+    let ut = sub(u, scale(n, un));
+    let vt = norm(ut);
+    let drop = friction * j;
+    let ut = if vt <= drop { [0.0; 3] } else { scale(ut, 1.0 - drop / vt) };
+    add(ut, scale(n, -restitution * un))
+}
+
 /// Distance below which a vertex counts as touching a surface (m).
 const TOUCH: f64 = 1e-12;
 
@@ -225,7 +248,7 @@ pub fn resolve(obstacles: &[Obstacle], inv_mass: &[f64], x_prev: &[f64], x: &mut
             };
             x[3 * i..3 * i + 3].copy_from_slice(&p);
             // Inelastic (restitution 0) with Coulomb friction, as on the ground.
-            let u = super::ground::bounce([v[3 * i], v[3 * i + 1], v[3 * i + 2]], n, o.friction, 0.0);
+            let u = bounce([v[3 * i], v[3 * i + 1], v[3 * i + 2]], n, o.friction, 0.0);
             v[3 * i..3 * i + 3].copy_from_slice(&u);
         }
     }

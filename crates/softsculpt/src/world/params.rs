@@ -1,25 +1,24 @@
-//! Get and set parameters by id: body parameters on a body of a world, world parameters on its
-//! settings. Every value is checked against the table's range first.
+//! Get and set parameters by id (the table, `crate::params`): body parameters on a body of a
+//! world, world parameters on its settings; and presets, named sets of them
+//! (`crate::params::presets`), applied through the same checks, as they are or scaled by
+//! similarity to the model's size (`crate::params::similarity`). Every value is checked against
+//! the table's range first.
 
-use super::{find, ParamError, Scope, Value};
 use crate::body::{GasReference, SoftBody, VolumeMode};
+use crate::params::presets::preset;
+use crate::params::similarity::{scaled, SIZED_DEFAULTS};
+use crate::params::{find, ParamError, Scope, Value};
 use crate::world::{Ground, Integrator, World, WorldSettings};
 
 fn err(id: &str, message: impl Into<String>) -> ParamError {
     ParamError { id: id.to_string(), message: message.into() }
 }
 
-/// The table's own spelling of choice `name` of parameter `id` (choices are `&'static str`).
-pub fn choice(id: &str, name: &str) -> Result<Value, ParamError> {
-    let p = find(id)?;
-    p.choices().iter().find(|c| **c == name).map(|c| Value::Choice(c)).ok_or_else(|| err(id, format!("unknown choice '{name}' (one of: {})", p.choices().join(", "))))
-}
-
 impl World {
     /// Every parameter of the `scopes` by its table id, in table order, with its current value
     /// (body parameters body `body`'s); None where it has none (the ground's without a ground).
     pub fn param_values(&self, body: usize, scopes: &[Scope]) -> Vec<(&'static str, Option<Value>)> {
-        super::TABLE.iter().filter(|p| scopes.contains(&p.scope)).map(|p| (p.id, self.param(body, p.id).ok())).collect()
+        crate::params::TABLE.iter().filter(|p| scopes.contains(&p.scope)).map(|p| (p.id, self.param(body, p.id).ok())).collect()
     }
 
     /// The current value of parameter `id`; body parameters are body `body`'s.
@@ -136,7 +135,7 @@ fn set_world_param(w: &mut WorldSettings, id: &str, value: Value) -> Result<(), 
             if !on {
                 w.ground = None;
             } else if w.ground.is_none() {
-                w.ground = Some(Ground::at(super::GROUND_HEIGHT.number()));
+                w.ground = Some(Ground::at(crate::params::GROUND_HEIGHT.number()));
             }
         }
         ("ground.height", Value::Number(x)) => w.ground.as_mut().ok_or_else(no_ground)?.height = x,
@@ -147,4 +146,51 @@ fn set_world_param(w: &mut WorldSettings, id: &str, value: Value) -> Result<(), 
         _ => return Err(err(id, "not a world parameter")),
     }
     Ok(())
+}
+
+impl World {
+    /// Set every value of preset `name` (body parameters on body `body`). Checked first, so a
+    /// preset either applies whole or not at all.
+    pub fn apply_preset(&mut self, body: usize, name: &str) -> Result<(), ParamError> {
+        let p = preset(name)?;
+        for (id, v) in p.values {
+            find(id)?.check(v)?;
+        }
+        for (id, v) in p.values {
+            self.set_param(body, id, *v)?;
+        }
+        Ok(())
+    }
+
+    /// Preset `name` for a model `size` times as large as the one it was tuned for: its values,
+    /// and the [`SIZED_DEFAULTS`], scaled by similarity (the table of
+    /// [`crate::params::similarity`]); `dt` × min(1, s^½). An open body (cloth-like) gets no
+    /// gas — the gas law needs a closed surface — and the gas parameters skipped are returned.
+    /// Checked whole first: all or nothing.
+    pub fn apply_preset_scaled(&mut self, body: usize, name: &str, size: f64) -> Result<Vec<&'static str>, ParamError> {
+        if !(size.is_finite() && size > 0.0) {
+            return Err(ParamError { id: "preset".into(), message: format!("the model's size factor must be positive and finite (got {size})") });
+        }
+        let open = self.bodies.get(body).is_some_and(|b| !b.is_closed());
+        let mut values = Vec::new();
+        let mut skipped = Vec::new();
+        let defaults = SIZED_DEFAULTS.iter().map(|id| find(id).map(|p| (p.id, p.default)));
+        for entry in preset(name)?.values.iter().map(|&(id, v)| Ok((id, v))).chain(defaults) {
+            let (id, v) = entry?;
+            if open && matches!(id, "gas.nrt" | "gas.amount") {
+                skipped.push(id);
+                continue;
+            }
+            let v = match (id, v) {
+                ("dt", Value::Number(dt)) => Value::Number(dt * size.sqrt().min(1.0)),
+                _ => scaled(id, v, size)?,
+            };
+            find(id)?.check(&v)?;
+            values.push((id, v));
+        }
+        for (id, v) in values {
+            self.set_param(body, id, v)?;
+        }
+        Ok(skipped)
+    }
 }

@@ -2,10 +2,13 @@
 //! obstacles, the integrator and time step, and the contact settings. Change them freely
 //! between steps (each step validates them). Defaults come from the parameter table
 //! (`crate::params`).
+//!
+//! Below both the bodies and the world (`tests/layers.rs`): a body steps with the settings it is
+//! handed, and the world owns them; `crate::world` re-exports everything here under its old
+//! paths (`world::WorldSettings`, …).
 
-use super::obstacles::Obstacle;
-use crate::body::material::{bad, check_non_negative, check_positive};
-use crate::error::SimError;
+use crate::error::{bad, check_non_negative, check_positive, SimError};
+use crate::obstacles::Obstacle;
 use crate::params as table;
 
 /// Time integrator of the state (x, v).
@@ -27,7 +30,7 @@ pub enum Integrator {
 }
 
 impl Integrator {
-    pub const NAMES: &'static [&'static str] = &["euler", "midpoint", "rk4", "symplectic", "implicit"];
+    pub const NAMES: &'static [&'static str] = table::INTEGRATOR_CHOICES;
     pub fn name(self) -> &'static str {
         match self {
             Integrator::Euler => "euler",
@@ -110,26 +113,28 @@ pub struct WorldSettings {
     /// that has not converged by then is refused.
     pub newton_iterations: u32,
     /// Implicit integrator only, the caller's choice for a run (not saved in scenes or
-    /// snapshots; [`World::step_n_splitting`] sets it for its steps): when a Newton solve gives
-    /// up before the cap (`body/implicit/mod.rs`). `None`: only at the cap.
+    /// snapshots; [`World::step_n_splitting`](crate::world::World::step_n_splitting) sets it
+    /// for its steps): when a Newton solve gives up before the cap (`body/implicit/mod.rs`).
+    /// `None`: only at the cap.
     pub give_up: Option<GiveUp>,
     /// Implicit integrator only, the caller's choice for a run (not saved in scenes or
-    /// snapshots; [`World::step_n_with`] sets it for its steps): a step that no solve of the
-    /// model finishes is tried again with the hinges of crushed faces let go, then with no hinges
-    /// for that step (`body::implicit::Relaxed`), before it is refused. Off: refused (the CLI and
-    /// scenes); the modeler turns it on for its steps rather than pause the user's work.
+    /// snapshots; [`World::step_n_with`](crate::world::World::step_n_with) sets it for its
+    /// steps): a step that no solve of the model finishes is tried again with the hinges of
+    /// crushed faces let go, then with no hinges for that step (`body::implicit::Relaxed`),
+    /// before it is refused. Off: refused (the CLI and scenes); the modeler turns it on for its
+    /// steps rather than pause the user's work.
     pub relax: bool,
     /// Implicit integrator only, the caller's choice for a run (not saved in scenes or
-    /// snapshots; [`World::advance`](super::World::advance) sets it under a real-time budget):
-    /// a wall-clock time after which a step's solve stops at its current iterate, if that is
-    /// within [`Deadline::accept`] (the anytime step, `body/implicit/mod.rs`). `None`: every
-    /// step to `tolerance`.
+    /// snapshots; [`World::advance`](crate::world::World::advance) sets it under a real-time
+    /// budget): a wall-clock time after which a step's solve stops at its current iterate, if
+    /// that is within [`Deadline::accept`] (the anytime step, `body/implicit/mod.rs`). `None`:
+    /// every step to `tolerance`.
     pub deadline: Option<Deadline>,
     /// Implicit integrator only, the caller's choice for a run (not saved): asked between the
     /// solver's iterations; when it answers yes the step is abandoned (`SimError::Interrupted`)
-    /// and, through [`World::step_n`](super::World::step_n), the world is as before the call.
-    /// The page's worker asks whether a command is waiting, so Undo or a new model never waits
-    /// for a slow step.
+    /// and, through [`World::step_n`](crate::world::World::step_n), the world is as before the
+    /// call. The page's worker asks whether a command is waiting, so Undo or a new model never
+    /// waits for a slow step.
     pub interrupt: Option<Interrupt>,
     /// Contact between bodies and self-collision.
     pub contact: ContactSettings,
