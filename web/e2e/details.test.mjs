@@ -200,3 +200,29 @@ test('choosing the loaded built-in model again starts it over, undoably', async 
   await page.waitForFunction(() => window.softsculpt.param('stiffness') === 250, null, { timeout: 30000 });
   assert.deepEqual(errors, []);
 });
+
+test('the wind arrow stays inside the view, as the wind is set and as the view turns', async (t) => {
+  const { page, errors } = await open(t);
+  const inside = async (when) => {
+    const a = await inspect(page, () => window.softsculpt.windArrow());
+    const r = await inspect(page, () => { const b = document.querySelector('canvas').getBoundingClientRect(); return { left: b.left, top: b.top, right: b.right, bottom: b.bottom }; });
+    assert.ok(a.visible, `${when}: the arrow shows`);
+    for (const [name, p] of [['tail', a.tail], ['tip', a.tip]]) {
+      assert.ok(p.x > r.left && p.x < r.right && p.y > r.top && p.y < r.bottom, `${when}: the arrow's ${name} (${p.x.toFixed(0)}, ${p.y.toFixed(0)}) inside the view ${JSON.stringify(r)}`);
+    }
+  };
+  // W blows from the view direction (before: the arrow stood 1.2 m above the target, off the top of the view).
+  await page.mouse.move(100, 700);
+  await page.keyboard.press('w');
+  await page.waitForFunction(() => window.softsculpt.windArrow().visible, null, { timeout: 10000 });
+  await page.waitForTimeout(300);
+  await inside('after W');
+  // A quarter turn of the view (a drag on empty space): the wind now blows across the screen.
+  await page.mouse.down();
+  await page.mouse.move(350, 700, { steps: 10 });
+  await page.mouse.up();
+  await page.waitForTimeout(300);
+  await inside('after turning the view');
+  await shot(page, 'details-08-wind-arrow');
+  assert.deepEqual(errors, []);
+});

@@ -94,6 +94,16 @@ export function inspector(app: App) {
       const r = v.canvas.getBoundingClientRect();
       return { x: r.left + ((p.x + 1) / 2) * r.width, y: r.top + ((1 - p.y) / 2) * r.height };
     },
+    /** The wind arrow as drawn last: whether it shows, its tail and tip in page pixels. */
+    windArrow: () => {
+      const v = app.viewport, a = v.windArrow;
+      const dir = new Vector3(0, 1, 0).applyQuaternion(a.quaternion);
+      // ArrowHelper: a line of length − head, then the cone (scale y: the head's length).
+      const tip = a.position.clone().addScaledVector(dir, a.line.scale.y + a.cone.scale.y);
+      const r = v.canvas.getBoundingClientRect();
+      const px = (q: Vector3) => { const p = q.clone().project(v.camera); return { x: r.left + ((p.x + 1) / 2) * r.width, y: r.top + ((1 - p.y) / 2) * r.height }; };
+      return { visible: a.visible, tail: px(a.position), tip: px(tip) };
+    },
     /** Project coordinates of vertex i to page pixels (for driving the mouse in tests). */
     screenOf: (i: number) => {
       const x = m.positions;

@@ -39,6 +39,22 @@ describe('a stop, said once in the user\'s terms', () => {
     expect(explainStop(blowUp({ cause: 'non_finite', time: 10 }), ctx(1))).not.toMatch(/gas amount/);
   });
 
+  it('puts a stop in the first second after an import down to the file, not the gas, unless the user changed something since', () => {
+    // The teddy (15 pieces) stopped at t = 0.0123 s with "likely cause: too little gas".
+    const imported = { name: 'teddy.obj', pieces: 15, minAngle: 3.7, time: 0 };
+    const text = explainStop(blowUp({ cause: 'collapsed', time: 0.0123 }), { integrator: 'implicit', dt: 1 / 60, changes: [], imported });
+    expect(text).toMatch(/Likely cause: the imported teddy\.obj as it came \(15 pieces, triangles as thin as 3\.7°\), 0\.0123 s after the import/);
+    expect(text).toMatch(/largest piece only/);
+    expect(text).not.toMatch(/gas/);
+    // Later than a second, or after a change of the user's: the usual causes.
+    expect(explainStop(blowUp({ cause: 'collapsed', time: 2 }), { integrator: 'implicit', dt: 1 / 60, changes: [], imported })).toMatch(/too little gas/);
+    expect(explainStop(blowUp({ cause: 'collapsed', time: 0.5 }), { integrator: 'implicit', dt: 1 / 60, changes: [{ id: 'gas.amount', value: 0.0001, time: 0.4 }], imported })).toMatch(/setting the gas amount/);
+    // One piece with even triangles: no thin triangles named, no pieces to leave out.
+    const one = explainStop(blowUp({ cause: 'non_finite', time: 0.2 }), { integrator: 'implicit', dt: 1 / 60, changes: [], imported: { name: 'duck.stl', pieces: 1, minAngle: 31, time: 0 } });
+    expect(one).toMatch(/the imported duck\.stl as it came \(one piece\)/);
+    expect(one).not.toMatch(/thin|largest piece/);
+  });
+
   it('rounds to three significant digits', () => {
     expect(sig3(12.3456)).toBe('12.3');
     expect(sig3(0.016666)).toBe('0.0167');

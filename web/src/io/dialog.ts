@@ -25,7 +25,7 @@ const CSS = `
 const esc = (s: string) => s.replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]!);
 const num = (x: number) => x.toPrecision(3);
 
-/** The dialog's HTML for `q` (a form with radio groups `up` and `pieces`, and a `remesh` checkbox). */
+/** The dialog's HTML for `q` (a form with radio groups `up` and `pieces`, and `inflate` and `remesh` checkboxes). */
 export function dialogHtml(q: ImportQuestion): string {
   const p = q.pieces, n = p.length;
   const vertices = p.reduce((s, x) => s + x.vertices, 0), faces = p.reduce((s, x) => s + x.faces, 0);
@@ -48,6 +48,12 @@ export function dialogHtml(q: ImportQuestion): string {
   const cloth = open
     ? `<p class="note">${open === n ? (n === 1 ? 'The surface is' : 'Every piece is') : `${open} of ${n} pieces are`} open (cloth-like): no gas inside ${open === 1 ? 'it' : 'them'}; it hangs and drapes on its springs.</p>`
     : '';
+  const closed = n - open;
+  const gas = closed
+    ? `<fieldset><legend>Gas</legend>
+        <label><input type="checkbox" name="inflate"> Inflate it <span class="why">— the gas swells ${closed === 1 ? 'it' : 'the closed pieces'} like a balloon; unchecked, ${closed === 1 ? 'it rests' : 'they rest'} at the shape in the file</span></label>
+      </fieldset>`
+    : '';
   const c = q.cost;
   const trial = c ? (c.frames > 0 ? `a trial frame took ${c.msPerFrame.toFixed(0)} ms` : `a trial frame did not finish in ${(c.msPerFrame / 1000).toFixed(1)} s`) : '';
   const mesh = c
@@ -59,7 +65,7 @@ export function dialogHtml(q: ImportQuestion): string {
   return `<form method="dialog">
     <h2>Import ${esc(q.name)}</h2>
     <div class="note">${esc(q.format)}: ${vertices} vertices, ${faces} faces, ${q.size.map(num).join(' × ')} in the file's units, kept as metres (the view is fitted to it).</div>
-    ${up}${pieces}${cloth}${mesh}
+    ${up}${pieces}${cloth}${gas}${mesh}
     <div class="buttons"><button type="button" value="cancel">Cancel</button><button type="submit" value="import">Import</button></div>
   </form>`;
 }
@@ -95,7 +101,7 @@ export function askImport(q: ImportQuestion): Promise<ImportAnswer | null> {
     form.addEventListener('submit', (ev) => {
       ev.preventDefault();
       const d = new FormData(form);
-      close({ up: d.get('up') === 'z' ? 'z' : 'y', pieces: d.get('pieces') === 'largest' ? 'largest' : 'each', remesh: d.get('remesh') === 'on' });
+      close({ up: d.get('up') === 'z' ? 'z' : 'y', pieces: d.get('pieces') === 'largest' ? 'largest' : 'each', remesh: d.get('remesh') === 'on', inflate: d.get('inflate') === 'on' });
     });
     root.querySelector('button[value=cancel]')!.addEventListener('click', () => close(null));
     (form.querySelector('button[type=submit]') as HTMLButtonElement).focus();

@@ -51,8 +51,13 @@ export interface MeshCost {
   remesh: boolean; why: string; reason: string;
 }
 
-/** `remesh`: remeshed at once after the import (its own undo step). */
-export interface ImportAnswer { up: Up; pieces: 'each' | 'largest'; remesh?: boolean }
+/**
+ * `remesh`: remeshed at once after the import (its own undo step). `inflate`: a closed piece's
+ * gas swells it as the modeler's preset gives it; else (the default) it rests at the file's own
+ * shape (`Importer.addPieces`: the freeze under load), so re-importing an export gives back the
+ * shape that was exported.
+ */
+export interface ImportAnswer { up: Up; pieces: 'each' | 'largest'; remesh?: boolean; inflate?: boolean }
 
 /** Whether anything is left to ask: the up axis is unsure, there are several pieces, or Remesh is recommended. */
 export function needsAnswer(q: ImportQuestion): boolean {

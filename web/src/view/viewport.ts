@@ -7,6 +7,11 @@ import { CameraRig } from './camera';
 import { SceneExtras } from './extras';
 import { lengthUnit } from '../tools/scale';
 
+/** The wind arrow's middle, as a share of the view's half height above its target (`placeWind`). */
+const WIND_ARROW_HIGH = 0.7;
+/** The wind arrow's length as a share of the view's half height: at calm, and at 20 m/s and above. */
+const WIND_ARROW_LENGTH = [0.2, 0.5] as const;
+
 export class Viewport {
   readonly renderer: THREE.WebGLRenderer;
   readonly scene = new THREE.Scene();
@@ -144,16 +149,33 @@ export class Viewport {
     this.groundPlane.position.y = height - 0.001;
   }
 
+  /** The wind (m/s) the arrow shows; placed in the view whenever it is drawn (`placeWind`). */
+  private wind = new THREE.Vector3();
   setWind(w: [number, number, number]): void {
     this.invalidate();
-    const v = new THREE.Vector3(...w);
-    const len = v.length();
-    this.windArrow.visible = len > 0;
-    if (len > 0) {
-      this.windArrow.setDirection(v.clone().normalize());
-      this.windArrow.setLength(0.4 + 0.1 * Math.min(len, 20), 0.25, 0.15);
-      this.windArrow.position.copy(this.rig.target).addScaledVector(v.clone().normalize(), -2).add(new THREE.Vector3(0, 1.2, 0));
-    }
+    this.wind.set(...w);
+    this.windArrow.visible = this.wind.lengthSq() > 0;
+  }
+
+  /**
+   * The wind arrow inside the view, whatever the camera: its middle on the vertical through the
+   * view's target, WIND_ARROW_HIGH of the way from the centre to the top edge (the view's half
+   * height at the target's distance, h = dist · tan(fov / 2)), its length a share of h growing
+   * with the speed (WIND_ARROW_LENGTH: 0.2 h at calm to 0.5 h at 20 m/s). Before, it stood 1.2 m
+   * above and 2 m upwind of the target in metres: above the top of the view for the mushroom.
+   */
+  private placeWind(): void {
+    const len = this.wind.length();
+    if (!(len > 0)) return;
+    const d = this.wind.clone().divideScalar(len);
+    const dist = this.camera.position.distanceTo(this.rig.target);
+    const h = dist * Math.tan(THREE.MathUtils.degToRad(this.camera.fov / 2));
+    const length = h * (WIND_ARROW_LENGTH[0] + (WIND_ARROW_LENGTH[1] - WIND_ARROW_LENGTH[0]) * Math.min(len, 20) / 20);
+    const up = new THREE.Vector3(0, 1, 0).applyQuaternion(this.camera.quaternion);
+    const middle = this.rig.target.clone().addScaledVector(up, WIND_ARROW_HIGH * h);
+    this.windArrow.setDirection(d);
+    this.windArrow.setLength(length, 0.25 * length, 0.15 * length);
+    this.windArrow.position.copy(middle).addScaledVector(d, -length / 2);
   }
 
   /** The view needs drawing again. */
@@ -167,6 +189,7 @@ export class Viewport {
     this.rig.update();
     if (!this.dirty) return;
     this.dirty = false;
+    if (this.windArrow.visible) this.placeWind();
     this.renderer.render(this.scene, this.camera);
   }
 

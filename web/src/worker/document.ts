@@ -22,7 +22,7 @@ import { isClosed, sizeFactor, type ImportAnswer, type ImportFrame, type ImportQ
 import { Importer } from './importer';
 import type { MessageKind, SceneInfo, Settings, Stats, Topology, UiState, Vec3 } from '../protocol';
 import { makeStroke, type Stroke, type StrokeBody, type StrokeStart } from './strokes';
-import { explainStop, type Change } from './explain';
+import { explainStop, type Change, type Imported } from './explain';
 import { sketchBalloon, sketchOpen, sketchWhy, type SketchCommand } from './sketch';
 import { Rewind } from './rewind';
 
@@ -232,6 +232,7 @@ export class Document {
   private newModel(): void {
     this.settings.opened = Math.max((this.settings.opened ?? 0) + 1, Date.now());
     this.changes = [];
+    this.imported = undefined;
     this.groundUnderBody = false;
     this.relaxedSteps = 0;
     if (this.pausedByError) { this.pausedByError = false; this.settings.playing = true; }
@@ -663,12 +664,14 @@ export class Document {
       this.stroke?.rebase(this.strokeBody());
       const integrator = String(this.world.params(0).integrator);
       this.hooks.message(explainStop(e, {
-        integrator, dt: this.settings.dt, changes: this.changes, groundUnderBody: this.groundUnderBody,
+        integrator, dt: this.settings.dt, changes: this.changes, groundUnderBody: this.groundUnderBody, imported: this.imported,
         stableDt: integrator === 'implicit' ? undefined : this.world.stableDt(integrator), rewoundTo,
       }), 'error');
       return false;
     }
   }
+  /** The model is an import (set by worker/importer.ts): what a stop soon after it names (explain.ts). */
+  imported: Imported | undefined = undefined;
   /** What the last `advance` did (null if it failed or was interrupted). */
   lastAdvance: Advance | null = null;
 

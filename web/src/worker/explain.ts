@@ -21,7 +21,17 @@ export interface StopContext {
   groundUnderBody?: boolean;
   /** The simulated time (s) the document went back to, the last state known good (worker/rewind.ts), if it did. */
   rewoundTo?: number;
+  /** The model is an import (worker/importer.ts): its file, pieces, smallest angle (°) and the simulated time (s) it was built at. */
+  imported?: Imported;
 }
+
+/** What the stop message says of an import. */
+export interface Imported { name: string; pieces: number; minAngle: number; time: number }
+
+/** A stop within this much simulated time after an import is put down to the import (s). */
+export const IMPORT_WINDOW = 1;
+/** Triangles with an angle below this (°) are named as thin in that message (meshing.md: slivers below 10°). */
+const THIN_DEG = 10;
 
 /** A change within this much simulated time before the failure is named as its likely cause (s). */
 export const CAUSE_WINDOW = 3;
@@ -58,7 +68,16 @@ export function explainStop(e: unknown, ctx: StopContext): string {
   const recent = ctx.changes.filter((c) => e.time === undefined || (e.time - c.time >= -1e-9 && e.time - c.time <= CAUSE_WINDOW));
   const last = recent[recent.length - 1];
   let why: string;
-  if (last?.id === 'ground' && last.value === true && ctx.groundUnderBody) {
+  const im = ctx.imported;
+  const afterImport = im && e.time !== undefined && e.time - im.time >= -1e-9 && e.time - im.time <= IMPORT_WINDOW && !recent.some((c) => c.time >= im.time - 1e-9);
+  if (im && afterImport) {
+    // The user did nothing since the import: not the gas (a new user's teddy stopped at
+    // t = 0.0123 s with "likely cause: too little gas") but the file as it came.
+    const thin = im.minAngle < THIN_DEG ? `, triangles as thin as ${sig3(im.minAngle)}°` : '';
+    const pieces = im.pieces > 1 ? `${im.pieces} pieces` : 'one piece';
+    const remedy = im.pieces > 1 ? 'Model › Remesh evens the triangles; importing it again with "the largest piece only" leaves the other pieces out.' : 'Model › Remesh evens the triangles.';
+    why = `Likely cause: the imported ${im.name} as it came (${pieces}${thin}), ${sig3(Math.max(0, e.time! - im.time))} s after the import. ${remedy}`;
+  } else if (last?.id === 'ground' && last.value === true && ctx.groundUnderBody) {
     why = 'Likely cause: the ground was switched on with part of the body below it. Undo (Ctrl+Z) it, or raise the model first.';
   } else if (ctx.integrator !== 'implicit' && ctx.stableDt !== undefined && ctx.dt > ctx.stableDt) {
     why = `Likely cause: the time step ${sig3(ctx.dt)} s is larger than the ${ctx.integrator} integrator's stable step (${sig3(ctx.stableDt)} s) here. Choose the implicit integrator, or a smaller dt.`;

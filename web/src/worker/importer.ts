@@ -100,15 +100,29 @@ export class Importer {
     frame.format = p.question.format;
     const size = sizeFactor(positions);
     const area = chosen.reduce((s, k) => s + p.areas[k], 0);
-    let gasless = 0;
+    let gasless = 0, residual = 0, load = 0;
     chosen.forEach((k, i) => {
       const b = w.addMesh(positions[i], p.triangles[k], 1, false);
-      if (w.applyPresetScaled(b, 'modeler', size).length > 0) gasless++;
+      const open = w.applyPresetScaled(b, 'modeler', size).length > 0;
+      if (open) gasless++;
       // The mass the preset gives the whole model (1 kg at the reference size, × size³),
       // shared by area: the same surface density on every piece.
       w.setParam(b, 'mass', (w.params(b).mass as number) * (chosen.length > 1 ? p.areas[k] / area : 1));
+      // A closed piece rests at the file's shape unless asked to inflate: the freeze under load
+      // (`World::freeze`, body/freeze.rs) makes the shape in the file the rest shape — rest
+      // lengths the current ones, the surroundings' pressure the gas's, the weight carried onto
+      // the ground — so it is an equilibrium at every resolution (before, the preset's gas
+      // swelled a re-imported export of the mushroom from 2.45 to 2.83 m³). Not keeping the
+      // tension: from a slack import that is the least-tension field, unstable on fine meshes
+      // (the 10,242-vertex sphere's first step: 26 m/s, 130 Newton iterations, hinges let go;
+      // docs/model.md, "Freeze keeping the tension", limits).
+      if (!open && !a.inflate) {
+        const r = w.freeze(b, true, false);
+        residual = Math.max(residual, r.residual);
+        load = Math.max(load, r.load);
+      }
     });
-    return { chosen, gasless, size, frame };
+    return { chosen, gasless, size, frame, residual, load };
   }
 
   /** Build the model from `p` as `a` says (one undo step); returns whether it was built. */
@@ -124,6 +138,9 @@ export class Importer {
     if (!ok || !made) return false;
     const { chosen, gasless, size } = made;
     this.made.set(this.doc.settings.opened ?? -1, { p, a });
+    // A stop soon after this names the file, not the gas (explain.ts).
+    const minAngle = Math.min(...chosen.map((_, b) => w.quality(b).min_angle_deg));
+    this.doc.imported = { name: p.name, pieces: chosen.length, minAngle, time: this.doc.stats().time };
     // The newest few (each holds its file's pieces).
     for (const k of this.made.keys()) if (this.made.size > 4) this.made.delete(k);
     // Three significant digits: the panel shows the number as it is (0.485, not 0.4849744…).
@@ -140,6 +157,7 @@ export class Importer {
       a.up === 'z' ? `turned from Z-up to Y-up${upWhy}` : upWhy ? `Y-up${upWhy}` : '',
       q.pieces.length > 1 ? (n > 1 ? `${n} pieces as ${n} bodies` : `the largest of ${q.pieces.length} pieces`) : '',
       gasless ? `${gasless === n ? '' : `${gasless} of ${n} bodies `}cloth-like (an open surface): no gas` : '',
+      gasless < n ? (a.inflate ? 'inflated by its gas' : 'at rest at the shape in the file (more Gas › amount n swells it)') : '',
       (w.params(0).dt as number) < FRAME_DT / 1.5 ? `steps of ${(w.params(0).dt as number).toPrecision(2)} s (finer for its small size)` : '',
     ];
     // Too few vertices for the brushes to shape: say what gives them more.
