@@ -225,7 +225,7 @@ describe('worker service', () => {
     // Resting on y = 0: Y-up for sure, imported without a question.
     await h.send({ type: 'import', name: 'cube.obj', data: bytes(CUBE) });
     expect(h.replies.some((r) => r.type === 'importQuestion')).toBe(false);
-    expect(h.messages().at(-1)).toBe('imported cube.obj: 8 vertices, 12 faces, 1.00 × 1.00 × 1.00 m as in the file; Y-up (it rests on the plane y = 0; Model › up axis changes it); only 8 vertices: Subdivide (U) or Model › Remesh gives the tools more to shape');
+    expect(h.messages().at(-1)).toBe('imported cube.obj: 8 vertices, 12 faces, 1.00 × 1.00 × 1.00 m as in the file; Y-up (it rests on the plane y = 0; Model › up axis changes it); at rest at the shape in the file (more Gas › amount n swells it); only 8 vertices: Subdivide (U) or Model › Remesh gives the tools more to shape');
     expect(h.tick()!.topology!.vertexCount).toBe(8);
     h.flushTimers();
     expect(h.saved.length).toBe(1);

@@ -52,7 +52,9 @@ export class Importer {
       // What it will cost to simulate (trial.ts): built as the default answer would build it.
       const quality = worst(report.pieces.map((_, k) => scratch.quality(first + k)));
       this.hooks.progress(`importing ${name}: a trial run`);
-      const run = trial(this.doc.emptyWorld, (w) => { this.addPieces(w, p, { up: q.guessedUp, pieces: 'each' }); });
+      // Inflated, not frozen at rest: a body at rest costs nothing to step, the trial measures
+      // what a moving one costs (the gas swelling it and its landing).
+      const run = trial(this.doc.emptyWorld, (w) => { this.addPieces(w, p, { up: q.guessedUp, pieces: 'each', inflate: true }); });
       if (run) q.cost = verdict(quality, run.frames, run.msPerFrame);
       this.pending = p;
       if (needsAnswer(p.question)) this.hooks.ask(p.question);
