@@ -151,6 +151,9 @@ export class Viewport {
 
   /** The wind (m/s) the arrow shows; placed in the view whenever it is drawn (`placeWind`). */
   private wind = new THREE.Vector3();
+  /** Scratch for `placeWind` (called on every draw while the wind blows: no allocation). */
+  private readonly windDir = new THREE.Vector3();
+  private readonly windUp = new THREE.Vector3();
   setWind(w: [number, number, number]): void {
     this.invalidate();
     this.wind.set(...w);
@@ -167,15 +170,15 @@ export class Viewport {
   private placeWind(): void {
     const len = this.wind.length();
     if (!(len > 0)) return;
-    const d = this.wind.clone().divideScalar(len);
+    const d = this.windDir.copy(this.wind).divideScalar(len);
     const dist = this.camera.position.distanceTo(this.rig.target);
     const h = dist * Math.tan(THREE.MathUtils.degToRad(this.camera.fov / 2));
     const length = h * (WIND_ARROW_LENGTH[0] + (WIND_ARROW_LENGTH[1] - WIND_ARROW_LENGTH[0]) * Math.min(len, 20) / 20);
-    const up = new THREE.Vector3(0, 1, 0).applyQuaternion(this.camera.quaternion);
-    const middle = this.rig.target.clone().addScaledVector(up, WIND_ARROW_HIGH * h);
+    // The camera's up (its local y): the arrow's middle WIND_ARROW_HIGH h above the target, the tail half its length upwind.
+    const up = this.windUp.set(0, 1, 0).applyQuaternion(this.camera.quaternion);
     this.windArrow.setDirection(d);
     this.windArrow.setLength(length, 0.25 * length, 0.15 * length);
-    this.windArrow.position.copy(middle).addScaledVector(d, -length / 2);
+    this.windArrow.position.copy(this.rig.target).addScaledVector(up, WIND_ARROW_HIGH * h).addScaledVector(d, -length / 2);
   }
 
   /** The view needs drawing again. */

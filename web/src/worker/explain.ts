@@ -69,14 +69,14 @@ export function explainStop(e: unknown, ctx: StopContext): string {
   const last = recent[recent.length - 1];
   let why: string;
   const im = ctx.imported;
-  const afterImport = im && e.time !== undefined && e.time - im.time >= -1e-9 && e.time - im.time <= IMPORT_WINDOW && !recent.some((c) => c.time >= im.time - 1e-9);
-  if (im && afterImport) {
+  const since = im && e.time !== undefined ? e.time - im.time : NaN;
+  if (im && since >= -1e-9 && since <= IMPORT_WINDOW && !recent.some((c) => c.time >= im.time - 1e-9)) {
     // The user did nothing since the import: not the gas (a new user's teddy stopped at
     // t = 0.0123 s with "likely cause: too little gas") but the file as it came.
     const thin = im.minAngle < THIN_DEG ? `, triangles as thin as ${sig3(im.minAngle)}°` : '';
     const pieces = im.pieces > 1 ? `${im.pieces} pieces` : 'one piece';
     const remedy = im.pieces > 1 ? 'Model › Remesh evens the triangles; importing it again with "the largest piece only" leaves the other pieces out.' : 'Model › Remesh evens the triangles.';
-    why = `Likely cause: the imported ${im.name} as it came (${pieces}${thin}), ${sig3(Math.max(0, e.time! - im.time))} s after the import. ${remedy}`;
+    why = `Likely cause: the imported ${im.name} as it came (${pieces}${thin}), ${sig3(Math.max(0, since))} s after the import. ${remedy}`;
   } else if (last?.id === 'ground' && last.value === true && ctx.groundUnderBody) {
     why = 'Likely cause: the ground was switched on with part of the body below it. Undo (Ctrl+Z) it, or raise the model first.';
   } else if (ctx.integrator !== 'implicit' && ctx.stableDt !== undefined && ctx.dt > ctx.stableDt) {

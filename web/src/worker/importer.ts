@@ -102,7 +102,7 @@ export class Importer {
     frame.format = p.question.format;
     const size = sizeFactor(positions);
     const area = chosen.reduce((s, k) => s + p.areas[k], 0);
-    let gasless = 0, residual = 0, load = 0;
+    let gasless = 0;
     chosen.forEach((k, i) => {
       const b = w.addMesh(positions[i], p.triangles[k], 1, false);
       const open = w.applyPresetScaled(b, 'modeler', size).length > 0;
@@ -119,12 +119,10 @@ export class Importer {
       // (the 10,242-vertex sphere's first step: 26 m/s, 130 Newton iterations, hinges let go;
       // docs/model.md, "Freeze keeping the tension", limits).
       if (!open && !a.inflate) {
-        const r = w.freeze(b, true, false);
-        residual = Math.max(residual, r.residual);
-        load = Math.max(load, r.load);
+        w.freeze(b, true, false);
       }
     });
-    return { chosen, gasless, size, frame, residual, load };
+    return { chosen, gasless, size, frame };
   }
 
   /** Build the model from `p` as `a` says (one undo step); returns whether it was built. */
@@ -141,8 +139,8 @@ export class Importer {
     const { chosen, gasless, size } = made;
     this.made.set(this.doc.settings.opened ?? -1, { p, a });
     // A stop soon after this names the file, not the gas (explain.ts).
-    const minAngle = Math.min(...chosen.map((_, b) => w.quality(b).min_angle_deg));
-    this.doc.imported = { name: p.name, pieces: chosen.length, minAngle, time: this.doc.stats().time };
+    const qualities = chosen.map((_, b) => w.quality(b));
+    this.doc.imported = { name: p.name, pieces: chosen.length, minAngle: Math.min(...qualities.map((q) => q.min_angle_deg)), time: this.doc.stats().time };
     // The newest few (each holds its file's pieces).
     for (const k of this.made.keys()) if (this.made.size > 4) this.made.delete(k);
     // Three significant digits: the panel shows the number as it is (0.485, not 0.4849744…).
@@ -167,7 +165,7 @@ export class Importer {
     // Long thin triangles make poor springs: say so, and what evens them.
     // (Not when the answer remeshes it: that says what it did.)
     const cost = p.question.cost;
-    const quality = w.quality(0);
+    const quality = qualities[0];
     // The trial's reason, or (no trial: interrupted) the core's poor-triangles verdict.
     const uneven = cost?.why || (quality.poor ? `uneven triangles (${Math.round(100 * quality.small_angle_share)} % of angles below 25°)` : '');
     if (!a.remesh && uneven) parts.push(`${uneven}: Model › Remesh evens them`);
