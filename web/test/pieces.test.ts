@@ -6,7 +6,6 @@ import { beforeAll, describe, expect, it } from 'vitest';
 import { loadEngine } from './setup';
 import { Document } from '../src/worker/document';
 import { guessUp, headerText, type ImportQuestion } from '../src/io/import';
-import { HEALTHY, REWIND_EVERY } from '../src/worker/rewind';
 
 beforeAll(loadEngine);
 
@@ -105,6 +104,10 @@ describe('a model of several pieces', () => {
     expect(again.settings.opened).toBe(doc.settings.opened);
   });
 });
+
+// The core's rewind interval (s) and the volume share a sound state keeps
+// (crates/softsculpt/src/world/rewind.rs: REWIND_EVERY, HEALTHY).
+const REWIND_EVERY = 0.25, HEALTHY = 0.5;
 
 describe('a collapse', () => {
   it('goes back to the last state known good, at least one rewind interval before the failure, never before the last change', () => {

@@ -42,8 +42,8 @@
 //! | `ss_animation_glb(times, n, counts, tracks, tris, frames)` | result: the GLB of recorded frames (`softsculpt::mesh::animation`, as `softsculpt run --frames` writes) |
 //! | `ss_clear(w)` | drop bodies, events and loads, forget the open scene; keep settings |
 //! | `ss_step(w, n)` | `World::step_n`: n steps or none (the whole world rolls back; `step` error with `time`) |
-//! | `ss_advance(w, frame_dt, seconds, min_accuracy, splits, relax)` | `World::advance`: a frame under a real-time budget of `seconds` (≤ 0: converge); result `{steps, splits, simulated, residual, early, wall}` |
-//! | `ss_set_deadline(w, seconds, accept)` | the anytime step's deadline `seconds` from now for the steps that follow (< 0 clears; `WorldSettings::deadline`); the clock is the import `env.ss_now()` (ms, `performance.now`) |
+//! | `ss_advance(w, frame_dt, seconds, min_accuracy, splits, relax, rewind)` | `World::advance`: a frame under a real-time budget of `seconds` (≤ 0: converge), a failed frame rewound to the last sound state if `rewind`; result `{steps, splits, simulated, residual, early, wall}` |
+//! | `ss_forget_rewind(w)` | `World::forget_rewind`: the page changed the model |
 //! | `ss_stable_dt(w, name, len) -> f64` | `World::stable_dt`: the explicit integrator's largest stable step (s) for every body; 0 for implicit; −1 error |
 //! | `ss_body_accuracy(w, b) -> f64` | the relative residual body b's last implicit step was accepted at when its deadline stopped it (0: converged; −1: error) |
 //! | `ss_body_relaxed(w, b)` | what of the hinges body b's last step let go of: 0 nothing, 1 crushed faces', 2 all (`Relaxed`) |

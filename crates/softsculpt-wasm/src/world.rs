@@ -10,7 +10,7 @@ use softsculpt::mesh::{self, builtin, LoadedMesh, ObjData, TriMesh};
 use softsculpt::params::{self, ParamError, Scope, Value};
 use softsculpt::snapshot::SnapshotError;
 use softsculpt::{
-    world::{Budget, Deadline, Interrupt}, Material, MeshError, SimError, SoftBody, StepError, Target, World, WorldSettings,
+    world::{Budget, Interrupt}, Material, MeshError, SimError, SoftBody, StepError, Target, World, WorldSettings,
 };
 use std::cell::RefCell;
 
@@ -170,6 +170,9 @@ fn step_fail(e: StepError) -> Fail {
     }
     if let Some(t) = e.rolled_back_to {
         f = f.with("rolled_back_to", t);
+    }
+    if let Some(t) = e.rewound_to {
+        f = f.with("rewound_to", t);
     }
     f
 }
@@ -365,12 +368,14 @@ fn interrupted() -> bool {
 /// `World::advance`: `frame_dt` simulated seconds; under a real-time budget of `seconds` of
 /// wall-clock time (> 0; ≤ 0: converge every step) accepting a step past its deadline at a
 /// relative residual of `min_accuracy` (≤ 0: the core's `MIN_ACCURACY`); a refused implicit
-/// step halved up to `splits` times; `relax` 1: the relaxed retry. Result
+/// step halved up to `splits` times; `relax` 1: the relaxed retry; `rewind` 1: a failed frame
+/// goes back to the last sound state (`world/rewind.rs`; the error's `rewound_to`, s). Result
 /// `{"steps", "splits", "simulated", "residual", "early", "wall"}`; on failure the error is a
-/// step error as `ss_step`'s (the world as after the last step taken); under a real-time
-/// budget a step is also abandoned when the page has a command waiting (cause `interrupted`).
+/// step error as `ss_step`'s (the world as after the last step taken, or rewound); under a
+/// real-time budget a step is also abandoned when the page has a command waiting (cause
+/// `interrupted`; never rewound).
 #[no_mangle]
-pub extern "C" fn ss_advance(w: u32, frame_dt: f64, seconds: f64, min_accuracy: f64, splits: u32, relax: u32) -> i32 {
+pub extern "C" fn ss_advance(w: u32, frame_dt: f64, seconds: f64, min_accuracy: f64, splits: u32, relax: u32, rewind: u32) -> i32 {
     status(|| {
         with_world(w, |h| {
             if !(frame_dt > 0.0 && frame_dt.is_finite()) {
@@ -382,9 +387,9 @@ pub extern "C" fn ss_advance(w: u32, frame_dt: f64, seconds: f64, min_accuracy: 
                     r.min_accuracy = min_accuracy;
                 }
             }
-            (budget.splits, budget.relax) = (splits, relax != 0);
+            (budget.splits, budget.relax, budget.rewind) = (splits, relax != 0, rewind != 0);
             // Under a real-time budget a waiting command abandons the step in progress (the
-            // world as before it), as under `ss_set_deadline`.
+            // world as before it).
             let saved = h.world.settings.interrupt;
             if budget.real_time.is_some() {
                 h.world.settings.interrupt = Some(Interrupt(interrupted));
@@ -400,6 +405,15 @@ pub extern "C" fn ss_advance(w: u32, frame_dt: f64, seconds: f64, min_accuracy: 
             Ok(())
         })
     })
+}
+
+/// `World::forget_rewind`: the page changed the model; the rewind points before it go.
+#[no_mangle]
+pub extern "C" fn ss_forget_rewind(w: u32) -> i32 {
+    status(|| with_world(w, |h| {
+        h.world.forget_rewind();
+        Ok(())
+    }))
 }
 
 /// `World::stable_dt`: the largest stable step (s) of the explicit integrator `name` for every
@@ -420,26 +434,6 @@ pub unsafe extern "C" fn ss_stable_dt(w: u32, name: *const u8, len: usize) -> f6
             -1.0
         }
     }
-}
-
-/// The anytime step's deadline for the steps that follow (`WorldSettings::deadline`): `seconds`
-/// of wall-clock time from now, a step past it accepted at a relative residual of `accept`
-/// (≤ 0: the core's `MIN_ACCURACY`); `seconds` < 0 clears it (every step to the tolerance).
-/// While it is set, a step is also abandoned, the world as before it (error cause
-/// `interrupted`), when the page has a command waiting (`env.ss_interrupted`).
-#[no_mangle]
-pub extern "C" fn ss_set_deadline(w: u32, seconds: f64, accept: f64) -> i32 {
-    status(|| {
-        with_world(w, |h| {
-            h.world.settings.interrupt = (seconds >= 0.0).then_some(Interrupt(interrupted));
-            h.world.settings.deadline = (seconds >= 0.0).then(|| Deadline {
-                now,
-                at: now() + seconds,
-                accept: if accept > 0.0 { accept } else { softsculpt::world::MIN_ACCURACY },
-            });
-            Ok(())
-        })
-    })
 }
 
 // ----- parameters -----------------------------------------------------------------------------

@@ -101,6 +101,8 @@ fn main() {
                 gap = (0..3).map(|d| (x[3 * t + d] - anchor[d]).powi(2)).sum::<f64>().sqrt();
             }
         }
+        let ls = w.bodies[0].line_stats();
+        println!("{label:9} line searches {}: G changed below its rounding {}, halved for the Armijo test {}, not passed {}", ls.searches, ls.unresolved, ls.backtracked, ls.rose);
         for ph in &phases {
             let mean = ph.ms.iter().sum::<f64>() / ph.ms.len() as f64;
             let worst = ph.ms.iter().cloned().fold(0.0, f64::max);

@@ -268,3 +268,61 @@ fn a_refused_step_is_split_and_its_pieces_cover_the_frame() {
     assert!(was_refused > 0 && frames_split > 0, "the cap refused {was_refused} whole steps; {frames_split} frames were split");
     assert_eq!(a.settings.newton_iterations, NEWTON_CAP);
 }
+
+/// The modeler's mushroom on the ground, settled for 1 s, then made to cave in: soft springs,
+/// no bending, almost no gas and a small restitution (so vertices reaching the ground go to the
+/// after-step projection and the top goes through the bottom: the volume falls 2.46 → 0.12 m³
+/// in the last 0.3 s before the failure, ~0.7 s after the change). The change is the caller's:
+/// `forget_rewind`. Returns the world and the time of the change.
+fn caving_mushroom() -> (World, f64) {
+    let mut mesh = softsculpt::mesh::builtin::builtin("mushroom").unwrap();
+    let lo = mesh.positions.chunks_exact(3).map(|p| p[1]).fold(f64::MAX, f64::min);
+    mesh.positions.chunks_exact_mut(3).for_each(|p| p[1] -= lo);
+    let mut w = World::single(SoftBody::new(&mesh, 1.0, Material::default()).unwrap(), WorldSettings { ground: Some(Ground::at(0.0)), ..WorldSettings::default() });
+    w.apply_preset(0, "modeler").unwrap();
+    let budget = Budget { rewind: true, splits: 3, relax: true, ..Budget::converge() };
+    for _ in 0..60 {
+        w.advance(FRAME, &budget).unwrap();
+    }
+    use softsculpt::params::Value::Number;
+    for (id, v) in [("stiffness", 1.0), ("bending", 0.0), ("rigidity", 0.0), ("gas.amount", 1e-6), ("ground.restitution", 0.01)] {
+        w.set_param(0, id, Number(v)).unwrap();
+    }
+    w.forget_rewind();
+    let t = w.time();
+    (w, t)
+}
+
+/// A frame that fails goes back to the last sound state: a rewind point at least one interval
+/// (`REWIND_EVERY`) before the failure, whose volume is at least `HEALTHY` of the volume at the
+/// change, never before the change; without `rewind` the world is where the rollback left it
+/// (the failing step's start, already caved in).
+#[test]
+fn a_failed_frame_goes_back_to_the_last_sound_state_never_before_the_last_change() {
+    use softsculpt::world::{HEALTHY, REWIND_EVERY};
+    for rewind in [true, false] {
+        let (mut w, changed) = caving_mushroom();
+        let v0 = w.bodies[0].volume();
+        let budget = Budget { rewind, splits: 3, relax: true, ..Budget::converge() };
+        let e = (0..600).find_map(|_| w.advance(FRAME, &budget).err()).expect("the mushroom caves in and a step fails");
+        let back = w.time();
+        if !rewind {
+            assert_eq!(e.rewound_to, None);
+            assert!(w.bodies[0].volume() < HEALTHY * v0, "the rollback leaves it caved in: {} of {v0} m³", w.bodies[0].volume());
+            continue;
+        }
+        assert_eq!(e.rewound_to, Some(back), "{e}");
+        assert!(e.to_string().contains("the last sound state"), "{e}");
+        // The failing frame starts within one frame of the failure; the point is at least an
+        // interval before it (the newest point's successor is the failure, never chosen).
+        assert!(e.time - back >= REWIND_EVERY - FRAME, "failed at {} s, back to {back} s", e.time);
+        assert!(back >= changed - 1e-12, "back to {back} s, before the change at {changed} s");
+        assert!(w.bodies[0].volume() > HEALTHY * v0, "{} of {v0} m³", w.bodies[0].volume());
+        assert!(w.bodies[0].positions().iter().all(|x| x.is_finite()));
+        // And it goes on from there (the next failure, if any, rewinds again: never a panic).
+        for _ in 0..5 {
+            let _ = w.advance(FRAME, &budget);
+        }
+        assert!(w.time() >= back);
+    }
+}

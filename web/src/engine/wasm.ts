@@ -33,8 +33,8 @@ export interface RawEngine {
   ss_body_relaxed(w: number, b: number): number;
   ss_body_accuracy(w: number, b: number): number;
   ss_stable_dt(w: number, name: number, len: number): number;
-  ss_advance(w: number, frameDt: number, seconds: number, minAccuracy: number, splits: number, relax: number): number;
-  ss_set_deadline(w: number, seconds: number, accept: number): number;
+  ss_advance(w: number, frameDt: number, seconds: number, minAccuracy: number, splits: number, relax: number, rewind: number): number;
+  ss_forget_rewind(w: number): number;
   ss_param_table(): number;
   ss_material_presets(): number;
   ss_params(w: number, b: number): number;

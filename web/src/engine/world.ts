@@ -302,12 +302,6 @@ export class World {
 
   /** `n` steps or none: on a blow-up the whole world is rolled back and this throws (kind 'step'). */
   step(n = 1): void { this.call((w) => raw().ss_step(w, n)); }
-  /**
-   * The anytime step's deadline for the steps that follow: `seconds` of wall-clock time from
-   * now, a step past it accepted at a relative residual of `accept` (0: the engine's default);
-   * `seconds` < 0 clears it (every step to the tolerance).
-   */
-  setDeadline(seconds: number, accept = 0): void { this.call((w) => raw().ss_set_deadline(w, seconds, accept)); }
   /** The largest stable step (s) of an explicit integrator for every body (the core's `World::stable_dt`); 0 for implicit. */
   stableDt(integrator: string): number {
     const dt = withBytes(encode(integrator), (p, n) => raw().ss_stable_dt(this.handle, p, n));
@@ -323,13 +317,17 @@ export class World {
   /**
    * `frameDt` simulated seconds (`World::advance`): under a real-time budget of `seconds`
    * (0: converge every step), refused implicit steps halved up to `splits` times, `relax`: the
-   * relaxed retry. Throws like `step` (the world as after the last step taken); under a
-   * real-time budget a waiting command abandons the step in progress (cause `interrupted`).
+   * relaxed retry, `rewind`: a failed frame goes back to the last sound state (the core's
+   * `world/rewind.rs`; the error's field `rewound_to`, s). Throws like `step` (the world as
+   * after the last step taken, or rewound); under a real-time budget a waiting command
+   * abandons the step in progress (cause `interrupted`).
    */
-  advance(frameDt: number, seconds = 0, minAccuracy = 0, splits = 0, relax = false): Advance {
-    this.call((w) => raw().ss_advance(w, frameDt, seconds, minAccuracy, splits, relax ? 1 : 0));
+  advance(frameDt: number, seconds = 0, minAccuracy = 0, splits = 0, relax = false, rewind = false): Advance {
+    this.call((w) => raw().ss_advance(w, frameDt, seconds, minAccuracy, splits, relax ? 1 : 0, rewind ? 1 : 0));
     return JSON.parse(resultText()) as Advance;
   }
+  /** The model changed: the rewind points before now are not its past (`World::forget_rewind`). */
+  forgetRewind(): void { this.call((w) => raw().ss_forget_rewind(w)); }
   /** Refresh every body's render positions, pins and stats. */
   sync(): void { this.call((w) => raw().ss_sync(w)); }
 

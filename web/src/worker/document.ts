@@ -24,7 +24,6 @@ import type { MessageKind, SceneInfo, Settings, Stats, Topology, UiState, Vec3 }
 import { makeStroke, type Stroke, type StrokeBody, type StrokeStart } from './strokes';
 import { explainStop, type Change, type Imported } from './explain';
 import { sketchBalloon, sketchOpen, sketchWhy, type SketchCommand } from './sketch';
-import { Rewind } from './rewind';
 
 export const HISTORY_STEPS = 200;
 export const HISTORY_BYTES = 512 * 1024 * 1024;
@@ -101,8 +100,6 @@ export class Document {
   private changes: Change[] = [];
   /** Part of the body was below the ground when it was last switched on. */
   private groundUnderBody = false;
-  /** Rewind points since the user's last change: where a failed step goes back to (worker/rewind.ts). */
-  readonly rewind = new Rewind();
 
   readonly importer: Importer;
 
@@ -333,7 +330,7 @@ export class Document {
   private touched(): void {
     this.topologyVersion++;
     this.bodyVersion++;
-    this.rewind.clear();
+    this.world.forgetRewind();
   }
 
   /** Change a parameter by its table id (undoable); a refused value is reported and leaves the old one. */
@@ -419,7 +416,6 @@ export class Document {
   setDt(dt: number): void {
     try {
       this.world.setParam(0, 'dt', dt);
-      if (dt !== this.settings.dt) this.rewind.clear();
       this.settings.dt = dt;
     } catch (e) {
       this.hooks.message(errorText(e), 'error');
@@ -578,7 +574,7 @@ export class Document {
     const b = s.body ?? 0;
     if (!Number.isInteger(b) || b < 0 || b >= this.world.bodyCount) { this.hooks.message(`there is no body ${b} to shape`, 'warn'); return; }
     this.strokeOn = b;
-    this.rewind.clear();
+    this.world.forgetRewind();
     this.world.mark();
     this.stroke = makeStroke(s);
     // A brush keeps what it painted and the state of those vertices; a drag moves everything.
@@ -629,18 +625,17 @@ export class Document {
    * every step to the tolerance) each implicit step accepted at its deadline once within the
    * minimum accuracy, explicit steps only while the budget lasts (`lastAdvance.simulated` says
    * how far it got). A grab's anchors move towards the cursor over the steps' simulated time
-   * (`anchorpath.ts`). On a blow-up the engine rolls the world back to the failing step's start;
-   * the document goes back further, to the last state known good (`rewind.ts`), pauses and says
-   * so. False then, or when a waiting command interrupted a step (the world as before that step).
+   * (`anchorpath.ts`). On a blow-up the engine goes back to the last state known good since the
+   * user's last change (the core's `world/rewind.rs`); the document pauses and says so. False
+   * then, or when a waiting command interrupted a step (the world as before that step).
    */
   advance(dt: number, n: number, seconds = 0): boolean {
     this.lastAdvance = null;
     try {
       if (dt !== this.settings.dt) this.setDt(dt);
-      if (this.rewind.size === 0) this.offerRewind();
       const anchors = this.stroke?.path(this.strokeBody()) ?? null;
       anchors?.aim(dt * n);
-      const a = this.world.advance(dt * n, seconds, 0, SPLITS, true);
+      const a = this.world.advance(dt * n, seconds, 0, SPLITS, true, true);
       this.lastAdvance = a;
       anchors?.took(a.simulated);
       anchors?.stepped(this.newtonIterations(), a.splits > 0);
@@ -649,8 +644,6 @@ export class Document {
       if (a.early > 0) this.accuracy = Math.max(this.accuracy, a.residual);
       this.noteRelaxed();
       if (a.splits > 0) this.splitFrame(a.splits);
-      this.sinceRewind += a.simulated;
-      if (this.sinceRewind >= this.rewind.every - 1e-9) this.offerRewind();
       return true;
     } catch (e) {
       // A command is waiting (protocol.ts `interrupts`): the engine abandoned the step, the world
@@ -658,9 +651,11 @@ export class Document {
       if ((e as { fields?: Record<string, unknown> } | null)?.fields?.cause === 'interrupted') return false;
       this.settings.playing = false;
       this.pausedByError = true;
-      // The engine put the world back to the start of the failing step, which may be collapsing
-      // already: back further, to the last state known good (worker/rewind.ts).
-      const rewoundTo = this.rewindToGood();
+      // The engine went back to the last state known good (its rewind points), or where it had
+      // none to the start of the failing step.
+      const back = (e as { fields?: Record<string, unknown> } | null)?.fields?.rewound_to;
+      const rewoundTo = typeof back === 'number' ? back : undefined;
+      if (rewoundTo !== undefined) this.bodyVersion++;
       this.stroke?.rebase(this.strokeBody());
       const integrator = String(this.world.params(0).integrator);
       this.hooks.message(explainStop(e, {
@@ -674,33 +669,6 @@ export class Document {
   imported: Imported | undefined = undefined;
   /** What the last `advance` did (null if it failed or was interrupted). */
   lastAdvance: Advance | null = null;
-
-  /** Simulated seconds since the last rewind point was offered. */
-  private sinceRewind = 0;
-  /** A rewind point of the world as it is now, if one is due. */
-  private offerRewind(): void {
-    const w = this.world;
-    this.sinceRewind = 0;
-    this.synced();
-    this.rewind.offer(w.body(0).stats.time,
-      () => this.everyBody.map((b) => w.body(b).stats.volume),
-      () => this.everyBody.map((b) => (w.params(b)['gas.amount'] as number) > 0),
-      () => w.snapshot());
-  }
-
-  /** Restore the last rewind point known good; its simulated time, or undefined if there is none (the engine's rollback stands). */
-  private rewindToGood(): number | undefined {
-    const p = this.rewind.takeGood();
-    if (!p) return undefined;
-    try {
-      this.world.restore(p.snapshot);
-    } catch {
-      this.rewind.clear();
-      return undefined;
-    }
-    this.bodyVersion++;
-    return p.time;
-  }
 
   /** Whether body 0 steps with the implicit integrator. */
   get implicit(): boolean { return this.world.params(0).integrator === 'implicit'; }

@@ -19,7 +19,7 @@ export interface StopContext {
   changes: Change[];
   /** Whether part of the body was below the ground when the ground was last switched on. */
   groundUnderBody?: boolean;
-  /** The simulated time (s) the document went back to, the last state known good (worker/rewind.ts), if it did. */
+  /** The simulated time (s) the document went back to, the last state known good (the core's world/rewind.rs), if it did. */
   rewoundTo?: number;
   /** The model is an import (worker/importer.ts): its file, pieces, smallest angle (°) and the simulated time (s) it was built at. */
   imported?: Imported;

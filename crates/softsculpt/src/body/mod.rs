@@ -44,7 +44,7 @@ pub use gas::GasReference;
 pub use plastic::PlasticState;
 pub use material::{moles, Material, VolumeMode, DEFAULT_TEMPERATURE, GAS_CONSTANT};
 pub use springs::Springs;
-pub use implicit::{Relaxed, SolverIterations};
+pub use implicit::{LineStats, Relaxed, SolverIterations};
 pub use stats::Stats;
 pub use targets::Target;
 
@@ -328,6 +328,11 @@ impl SoftBody {
     /// Newton and linear iterations of the body's last step (zeros for explicit integrators).
     pub fn solver_iterations(&self) -> SolverIterations {
         self.work.iterations
+    }
+    /// How the implicit line searches of this body ended since its solver was built (zeros for
+    /// explicit integrators): `body::implicit::LineStats`.
+    pub fn line_stats(&self) -> LineStats {
+        self.work.implicit.as_ref().map_or_else(LineStats::default, |i| i.lines)
     }
     /// Largest vertex speed (m/s).
     pub fn max_speed(&self) -> f64 {

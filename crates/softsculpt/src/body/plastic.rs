@@ -68,6 +68,13 @@ pub struct PlasticState {
     dissipation: f64,
 }
 
+impl PlasticState {
+    /// The rest lengths it holds (the measure of its size).
+    pub(crate) fn len(&self) -> usize {
+        self.rest.len() + self.bending_rest.len()
+    }
+}
+
 /// Flow the rest lengths of `s` (stiffness `k`, N/m) by the fraction `a` of their excess strain
 /// over `y`, at positions `x`. Returns (elastic energy released in J, Σ k l δL in J, the
 /// stretched springs' virial Σ k (l − L) l before the flow in J).
@@ -145,6 +152,7 @@ impl SoftBody {
     }
 
     pub(crate) fn set_plastic_state(&mut self, p: &PlasticState) {
+        debug_assert!(p.rest.len() == self.model.springs.rest.len() && p.bending_rest.len() == self.model.bending.rest.len());
         self.model.springs.rest.clone_from(&p.rest);
         self.model.bending.rest.clone_from(&p.bending_rest);
         self.model.gas = p.gas;

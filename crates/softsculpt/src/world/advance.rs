@@ -55,18 +55,22 @@ pub struct Budget {
     /// A step no solve of the model finishes is retried with hinges let go
     /// (`WorldSettings::relax`) before it is refused or split.
     pub relax: bool,
+    /// A failed frame goes back to the last sound state, not only to the failing step's start
+    /// (`world/rewind.rs`; the modeler): the world keeps rewind points as it advances.
+    pub rewind: bool,
 }
 
 impl Budget {
     /// Every step to the tolerance, a refused step an error (the CLI, scenes).
     pub fn converge() -> Self {
-        Budget { real_time: None, splits: 0, relax: false }
+        Budget { real_time: None, splits: 0, relax: false, rewind: false }
     }
 
     /// `seconds` of wall-clock time per frame on the clock `now`, [`MIN_ACCURACY`], refused
-    /// steps split [`SPLITS`] times and relaxed first (the modeler).
+    /// steps split [`SPLITS`] times and relaxed first (the modeler, which also sets
+    /// `rewind`).
     pub fn real_time(seconds: f64, now: fn() -> f64) -> Self {
-        Budget { real_time: Some(RealTime { seconds, min_accuracy: MIN_ACCURACY, now }), splits: SPLITS, relax: true }
+        Budget { real_time: Some(RealTime { seconds, min_accuracy: MIN_ACCURACY, now }), splits: SPLITS, relax: true, rewind: false }
     }
 }
 
@@ -102,8 +106,28 @@ impl World {
     /// Advance by `frame_dt` simulated seconds (> 0) in steps of the world's dt (the nearest
     /// whole number of them, at least one) under `budget`. Each step is all or nothing
     /// ([`World::step_n`]); on an error the world is as after the last step taken, and the
-    /// caller's settings (dt, deadline, relax, give-up) are as they were.
+    /// caller's settings (dt, deadline, relax, give-up) are as they were — or, under a budget
+    /// that rewinds, as at the last sound state (`world/rewind.rs`, [`StepError::rewound_to`]).
+    /// A step abandoned for a waiting command ([`SimError::Interrupted`]) is never rewound.
     pub fn advance(&mut self, frame_dt: f64, budget: &Budget) -> Result<Advance, StepError> {
+        if budget.rewind {
+            self.rewind_before(budget);
+        }
+        let out = self.advance_frame(frame_dt, budget);
+        match out {
+            Ok(a) if budget.rewind => {
+                self.rewind_after(budget, a.simulated);
+                Ok(a)
+            }
+            Err(mut e) if budget.rewind && !matches!(e.error, SimError::Interrupted { .. }) => {
+                e.rewound_to = self.rewind_to_good();
+                Err(e)
+            }
+            out => out,
+        }
+    }
+
+    fn advance_frame(&mut self, frame_dt: f64, budget: &Budget) -> Result<Advance, StepError> {
         let dt = self.settings.dt;
         let n = ((frame_dt / dt).round() as u64).max(1);
         let saved = (self.settings.deadline, self.settings.relax, self.settings.give_up);

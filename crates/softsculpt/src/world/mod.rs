@@ -36,10 +36,12 @@ mod events;
 mod freeze;
 pub mod ground;
 mod params;
+mod rewind;
 mod rollback;
 mod selfpairs;
 
 pub use advance::{Advance, Budget, RealTime, GIVE_UP_MOST, GIVE_UP_STALLED, MIN_ACCURACY, SPLITS};
+pub use rewind::{HEALTHY, REWIND_BYTES, REWIND_EVERY, REWIND_KEEP, REWIND_OVERHEAD};
 #[cfg(not(target_arch = "wasm32"))]
 pub use advance::wall_clock;
 pub use clock::Clock;
@@ -73,6 +75,8 @@ pub struct World {
     pub(crate) cx: contacts::Scratch,
     /// Positions and velocities at the start of a `step_n` call. Scratch.
     pub(crate) backup: rollback::Backup,
+    /// The last sound states a failed frame goes back to ([`Budget::rewind`], `rewind.rs`).
+    pub(crate) rewind: rewind::Rewind,
     /// Threads the bodies' passes run on (results do not depend on their number beyond rounding:
     /// `par.rs`).
     pub(crate) threads: crate::par::Threads,
@@ -88,13 +92,18 @@ pub struct StepError {
     pub error: SimError,
     /// Set by [`World::step_n`]: the time (s) the world was rolled back to.
     pub rolled_back_to: Option<f64>,
+    /// Set by [`World::advance`] under a budget that rewinds ([`Budget::rewind`]): the time (s)
+    /// of the last sound state the world went back to, further than the rollback
+    /// (`world/rewind.rs`); None where it had none and the rollback stands.
+    pub rewound_to: Option<f64>,
 }
 
 impl std::fmt::Display for StepError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self.rolled_back_to {
-            None => self.error.fmt(f),
-            Some(t0) => write!(f, "at t = {} s: {} — rolled back to t = {} s", sig3(self.time), self.error, sig3(t0)),
+        match (self.rewound_to, self.rolled_back_to) {
+            (Some(t0), _) => write!(f, "at t = {} s: {} — put back to t = {} s, the last sound state", sig3(self.time), self.error, sig3(t0)),
+            (None, None) => self.error.fmt(f),
+            (None, Some(t0)) => write!(f, "at t = {} s: {} — rolled back to t = {} s", sig3(self.time), self.error, sig3(t0)),
         }
     }
 }
@@ -113,6 +122,7 @@ impl World {
             prev: Vec::new(),
             cx: contacts::Scratch::default(),
             backup: rollback::Backup::default(),
+            rewind: rewind::Rewind::default(),
             threads: crate::par::Threads::single(),
         }
     }
@@ -182,7 +192,7 @@ impl World {
     /// One step of `settings.dt` seconds: the stages of the module documentation.
     pub fn step(&mut self) -> Result<(), StepError> {
         let (step, time) = (self.clock.steps() + 1, self.clock.time());
-        let fail = |line: Option<usize>, error: SimError| StepError { time, step, line, error, rolled_back_to: None };
+        let fail = |line: Option<usize>, error: SimError| StepError { time, step, line, error, rolled_back_to: None, rewound_to: None };
         self.settings.validate().map_err(|e| fail(None, e))?;
         self.clock.rebase(self.settings.dt);
         let dt = self.settings.dt;

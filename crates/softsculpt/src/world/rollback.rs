@@ -61,23 +61,7 @@ impl World {
     /// the next one) counts as a failure at the end of the call.
     pub fn step_n(&mut self, n: u64) -> Result<(), StepError> {
         let mut backup = std::mem::take(&mut self.backup);
-        backup.x.resize_with(self.bodies.len(), Vec::new);
-        backup.v.resize_with(self.bodies.len(), Vec::new);
-        backup.warm.resize_with(self.bodies.len(), Default::default);
-        backup.kept.resize_with(self.bodies.len(), Default::default);
-        for (b, (x, v)) in self.bodies.iter().zip(backup.x.iter_mut().zip(backup.v.iter_mut())) {
-            x.clear();
-            x.extend_from_slice(b.positions());
-            v.clear();
-            v.extend_from_slice(b.velocities());
-        }
-        for (b, (warm, kept)) in self.bodies.iter().zip(backup.warm.iter_mut().zip(backup.kept.iter_mut())) {
-            warm.0.clone_from(&b.state.warm);
-            warm.1 = b.state.warm_dt;
-            kept.clone_from(&b.state.kept);
-        }
-        backup.plastic.clear();
-        backup.plastic.extend(self.bodies.iter().map(|b| b.material.is_plastic().then(|| b.plastic_state())));
+        backup.save(&self.bodies);
         let clock = self.clock;
         let mut full: Option<Full> = None;
         let mut result = Ok(());
@@ -92,7 +76,7 @@ impl World {
         }
         if result.is_ok() && !self.is_finite() {
             let error = SimError::NonFinite { step: self.clock.steps() };
-            result = Err(StepError { time: self.clock.time(), step: self.clock.steps(), line: None, error, rolled_back_to: None });
+            result = Err(StepError { time: self.clock.time(), step: self.clock.steps(), line: None, error, rolled_back_to: None, rewound_to: None });
         }
         if let Err(mut e) = result {
             self.roll_back(full, &backup, clock);
@@ -111,20 +95,63 @@ impl World {
             self.events = f.events;
             self.load_sums = f.load_sums;
         }
-        for (b, (x, v)) in self.bodies.iter_mut().zip(backup.x.iter().zip(&backup.v)) {
+        backup.restore(&mut self.bodies);
+        self.clock = clock;
+    }
+}
+
+impl Backup {
+    /// Copy what a step without an event changes of `bodies` (see the module documentation),
+    /// into the buffers kept from the last call.
+    pub(crate) fn save(&mut self, bodies: &[SoftBody]) {
+        self.x.resize_with(bodies.len(), Vec::new);
+        self.v.resize_with(bodies.len(), Vec::new);
+        self.warm.resize_with(bodies.len(), Default::default);
+        self.kept.resize_with(bodies.len(), Default::default);
+        for (b, (x, v)) in bodies.iter().zip(self.x.iter_mut().zip(self.v.iter_mut())) {
+            x.clear();
+            x.extend_from_slice(b.positions());
+            v.clear();
+            v.extend_from_slice(b.velocities());
+        }
+        for (b, (warm, kept)) in bodies.iter().zip(self.warm.iter_mut().zip(self.kept.iter_mut())) {
+            warm.0.clone_from(&b.state.warm);
+            warm.1 = b.state.warm_dt;
+            kept.clone_from(&b.state.kept);
+        }
+        self.plastic.clear();
+        self.plastic.extend(bodies.iter().map(|b| b.material.is_plastic().then(|| b.plastic_state())));
+    }
+
+    /// Whether this backup was saved from bodies of the sizes of `bodies` (what `restore` needs).
+    pub(crate) fn fits(&self, bodies: &[SoftBody]) -> bool {
+        self.x.len() == bodies.len() && bodies.iter().zip(&self.x).all(|(b, x)| x.len() == b.positions().len()) && bodies.iter().zip(&self.plastic).all(|(b, p)| p.is_some() == b.material.is_plastic())
+    }
+
+    /// Put it back into `bodies` (saved from them: [`Backup::fits`]).
+    pub(crate) fn restore(&self, bodies: &mut [SoftBody]) {
+        for (b, (x, v)) in bodies.iter_mut().zip(self.x.iter().zip(&self.v)) {
             b.state.x.copy_from_slice(x);
             b.state.v.copy_from_slice(v);
         }
-        for (b, (warm, kept)) in self.bodies.iter_mut().zip(backup.warm.iter().zip(&backup.kept)) {
+        for (b, (warm, kept)) in bodies.iter_mut().zip(self.warm.iter().zip(&self.kept)) {
             b.state.warm.clone_from(&warm.0);
             b.state.warm_dt = warm.1;
             b.state.kept.clone_from(kept);
         }
-        for (b, p) in self.bodies.iter_mut().zip(&backup.plastic) {
+        for (b, p) in bodies.iter_mut().zip(&self.plastic) {
             if let Some(p) = p {
                 b.set_plastic_state(p);
             }
         }
-        self.clock = clock;
+    }
+
+    /// Its size in bytes, about (the f64 and u32 arrays).
+    pub(crate) fn bytes(&self) -> usize {
+        let f = |v: &Vec<Vec<f64>>| v.iter().map(Vec::len).sum::<usize>();
+        let warm: usize = self.warm.iter().map(|w| w.0.len()).sum();
+        let kept: usize = self.kept.iter().map(|k| 2 * k.xt.len() + k.held.len()).sum();
+        let plastic: usize = self.plastic.iter().flatten().map(|p| p.len()).sum();
+        8 * (f(&self.x) + f(&self.v) + warm + plastic) + 4 * kept
     }
 }

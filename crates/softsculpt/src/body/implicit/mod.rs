@@ -70,9 +70,11 @@ mod cg;
 mod ground;
 mod keep;
 mod multigrid;
+mod potential;
 mod system;
 
 pub use keep::Kept;
+pub use potential::LineStats;
 
 use super::forces::Fault;
 use super::{Material, Model, State};
@@ -209,6 +211,13 @@ pub(crate) struct Implicit {
     /// The relative residual the last successful `newton` stopped at, and whether its deadline
     /// stopped it (`WorldSettings::deadline`).
     reached: (f64, bool),
+    /// What the line search's potential holds fixed (`potential.rs`).
+    frozen: potential::Frozen,
+    /// How the line searches ended (`potential::LineStats`).
+    pub lines: LineStats,
+    /// Per line search, G at its start and where it ended and their rounding (J) (the tests).
+    #[cfg(test)]
+    pub trace: Vec<(f64, f64, f64)>,
 }
 
 impl Implicit {
@@ -218,7 +227,7 @@ impl Implicit {
         let chunks = sys.vslots.len();
         let mut mg = multigrid::Multigrid::new(&sys, n, multigrid::HINGED_FROM);
         mg.unhinged_from = multigrid::MULTIGRID_FROM;
-        Implicit { sys, mg, cg: cg::Cg::new(n, chunks), vp: vec![0.0; 3 * n], xt: vec![0.0; 3 * n], r: vec![0.0; 3 * n], delta: vec![0.0; 3 * n], zprev: vec![0.0; 3 * n], pprev: vec![0.0; 3 * n], warmed: false, held_any: false, built: None, assembled: false, inputs: None, crushed: false, reached: (0.0, false) }
+        Implicit { sys, mg, cg: cg::Cg::new(n, chunks), vp: vec![0.0; 3 * n], xt: vec![0.0; 3 * n], r: vec![0.0; 3 * n], delta: vec![0.0; 3 * n], zprev: vec![0.0; 3 * n], pprev: vec![0.0; 3 * n], warmed: false, held_any: false, built: None, assembled: false, inputs: None, crushed: false, reached: (0.0, false), frozen: Default::default(), lines: LineStats::default(), #[cfg(test)] trace: Vec::new() }
     }
 
     /// Built for a body with `m`'s vertex, spring and face counts.
@@ -248,12 +257,31 @@ impl Implicit {
     /// stiffness is really negative) the full step is too short and λ is extrapolated by the
     /// secant; past a root, regula falsi in the bracket; a trial where the state fails (a
     /// collapsed volume) is a bracket end too, halved towards. G itself is never needed (it is
-    /// not defined for damping or wind): its slope is the residual. At most [`LINE_MAX`] trials;
-    /// the last one is kept. Returns the new (‖r‖, noise); r and the system are those of the
-    /// new v⁺.
+    /// not needed for this): its slope is the residual. At most [`LINE_MAX`] trials; the last
+    /// one is kept.
+    ///
+    /// **Then, for a solve a deadline may stop (`WorldSettings::deadline`: a real-time budget),
+    /// the Armijo test on G** (`potential.rs`; the damping's directions frozen at
+    /// λ = 0, so G's slope there is s(0) exactly): the step is halved, at most
+    /// [`potential::BACKTRACK_MAX`] times, until G(λ) ≤ G(0) + c λ s(0) (c =
+    /// [`potential::ARMIJO`]) or until G's change is below its rounding (near convergence,
+    /// relative residuals below ~1e-5: there the slope test decides). So every iterate the
+    /// solver accepts lowers G, and one stopped at a deadline (the anytime step) is a state the
+    /// step's potential went down to. The slope test alone let G rise in ~0.5 % of the line
+    /// searches of a grab (`potential.rs`); the halving costs an evaluation each where it acts,
+    /// and G's two evaluations per line search ~6 % of a step (BENCHMARKS.md). A solve run to
+    /// its tolerance (no deadline: the CLI, scenes) skips the test: its result is the same
+    /// backward-Euler step whichever path its iterates took, and it stays today's bit for bit.
+    /// Returns the new (‖r‖, noise); r and the system are those of the new v⁺.
     fn line_search(&mut self, th: &Threads, fr: &Frame) -> Result<(f64, f64), Fault> {
         let slope = |me: &Self| -> f64 { me.delta.iter().zip(&me.r).map(|(d, r)| d * r).sum() };
         let s0 = slope(self);
+        // The Armijo test on G, where a deadline may stop the solve (below).
+        let armijo = fr.w.deadline.is_some() && s0 < 0.0;
+        let g0 = armijo.then(|| {
+            self.frozen.take(&self.sys, fr, &self.xt);
+            self.sys.potential(fr, &self.vp, &self.xt, &self.frozen)
+        });
         let mut at = 0.0;
         let mut go = |me: &mut Self, lambda: f64| {
             for (vp, d) in me.vp.iter_mut().zip(&me.delta) {
@@ -290,6 +318,35 @@ impl Implicit {
                 None => 4.0 * lo,
             };
             out = go(self, lambda);
+        }
+        self.lines.searches += 1;
+        if let Some(g0) = g0 {
+            let mut halved = 0;
+            loop {
+                let g1 = out.is_ok().then(|| self.sys.potential(fr, &self.vp, &self.xt, &self.frozen));
+                if let Some(g1) = g1 {
+                    let change = g1.value - g0.value;
+                    if change.abs() <= g0.noise + g1.noise {
+                        self.lines.unresolved += 1;
+                        break;
+                    }
+                    #[cfg(test)]
+                    self.trace.push((g0.value, g1.value, g0.noise + g1.noise));
+                    if change <= potential::ARMIJO * lambda * s0 {
+                        break;
+                    }
+                }
+                if halved == potential::BACKTRACK_MAX {
+                    self.lines.rose += 1;
+                    break;
+                }
+                halved += 1;
+                lambda *= 0.5;
+                out = go(self, lambda);
+            }
+            if halved > 0 {
+                self.lines.backtracked += 1;
+            }
         }
         out
     }
