@@ -19,7 +19,14 @@
 //! Measured before the test was added (the mushroom subdivided once, grabbed, `examples/anytime`):
 //! with G's damping on the moving directions, 4 of 955 line searches "raised" G by up to 5e-5 J
 //! while G's finite-difference slope disagreed with δ · r by up to 4×; with the spring damping
-//! off, 0 of 971 raised it. Wind and face pressures are frozen the same way: −dt f_ext⁰ · v⁺.
+//! off, 0 of 971 raised it; with the directions frozen, none in the grabs and drops measured
+//! (`LineStats`, printed by `examples/anytime`). Wind and face pressures are frozen the same
+//! way: −dt f_ext⁰ · v⁺.
+//!
+//! **Cost.** The springs', hinges' and gas's energies are summed by `System::eval` in its own
+//! passes (`System::spring_energy`, `he`, `gas_energy`), so G after an evaluation is one pass
+//! over the vertices and one over the springs' frozen directions, no square roots: measured
+//! 573 ms of the 19.98 s of 180 budgeted frames of the grab at 5,762 vertices (2.9 %).
 //!
 //! The terms, each beside the force it is the potential of (the force's formula in `system.rs`):
 //! - springs and bending springs: ½ k (l − L)², damping R = ½ cs ((v_j − v_i) · d)²;
@@ -34,11 +41,10 @@
 //! the exact volume's gradient). There G's slope is not δ · r and the Armijo test may not pass:
 //! the line search then keeps its last halving ([`BACKTRACK_MAX`]) and counts it (`LineStats::rose`).
 
-use super::super::gas;
-use super::super::hinges::{bend_crushed, rate};
+use super::adjacency::SpringRows;
+use super::super::hinges::rate;
 use super::super::selfcontact::along;
 use super::system::{Frame, System};
-use super::Relaxed;
 
 /// G's value and its rounding level (J): 16 ε times the magnitudes summed into it. Differences
 /// of G below the rounding level say nothing (`shared/solver-notes.md`: at relative residuals
@@ -69,20 +75,29 @@ pub(crate) const BACKTRACK_MAX: u32 = 12;
 /// The Armijo test's constant c: G(λ) ≤ G(0) + c λ s(0) (Nocedal & Wright, 3.1: 1e-4 is usual).
 pub(crate) const ARMIJO: f64 = 1e-4;
 
-/// What a line search's G holds fixed from its start (see the module documentation): x_t⁰,
+/// What a line search's G holds fixed from its start (see the module documentation): the
+/// springs' directions d⁰ (per CSR entry, as the vertex pass wrote them into `ecoef`, `bcoef`),
 /// the hinges' ∇θ⁰ and the wind's and face pressures' forces there.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Frozen {
-    xt: Vec<f64>,
+    ed: Vec<[f64; 3]>,
+    bd: Vec<[f64; 3]>,
     hg: Vec<[f64; 12]>,
     fext: Option<Vec<f64>>,
 }
 
 impl Frozen {
-    /// Take them from the system's last evaluation, at `xt`.
-    pub fn take(&mut self, sys: &System, fr: &Frame, xt: &[f64]) {
-        self.xt.clear();
-        self.xt.extend_from_slice(xt);
+    /// Take them from the system's last evaluation (the line search's start).
+    pub fn take(&mut self, sys: &System, fr: &Frame) {
+        let dirs = |out: &mut Vec<[f64; 3]>, coef: &[[f64; 5]]| {
+            out.clear();
+            out.extend(coef.iter().map(|c| [c[2], c[3], c[4]]));
+        };
+        dirs(&mut self.ed, &sys.ecoef);
+        self.bd.clear();
+        if sys.bending {
+            dirs(&mut self.bd, &sys.bcoef);
+        }
         self.hg.clear();
         if sys.hinged {
             self.hg.extend_from_slice(&sys.hg);
@@ -110,39 +125,34 @@ pub struct LineStats {
 
 impl System {
     /// G at (x_t, v⁺) (see the module documentation), with the damping's directions and the
-    /// external forces frozen at the line search's start.
+    /// external forces frozen at the line search's start. The springs', hinges' and gas's
+    /// energies are the last evaluation's (`System::eval` sums them in its passes): call it
+    /// right after evaluating at (x_t, v⁺).
     pub(crate) fn potential(&self, fr: &Frame, vp: &[f64], xt: &[f64], fz: &Frozen) -> Potential {
         let (p, w, m, dt) = (fr.p, fr.w, fr.m, fr.dt);
         let mut g = Sum::default();
-        self.springs_potential(fr, (&m.springs.i, &m.springs.j, &m.springs.rest), p.stiffness, (vp, xt, &fz.xt), &mut g);
-        if p.bending_stiffness > 0.0 {
-            self.springs_potential(fr, (&m.bending.i, &m.bending.j, &m.bending.rest), p.bending_stiffness, (vp, xt, &fz.xt), &mut g);
+        g.add(self.spring_energy);
+        g.add(self.gas_energy);
+        let cs = p.spring_damping;
+        if cs != 0.0 {
+            // R = ½ cs Σ_springs ((v_j − v_i) · d⁰)² = ¼ cs Σ over both rows' entries.
+            let mut r = damping_sum(&self.edges, &fz.ed, vp);
+            if self.bending {
+                r += damping_sum(&self.bends, &fz.bd, vp);
+            }
+            g.add(dt * 0.25 * cs * r);
         }
         if self.hinged {
-            let (b, tau, let_go) = (p.rigidity, p.retardation_time(), fr.relax == Relaxed::Crushed);
+            let tau = p.retardation_time();
             let hn = &m.hinges;
             for (h, hv) in hn.v.iter().enumerate() {
-                let bw = b * hn.weight[h];
-                if let (Some((r, _)), _) = bend_crushed(xt, hv, hn.rest[h], hn.thin[h], let_go) {
-                    g.add(0.5 * bw * r * r);
-                }
-                if let Some(g0) = fz.hg.get(h) {
+                g.add(self.he[h]);
+                if let (Some(g0), true) = (fz.hg.get(h), tau != 0.0) {
                     let g0: [[f64; 3]; 4] = std::array::from_fn(|q| [g0[3 * q], g0[3 * q + 1], g0[3 * q + 2]]);
                     let rd = rate(&g0, hv, vp);
-                    g.add(dt * 0.5 * bw * tau * rd * rd);
+                    g.add(dt * 0.5 * p.rigidity * hn.weight[h] * tau * rd * rd);
                 }
             }
-        }
-        let nrt = p.nrt();
-        if nrt != 0.0 || m.gas.ambient_pressure != 0.0 {
-            let six_v = m.faces.triangles().iter().map(|t| {
-                let [a, b, c] = t.map(|i| 3 * i as usize);
-                let e1 = [xt[b] - xt[a], xt[b + 1] - xt[a + 1], xt[b + 2] - xt[a + 2]];
-                let e2 = [xt[c] - xt[a], xt[c + 1] - xt[a + 1], xt[c + 2] - xt[a + 2]];
-                xt[a] * (e1[1] * e2[2] - e1[2] * e2[1]) + xt[a + 1] * (e1[2] * e2[0] - e1[0] * e2[2]) + xt[a + 2] * (e1[0] * e2[1] - e1[1] * e2[0])
-            }).sum::<f64>();
-            let volume = gas::measure(m.faces.triangles(), p.volume_mode, six_v, xt);
-            g.add(gas::energy(nrt, volume, &m.gas));
         }
         let c = p.damping;
         let targets = m.targets.active();
@@ -182,26 +192,20 @@ impl System {
         }
         Potential { value: g.value, noise: 16.0 * f64::EPSILON * g.scale }
     }
-
-    /// Springs (i, j) with rest lengths `rest` and stiffness `k`: Σ ½ k (l − L)² + dt ½ cs (Δv · d⁰)²,
-    /// d⁰ the direction at `x0` (the line search's start).
-    fn springs_potential(&self, fr: &Frame, (si, sj, rest): (&[u32], &[u32], &[f64]), k: f64, (vp, xt, x0): (&[f64], &[f64], &[f64]), g: &mut Sum) {
-        let (cs, dt) = (fr.p.spring_damping, fr.dt);
-        for e in 0..si.len() {
-            let (a, b) = (3 * si[e] as usize, 3 * sj[e] as usize);
-            let dx = [xt[b] - xt[a], xt[b + 1] - xt[a + 1], xt[b + 2] - xt[a + 2]];
-            let l = (dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]).sqrt();
-            g.add(0.5 * k * (l - rest[e]).powi(2));
-            if cs != 0.0 {
-                let d0 = [x0[b] - x0[a], x0[b + 1] - x0[a + 1], x0[b + 2] - x0[a + 2]];
-                let l0 = (d0[0] * d0[0] + d0[1] * d0[1] + d0[2] * d0[2]).sqrt();
-                let dvn = ((vp[b] - vp[a]) * d0[0] + (vp[b + 1] - vp[a + 1]) * d0[1] + (vp[b + 2] - vp[a + 2]) * d0[2]) / l0;
-                g.add(dt * 0.5 * cs * dvn * dvn);
-            }
-        }
-    }
 }
 
+/// Σ over the CSR entries of `rows` of ((v_o − v_i) · d⁰)², d⁰ the entry's frozen direction.
+fn damping_sum(rows: &SpringRows, dirs: &[[f64; 3]], vp: &[f64]) -> f64 {
+    let mut sum = 0.0;
+    for i in 0..rows.start.len() - 1 {
+        for kk in rows.start[i] as usize..rows.start[i + 1] as usize {
+            let (o, d) = (3 * rows.other[kk] as usize, dirs[kk]);
+            let dvn = (vp[o] - vp[3 * i]) * d[0] + (vp[o + 1] - vp[3 * i + 1]) * d[1] + (vp[o + 2] - vp[3 * i + 2]) * d[2];
+            sum += dvn * dvn;
+        }
+    }
+    sum
+}
 
 #[cfg(test)]
 mod tests {
@@ -254,14 +258,17 @@ mod tests {
         im.eval(&th, &fr).unwrap();
         
         assert!(im.sys.hinged && !im.sys.crushed && b.model.targets.active(), "hinges, none faded (the fade is not a potential), and targets");
-        im.frozen.take(&im.sys, &fr, &im.xt);
+        im.frozen.take(&im.sys, &fr);
         let delta: Vec<f64> = (0..n).map(|k| 0.1 * ((k as f64) * 0.37 + 1.0).cos()).collect();
         let slope: f64 = delta.iter().zip(&im.r).map(|(d, r)| d * r).sum();
         let h = 1e-4;
-        let g_at = |sign: f64| {
-            let vp: Vec<f64> = im.vp.iter().zip(&delta).map(|(v, d)| v + sign * h * d).collect();
-            let xt: Vec<f64> = fr.x.iter().zip(&vp).map(|(x, v)| x + FRAME * v).collect();
-            im.sys.potential(&fr, &vp, &xt, &im.frozen).value
+        let v0 = im.vp.clone();
+        let mut g_at = |sign: f64| {
+            for ((vp, v), d) in im.vp.iter_mut().zip(&v0).zip(&delta) {
+                *vp = v + sign * h * d;
+            }
+            im.eval(&th, &fr).unwrap();
+            im.sys.potential(&fr, &im.vp, &im.xt, &im.frozen).value
         };
         let fd = (g_at(1.0) - g_at(-1.0)) / (2.0 * h);
         assert!(slope.abs() > 1e-4, "a slope worth testing: {slope:e}");

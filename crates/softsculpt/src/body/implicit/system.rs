@@ -113,6 +113,9 @@ pub(crate) struct System {
     pub hcoef: Vec<[f64; 3]>,
     pub hf: Vec<f64>,
     pub hc: Vec<f64>,
+    /// Per hinge at x_t: its bending energy ½ D w r² (J), for the step's potential
+    /// (`potential.rs`).
+    pub he: Vec<f64>,
     hp: HingeProducts,
     /// The matrix as 3×3 blocks for the products of a hinged body (`blocks.rs`), summed by
     /// [`System::prepare`] when the conjugate gradient asks (`cg::BLOCKS_AFTER`); every
@@ -139,6 +142,10 @@ pub(crate) struct System {
     /// Compressed springs enter the matrix with their transverse stiffness's absolute value
     /// instead of clamped at 0 (see the module documentation; the Newton loop sets it).
     pub absolute: bool,
+    /// The last evaluation's springs' (and bending springs') energy Σ ½ k (l − L)² and the gas's
+    /// (`gas::energy`) at its x_t (J), for the step's potential (`potential.rs`).
+    pub spring_energy: f64,
+    pub gas_energy: f64,
     /// Reduction slots, one per chunk.
     pub vslots: Vec<[f64; 4]>,
     hslots: Vec<f64>,
@@ -199,6 +206,9 @@ impl System {
             hcoef: Vec::new(),
             hf: Vec::new(),
             hc: Vec::new(),
+            he: Vec::new(),
+            spring_energy: 0.0,
+            gas_energy: 0.0,
             hp: HingeProducts::default(),
             blocks: Blocks::default(),
             hinged: false,
@@ -232,6 +242,7 @@ impl System {
             self.hcoef = vec![[0.0; 3]; 4 * nh];
             self.hf = vec![0.0; nh];
             self.hc = vec![0.0; nh];
+            self.he = vec![0.0; nh];
             self.hp = HingeProducts::new(nh);
         }
         if !self.blocks.fits(m.mass.len(), self.hrows.entry.len()) {
@@ -283,7 +294,7 @@ impl System {
         if self.hinged {
             self.ensure_hinges(m);
             let let_go = fr.relax == Relaxed::Crushed;
-            self.crushed = hinge_pass(th, &m.hinges, (p.rigidity, p.retardation_time(), let_go), dt, (xt, vp), (&mut self.hg, &mut self.hf, &mut self.hc), &mut self.hslots);
+            self.crushed = hinge_pass(th, &m.hinges, (p.rigidity, p.retardation_time(), let_go), dt, (xt, vp), (&mut self.hg, &mut self.hf, &mut self.hc, &mut self.he), &mut self.hslots);
         }
 
         // Faces and gas: n_f per face and 6V (per-chunk sums in chunk order), then P.
@@ -291,6 +302,7 @@ impl System {
         let gas_active = nrt != 0.0 || m.gas.ambient_pressure != 0.0;
         let mut s = 0.0;
         self.gamma = 0.0;
+        self.gas_energy = 0.0;
         if gas_active {
             let six_v = face_pass(th, m.faces.triangles(), xt, &mut self.nf, &mut self.fslots);
             if !six_v.is_finite() {
@@ -301,6 +313,7 @@ impl System {
                 return Err(if volume.is_finite() { Fault::Collapsed(volume) } else { Fault::NonFinite });
             }
             s = (gas::pressure(nrt, volume) - m.gas.ambient_pressure) / 6.0;
+            self.gas_energy = gas::energy(nrt, volume, &m.gas);
             self.gamma = dt * dt * nrt / (36.0 * volume * volume);
         }
 
@@ -365,11 +378,13 @@ impl System {
                 *slot = rows.run(vr.clone(), vp, xt, (r, react), g.range(3 * vr.start..3 * vr.end), diag.range(vr.clone()), pre.range(6 * vr.start..6 * vr.end), coef);
             }
         });
-        let (mut res2, mut noise2) = (0.0, 0.0);
+        let (mut res2, mut noise2, mut energy) = (0.0, 0.0, 0.0);
         for sl in &slots {
             res2 += sl[0];
             noise2 += sl[1];
+            energy += sl[2];
         }
+        self.spring_energy = energy;
         self.vslots = slots;
         if contacts {
             self.contact.clear(&m.self_contacts);
@@ -411,7 +426,8 @@ struct Rows<'a> {
 }
 
 /// Add row `i` of a spring kind at (x_t, v⁺): Σ ±fs d into `f`, Σ (a I + b d dᵀ) into `blk`,
-/// Σ|fs d| into `abs`; each entry kk's (a, b, d) into `coef[kk − base]`. Each spring is evaluated
+/// Σ|fs d| into `abs`, Σ ¼ k (l − L)² into `energy` (each spring's ½ k (l − L)², half in each of
+/// its rows); each entry kk's (a, b, d) into `coef[kk − base]`. Each spring is evaluated
 /// in both its ends' rows, always from its first end i to its second j (d = (x_j − x_i)/l), so
 /// both rows get the same bits, the forces are exactly opposite (momentum is kept to the last
 /// bit) and no pass over the springs has to write them for the rows to gather (measured on the
@@ -421,7 +437,7 @@ struct Rows<'a> {
 /// factor 1 − L/l enters the matrix (clamped at 0, or its absolute value).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn gather_springs(rows: &SpringRows, rest: &[f64], (k, cs, absolute): (f64, f64, bool), dt: f64, (xt, vp): (&[f64], &[f64]), i: usize, f: &mut [f64; 3], blk: &mut [f64; 6], abs: &mut f64, coef: &mut [[f64; 5]], base: usize) {
+fn gather_springs(rows: &SpringRows, rest: &[f64], (k, cs, absolute): (f64, f64, bool), dt: f64, (xt, vp): (&[f64], &[f64]), i: usize, (f, blk, abs, energy): (&mut [f64; 3], &mut [f64; 6], &mut f64, &mut f64), coef: &mut [[f64; 5]], base: usize) {
     let (dt2k, dtcs) = (dt * dt * k, dt * cs);
     for kk in rows.start[i] as usize..rows.start[i + 1] as usize {
         let e = rows.spring[kk] as usize;
@@ -434,6 +450,8 @@ fn gather_springs(rows: &SpringRows, rest: &[f64], (k, cs, absolute): (f64, f64,
         let dvn = (vp[hi] - vp[lo]) * u[0] + (vp[hi + 1] - vp[lo + 1]) * u[1] + (vp[hi + 2] - vp[lo + 2]) * u[2];
         let rest = rest[e];
         let fs = k * (l - rest) + cs * dvn;
+        // ½ k (l − L)² per spring, half in each end's row.
+        *energy += 0.25 * k * (l - rest) * (l - rest);
         let alpha = if absolute { (1.0 - rest * inv).abs() } else { (1.0 - rest * inv).max(0.0) };
         let (fx, fy, fz) = (fs * u[0], fs * u[1], fs * u[2]);
         f[0] += sign * fx;
@@ -483,7 +501,7 @@ impl Rows<'_> {
         let grav = [0.0, -w.gravity, 0.0];
         let c = p.damping;
         let targets = &m.targets;
-        let (mut res2, mut noise2) = (0.0, 0.0);
+        let (mut res2, mut noise2, mut energy) = (0.0, 0.0, 0.0);
         let (ecoef, bcoef, hcoef) = coef;
         let (ebase, bbase) = (sys.edges.start[vr.start] as usize, if sys.bending { sys.bends.start[vr.start] as usize } else { 0 });
         let hbase = if sys.hinged { sys.hrows.start[vr.start] as usize } else { 0 };
@@ -492,9 +510,9 @@ impl Rows<'_> {
             let mut f = [0.0; 3];
             let mut blk = [0.0; 6];
             let mut abs = 0.0;
-            gather_springs(sys.edges, &m.springs.rest, (p.stiffness, p.spring_damping, sys.absolute), dt, (xt, vp), i, &mut f, &mut blk, &mut abs, ecoef, ebase);
+            gather_springs(sys.edges, &m.springs.rest, (p.stiffness, p.spring_damping, sys.absolute), dt, (xt, vp), i, (&mut f, &mut blk, &mut abs, &mut energy), ecoef, ebase);
             if sys.bending {
-                gather_springs(sys.bends, &m.bending.rest, (p.bending_stiffness, p.spring_damping, sys.absolute), dt, (xt, vp), i, &mut f, &mut blk, &mut abs, bcoef, bbase);
+                gather_springs(sys.bends, &m.bending.rest, (p.bending_stiffness, p.spring_damping, sys.absolute), dt, (xt, vp), i, (&mut f, &mut blk, &mut abs, &mut energy), bcoef, bbase);
             }
             if self.hinged {
                 // Σ over the hinges around i: −D w (θ − θ̄ + τ θ̇) ∇_i θ, and c_h ∇_i θ ∇_i θᵀ.
@@ -597,7 +615,7 @@ impl Rows<'_> {
                 noise2 += nz * nz / mi;
             }
         }
-        [res2, noise2, 0.0, 0.0]
+        [res2, noise2, energy, 0.0]
     }
 }
 
@@ -607,14 +625,15 @@ impl Rows<'_> {
 /// face without area), or with `let_go` a hinge with a crushed face, gets zeros. Returns
 /// whether any hinge has a crushed face. The damping's dependence on x through ∇r is dropped, as the
 /// springs' is.
-fn hinge_pass(th: &Threads, hn: &Hinges, (b, tau, let_go): (f64, f64, bool), dt: f64, (xt, vp): (&[f64], &[f64]), (hg, hf, hc): (&mut [[f64; 12]], &mut [f64], &mut [f64]), slots: &mut [f64]) -> bool {
+#[allow(clippy::type_complexity)]
+fn hinge_pass(th: &Threads, hn: &Hinges, (b, tau, let_go): (f64, f64, bool), dt: f64, (xt, vp): (&[f64], &[f64]), (hg, hf, hc, he): (&mut [[f64; 12]], &mut [f64], &mut [f64], &mut [f64]), slots: &mut [f64]) -> bool {
     let nh = hn.v.len();
     let nch = chunks(nh, ECHUNK);
-    let (go, fo, co) = (Out::new(hg), Out::new(hf), Out::new(hc));
+    let (go, fo, co, eo) = (Out::new(hg), Out::new(hf), Out::new(hc), Out::new(he));
     th.each(&mut slots[..nch], |c, slot| {
         let hr = chunk(c, ECHUNK, nh);
         // SAFETY: chunk c writes hinges hr only.
-        let (hg, hf, hc) = unsafe { (go.range(hr.clone()), fo.range(hr.clone()), co.range(hr.clone())) };
+        let (hg, hf, hc, he) = unsafe { (go.range(hr.clone()), fo.range(hr.clone()), co.range(hr.clone()), eo.range(hr.clone())) };
         let mut crushed = false;
         for (lh, h) in hr.enumerate() {
             let (bent, flat) = bend_crushed(xt, &hn.v[h], hn.rest[h], hn.thin[h], let_go);
@@ -627,11 +646,13 @@ fn hinge_pass(th: &Threads, hn: &Hinges, (b, tau, let_go): (f64, f64, bool), dt:
                     }
                     hf[lh] = -bw * (r + tau * rate(&g, &hn.v[h], vp));
                     hc[lh] = (dt * dt + dt * tau) * bw;
+                    he[lh] = 0.5 * bw * r * r;
                 }
                 None => {
                     hg[lh] = [0.0; 12];
                     hf[lh] = 0.0;
                     hc[lh] = 0.0;
+                    he[lh] = 0.0;
                 }
             }
         }
