@@ -80,10 +80,13 @@ export function trial(empty: Uint8Array, build: (w: World) => void, now: () => n
     // most one linear solve.
     const t0 = now();
     let frames = 0, finished = t0;
-    while (frames < TRIAL_FRAMES && now() - t0 < 1000 * TRIAL_SECONDS) {
-      w.advance(FRAME_DT, TRIAL_SECONDS - (now() - t0) / 1000, 1e9);
+    while (frames < TRIAL_FRAMES) {
+      const left = TRIAL_SECONDS - (now() - t0) / 1000;
+      if (left <= 0) break;
+      const a = w.advance(FRAME_DT, left, 1e9);
       const t = now();
-      if (t - t0 > 1000 * TRIAL_SECONDS) break; // stopped by the deadline: not a converged frame
+      // A step stopped by its deadline, or a frame not all simulated: not a converged frame.
+      if (a.early > 0 || a.simulated < FRAME_DT - 1e-12 || t - t0 > 1000 * TRIAL_SECONDS) break;
       frames++;
       finished = t;
     }

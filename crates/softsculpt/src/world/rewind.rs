@@ -143,8 +143,11 @@ impl World {
     /// the first point (the state the last change left). The newer points go. Its simulated
     /// time, or None if there is no point that fits the world (the rollback stands).
     pub(super) fn rewind_to_good(&mut self) -> Option<f64> {
+        // A scene event fired in this frame's steps before the failing one (the rollback undid
+        // only the failing step): the points are from before it, so none is the world's past.
+        let changed = self.rewind_mark() != self.rewind.mark;
         let r = &mut self.rewind;
-        if r.points.is_empty() || !r.points[0].state.fits(&self.bodies) {
+        if changed || r.points.is_empty() || !r.points[0].state.fits(&self.bodies) {
             r.points.clear();
             return None;
         }

@@ -123,9 +123,18 @@ impl Backup {
         self.plastic.extend(bodies.iter().map(|b| b.material.is_plastic().then(|| b.plastic_state())));
     }
 
-    /// Whether this backup was saved from bodies of the sizes of `bodies` (what `restore` needs).
+    /// Whether this backup was saved from bodies of the sizes of `bodies` (what `restore` needs:
+    /// vertices, warm start, and for plastic bodies the rest lengths).
     pub(crate) fn fits(&self, bodies: &[SoftBody]) -> bool {
-        self.x.len() == bodies.len() && bodies.iter().zip(&self.x).all(|(b, x)| x.len() == b.positions().len()) && bodies.iter().zip(&self.plastic).all(|(b, p)| p.is_some() == b.material.is_plastic())
+        let sized = |b: &SoftBody, k: usize| {
+            let n = b.positions().len();
+            self.x[k].len() == n && self.v[k].len() == n && (self.warm[k].0.is_empty() || self.warm[k].0.len() == n)
+        };
+        let plastic = |b: &SoftBody, p: &Option<crate::body::PlasticState>| match p {
+            Some(p) => b.material.is_plastic() && p.len() == b.model.springs.rest.len() + b.model.bending.rest.len(),
+            None => !b.material.is_plastic(),
+        };
+        self.x.len() == bodies.len() && self.plastic.len() == bodies.len() && bodies.iter().enumerate().all(|(k, b)| sized(b, k)) && bodies.iter().zip(&self.plastic).all(|(b, p)| plastic(b, p))
     }
 
     /// Put it back into `bodies` (saved from them: [`Backup::fits`]).
