@@ -4,7 +4,7 @@ CARGO ?= cargo
 BIN := target/release/softsculpt
 WASM := target/wasm32-unknown-unknown/release/softsculpt_wasm.wasm
 
-.PHONY: run test bench setup build wasm web demo
+.PHONY: run test bench setup build wasm wasm-threads web demo
 
 setup:
 	@scripts/setup.sh
@@ -18,7 +18,11 @@ wasm: setup
 	@mkdir -p web/public
 	cp $(WASM) web/public/softsculpt.wasm
 
-web: wasm
+# The same on threads (nightly; web/src/engine/threads.ts): optional, the page runs without it.
+wasm-threads: setup
+	@scripts/wasm_threads.sh || echo "SoftSculpt: the threaded engine could not be built (see above); the page will run on one thread"
+
+web: wasm wasm-threads
 	@scripts/setup.sh web
 	cd web && npx tsc --noEmit && npx vite build
 

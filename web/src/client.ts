@@ -35,7 +35,10 @@ export class SimulationClient {
     this.worker = w;
     const shared = (globalThis as { crossOriginIsolated?: boolean }).crossOriginIsolated && typeof SharedArrayBuffer !== 'undefined' ? new SharedArrayBuffer(8) : undefined;
     this.counters = shared ? new Int32Array(shared) : null;
-    this.send({ type: 'init', wasmUrl: this.wasmUrl, restore, ...(shared ? { interrupts: shared } : {}) });
+    // `?threads=N` in the page's address: the engine on N threads (1: the one-thread build).
+    const asked = Number(new URLSearchParams(globalThis.location?.search ?? '').get('threads'));
+    const threads = Number.isInteger(asked) && asked >= 1 ? { threads: asked } : {};
+    this.send({ type: 'init', wasmUrl: this.wasmUrl, restore, ...threads, ...(shared ? { interrupts: shared } : {}) });
   }
 
   send(cmd: Command, transfer: Transferable[] = []): void {

@@ -22,6 +22,8 @@ export function inspector(app: App) {
   const m = app.mirror;
   return {
     get ready() { return m.ready; },
+    /** Threads the engine steps on (2 or more: the threaded build; `?threads=1` in the address forces one). */
+    threads: () => m.threads,
     vertexCount: () => m.vertexCount,
     /** Bodies drawn: the active one and the others (a scene's, an import's pieces). */
     bodies: () => 1 + m.others.length,

@@ -48,6 +48,8 @@ export class Mirror implements BodyView {
   table: ParamInfo[] = [];
   /** The core's material presets (name, help). */
   presets: { name: string; help: string }[] = [];
+  /** Threads the engine steps on. */
+  threads = 1;
   /** The simulation's settings (updated in place; the panel binds to it). */
   readonly settings: Settings = { dt: 1e-3, substeps: 16, realTime: true, playing: true, keepTension: false, model: 'mushroom' };
   history: [number, number] = [0, 0];
@@ -81,6 +83,7 @@ export class Mirror implements BodyView {
     if (f.params) Object.assign(this.params, f.params);
     if (f.table) this.table = f.table;
     if (f.presets) this.presets = f.presets;
+    if (f.threads) this.threads = f.threads;
     if (f.settings) Object.assign(this.settings, f.settings);
     if (f.history) this.history = f.history;
     this.strain = f.strain ?? NO_STRAIN;

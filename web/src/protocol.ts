@@ -79,8 +79,8 @@ const INTERRUPTING: ReadonlySet<string> = new Set(['loadBuiltin', 'import', 'set
 export function interrupts(cmd: { type: string }): boolean { return INTERRUPTING.has(cmd.type); }
 
 export type Command =
-  /** Load the engine from `wasmUrl`, then open the autosave (if `restore` and there is one) or the mushroom. */
-  | { type: 'init'; wasmUrl: string; restore: boolean; interrupts?: SharedArrayBuffer }
+  /** Load the engine from `wasmUrl` (or its threaded build beside it on `threads` threads, default every core up to 4, where memory can be shared), then open the autosave (if `restore` and there is one) or the mushroom. */
+  | { type: 'init'; wasmUrl: string; restore: boolean; interrupts?: SharedArrayBuffer; threads?: number }
   | { type: 'loadBuiltin'; name: string }
   /** A model file (OBJ, PLY, STL, glTF/GLB); `data` is transferred. */
   /** `upAnswers`: the user's last up axis per format (io/upaxis.ts), used when the file's own guess is unsure. */
@@ -190,6 +190,8 @@ export interface Frame {
   params?: Params;
   /** The engine's parameter table (ids, units, ranges, help), with the first frame. */
   table?: ParamInfo[];
+  /** Threads the engine steps on (the threaded build where the page is cross-origin isolated), with the table. */
+  threads?: number;
   /** The core's material presets (name, help), with the table. */
   presets?: { name: string; help: string }[];
   settings?: Settings;

@@ -7,14 +7,15 @@ const frame = (extra: Partial<Frame> = {}): Frame => ({
 });
 
 describe('a frame superseded before it was drawn', () => {
-  it('keeps what was sent once: the parameter table and the material presets (the material list appears)', () => {
+  it('keeps what was sent once: the parameter table, the material presets (the material list appears) and the thread count', () => {
     const table = [{ id: 'stiffness' }] as unknown as Frame['table'];
     const presets = [{ name: 'clay', help: 'material: clay' }];
-    const first = frame({ table, presets, history: [0, 0] });
+    const first = frame({ table, presets, threads: 2, history: [0, 0] });
     const next = frame({ positions: new Float32Array([1, 2, 3]), history: [1, 0] });
     const merged = supersede(first, next);
     expect(merged.table).toBe(table);
     expect(merged.presets).toBe(presets);
+    expect(merged.threads).toBe(2);
     // The newer's own fields win.
     expect(merged.history).toEqual([1, 0]);
     expect(Array.from(merged.positions)).toEqual([1, 2, 3]);

@@ -62,6 +62,8 @@ impl Handle {
 
 thread_local! {
     static WORLDS: RefCell<Vec<Option<Handle>>> = const { RefCell::new(Vec::new()) };
+    /// The page's one pool (`ss_use_threads`), shared by every world: single until then.
+    static THREADS: RefCell<softsculpt::par::Threads> = RefCell::new(softsculpt::par::Threads::single());
 }
 
 fn insert(world: World) -> usize {
@@ -81,7 +83,12 @@ pub fn with_world<R>(w: u32, f: impl FnOnce(&mut Handle) -> Res<R>) -> Res<R> {
             .and_then(|i| t.get_mut(i))
             .and_then(Option::as_mut)
         {
-            Some(h) => f(h),
+            Some(h) => {
+                // Every world steps on the page's pool, also one a call replaced (a restore, a
+                // scene, an undo): a clone of the pool is one reference count.
+                THREADS.with(|p| h.world.share_threads(&p.borrow()));
+                f(h)
+            }
             None => Err(Fail::usage(format!("there is no world with handle {w}"))),
         }
     })
@@ -199,6 +206,49 @@ pub extern "C" fn ss_world_free(w: u32) {
             drop(slot);
         }
     });
+}
+
+/// Step every world on `n` threads: the caller and n − 1 of the helper threads the page started
+/// (`ss_thread_serve`; 0: all of them). Returns the count in use; −1 (error) when the build has
+/// no threads (n > 1 without atomics) or too few helpers serve. 1 goes back to one thread.
+#[no_mangle]
+pub extern "C" fn ss_use_threads(n: u32) -> i32 {
+    index(|| {
+        if n > 1 && softsculpt::par::max_threads() < n as usize {
+            return Err(Fail::usage(format!(
+                "{n} threads asked for; this build runs {} (the threaded build needs the page cross-origin isolated)",
+                softsculpt::par::max_threads()
+            )));
+        }
+        // The old pool is dropped first, so its helpers serve the new one.
+        THREADS.with(|p| *p.borrow_mut() = softsculpt::par::Threads::single());
+        WORLDS.with(|t| t.borrow_mut().iter_mut().flatten().for_each(|h| h.world.share_threads(&softsculpt::par::Threads::single())));
+        let pool = softsculpt::par::Threads::new(n as usize).map_err(Fail::usage)?;
+        let count = pool.count();
+        THREADS.with(|p| *p.borrow_mut() = pool);
+        Ok(count)
+    })
+}
+
+/// A helper thread's life (a Web Worker on the same module and shared memory, its stack and
+/// thread-local block set up: `web/src/engine/threads.ts`): serve the pool's passes; never
+/// returns. Threaded builds only; elsewhere it returns at once.
+#[no_mangle]
+pub extern "C" fn ss_thread_serve() {
+    #[cfg(all(target_arch = "wasm32", target_feature = "atomics"))]
+    softsculpt::par::serve();
+}
+
+/// Passes a helper thread took part in so far (`softsculpt::par::passes_helped`), as f64.
+#[no_mangle]
+pub extern "C" fn ss_thread_passes() -> f64 {
+    softsculpt::par::passes_helped() as f64
+}
+
+/// Threads the worlds step on (1 until `ss_use_threads`).
+#[no_mangle]
+pub extern "C" fn ss_threads() -> u32 {
+    THREADS.with(|p| p.borrow().count() as u32)
 }
 
 /// The standard benchmark workload at an icosphere level (see `softsculpt::workload`).

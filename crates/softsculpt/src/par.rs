@@ -11,28 +11,41 @@
 //!
 //! Native builds use a rayon pool of their own (`Threads::new(n)`, n = 0: every core) for
 //! [`Threads::each`], and a team of spinning threads (`par/team.rs`, started on first use) for
-//! [`Threads::blocks`], the explicit step's two short passes. On wasm32 there is no pool: every
-//! chunk runs on the calling thread.
+//! [`Threads::blocks`], the explicit step's two short passes. WebAssembly built with atomics
+//! (`scripts/wasm_threads.sh`) runs both on the team, whose threads are helpers the page started
+//! (`par/host.rs`); built without, there is no pool: every chunk runs on the calling thread.
 
 use std::marker::PhantomData;
 use std::ops::Range;
 
-#[cfg(not(target_arch = "wasm32"))]
+#[cfg(all(target_arch = "wasm32", target_feature = "atomics"))]
+mod host;
+#[cfg(any(not(target_arch = "wasm32"), target_feature = "atomics"))]
 mod team;
+#[cfg(all(target_arch = "wasm32", target_feature = "atomics"))]
+pub use host::{helpers, serve};
 
 /// A pool of threads (or none: the calling thread). Cheap to clone (shared).
 #[derive(Clone, Default)]
 pub struct Threads {
-    #[cfg(not(target_arch = "wasm32"))]
+    #[cfg(any(not(target_arch = "wasm32"), target_feature = "atomics"))]
     pool: Option<std::sync::Arc<Pool>>,
 }
 
-#[cfg(not(target_arch = "wasm32"))]
+#[cfg(any(not(target_arch = "wasm32"), target_feature = "atomics"))]
 struct Pool {
+    #[cfg(not(target_arch = "wasm32"))]
     rayon: rayon::ThreadPool,
-    /// Started on the first [`Threads::blocks`]; `None` if its threads could not start.
+    /// Started on first use; `None` if its threads could not start.
     team: std::sync::OnceLock<Option<team::Team>>,
     n: usize,
+}
+
+#[cfg(any(not(target_arch = "wasm32"), target_feature = "atomics"))]
+impl Pool {
+    fn team(&self) -> Option<&team::Team> {
+        self.team.get_or_init(|| team::Team::new(self.n).ok()).as_ref()
+    }
 }
 
 impl std::fmt::Debug for Threads {
@@ -60,7 +73,23 @@ impl Threads {
             let rayon = rayon::ThreadPoolBuilder::new().num_threads(n).build().map_err(|e| format!("cannot start {n} threads: {e}"))?;
             Ok(Threads { pool: Some(std::sync::Arc::new(Pool { rayon, team: Default::default(), n })) })
         }
-        #[cfg(target_arch = "wasm32")]
+        #[cfg(all(target_arch = "wasm32", target_feature = "atomics"))]
+        {
+            // The team takes n − 1 of the page's helpers; they must be serving already.
+            let n = if n == 0 { max_threads() } else { n };
+            if n <= 1 {
+                return Ok(Threads::single());
+            }
+            if n > max_threads() {
+                return Err(format!("{n} threads asked for, but the page started {} helper threads", helpers()));
+            }
+            let pool = Pool { team: Default::default(), n };
+            if pool.team().is_none() {
+                return Err(format!("cannot start {n} threads: too few idle helper threads"));
+            }
+            Ok(Threads { pool: Some(std::sync::Arc::new(pool)) })
+        }
+        #[cfg(all(target_arch = "wasm32", not(target_feature = "atomics")))]
         {
             let _ = n;
             Ok(Threads::single())
@@ -69,7 +98,7 @@ impl Threads {
 
     /// Threads that work on a pass.
     pub fn count(&self) -> usize {
-        #[cfg(not(target_arch = "wasm32"))]
+        #[cfg(any(not(target_arch = "wasm32"), target_feature = "atomics"))]
         if let Some(p) = &self.pool {
             return p.n;
         }
@@ -86,18 +115,44 @@ impl Threads {
                 return;
             }
         }
+        #[cfg(all(target_arch = "wasm32", target_feature = "atomics"))]
+        if let Some(team) = self.pool.as_ref().filter(|_| slots.len() > 1).and_then(|p| p.team()) {
+            // Every thread claims chunks one at a time until none remain (the caller's share
+            // takes whatever the others have not: `Team::run`).
+            let next = std::sync::atomic::AtomicUsize::new(0);
+            let out = Out::new(slots);
+            return team.run(&|_| loop {
+                let c = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                if c >= out.len() {
+                    break;
+                }
+                // SAFETY: chunk c is claimed by one thread only.
+                f(c, unsafe { &mut out.range(c..c + 1)[0] });
+            });
+        }
         for (c, r) in slots.iter_mut().enumerate() {
             f(c, r);
         }
     }
 }
 
-/// Threads this machine runs at once (its available parallelism; 1 in WebAssembly, where the
-/// passes run on the calling thread).
+/// Passes a thread other than the caller took part in, since the program started (0 on one
+/// thread): the evidence that a pool's threads work, for tests and the page's thread check.
+pub fn passes_helped() -> u64 {
+    #[cfg(any(not(target_arch = "wasm32"), target_feature = "atomics"))]
+    return team::PASSES_HELPED.load(std::sync::atomic::Ordering::Relaxed);
+    #[cfg(all(target_arch = "wasm32", not(target_feature = "atomics")))]
+    0
+}
+
+/// Threads this machine runs at once (its available parallelism; in WebAssembly the caller and
+/// the helpers the page started, 1 without atomics, where the passes run on the calling thread).
 pub fn max_threads() -> usize {
     #[cfg(not(target_arch = "wasm32"))]
     return std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1);
-    #[cfg(target_arch = "wasm32")]
+    #[cfg(all(target_arch = "wasm32", target_feature = "atomics"))]
+    return 1 + helpers();
+    #[cfg(all(target_arch = "wasm32", not(target_feature = "atomics")))]
     1
 }
 
@@ -126,9 +181,9 @@ impl Threads {
     /// stalled does not stall the pass. On a quiet machine a thread takes the same block in
     /// every pass with the same (n, t), so data a pass leaves in its cache is there for the next.
     pub(crate) fn blocks(&self, n: usize, t: usize, f: impl Fn(usize, usize) + Sync) {
-        #[cfg(not(target_arch = "wasm32"))]
+        #[cfg(any(not(target_arch = "wasm32"), target_feature = "atomics"))]
         if let Some(pool) = self.pool.as_ref().filter(|_| t > 1) {
-            if let Some(team) = pool.team.get_or_init(|| team::Team::new(pool.n).ok()) {
+            if let Some(team) = pool.team() {
                 /// A claim counter on a cache line of its own.
                 #[repr(align(64))]
                 struct Next(std::sync::atomic::AtomicUsize);
@@ -153,7 +208,7 @@ impl Threads {
                 });
             }
         }
-        let _ = t; // wasm32: no team
+        let _ = t; // one thread (or the team could not start)
         (0..n).for_each(|c| f(0, c));
     }
 }

@@ -6,6 +6,8 @@
 // data comes back in the result slot (`resultBytes()`, `resultText()`). Any call may grow wasm
 // memory, which replaces `memory.buffer`: typed arrays over it must be re-made after every call.
 
+import { loadThreaded } from './threads';
+
 export interface RawEngine {
   memory: WebAssembly.Memory;
   ss_alloc(len: number): number;
@@ -61,6 +63,8 @@ export interface RawEngine {
   ss_delta(w: number, scope: number): number;
   ss_apply_delta(w: number, ptr: number, len: number): number;
   ss_open_project_v1(w: number, ptr: number, len: number): number;
+  ss_use_threads(n: number): number;
+  ss_threads(): number;
 }
 
 let engine: RawEngine | null = null;
@@ -85,14 +89,30 @@ export const engineImports = {
   },
 };
 
-/** Load the engine from the wasm bytes or a URL (browser). Safe to call more than once. */
-export async function initEngine(source: BufferSource | string): Promise<RawEngine> {
+/**
+ * Load the engine from the wasm bytes or a URL (browser). Safe to call more than once. With
+ * `threaded` (a URL of the threaded build, and the threads wanted) where memory can be shared,
+ * that build on that many threads (./threads.ts); else, or if it cannot start, this one.
+ */
+export async function initEngine(source: BufferSource | string, threaded?: { url: string; threads: number }): Promise<RawEngine> {
   if (engine) return engine;
+  const t = threaded ? await loadThreaded(threaded.url, threaded.threads, engineImports).catch((err: unknown) => { console.warn('SoftSculpt: the threaded engine failed to start', err); return null; }) : null;
+  if (t) {
+    // The threaded build imports its memory (shared); the calls read it here as `memory`.
+    engine = { ...(t.instance.exports as object), memory: t.memory } as unknown as RawEngine;
+    threadCount = t.threads;
+    return engine;
+  }
   const bytes = typeof source === 'string' ? await (await fetch(source)).arrayBuffer() : source;
   const { instance } = await WebAssembly.instantiate(bytes, engineImports);
   engine = instance.exports as unknown as RawEngine;
+  threadCount = 1;
   return engine;
 }
+
+let threadCount = 1;
+/** Threads the engine steps on (1: the one-thread build, or the threaded one on one thread). */
+export function engineThreads(): number { return threadCount; }
 
 export function raw(): RawEngine {
   if (!engine) throw new Error('the engine is not loaded yet (initEngine first)');
@@ -110,7 +130,8 @@ export const view = {
 /** The last error: `{kind, message, …}` (see the crate documentation). */
 export function errorJson(): Record<string, unknown> {
   const e = raw();
-  const text = new TextDecoder().decode(new Uint8Array(e.memory.buffer, e.ss_error_ptr(), e.ss_error_len()));
+  // A copy: TextDecoder refuses views of shared memory (the threaded build).
+  const text = new TextDecoder().decode(new Uint8Array(e.memory.buffer, e.ss_error_ptr(), e.ss_error_len()).slice());
   try {
     return JSON.parse(text) as Record<string, unknown>;
   } catch {
@@ -127,7 +148,7 @@ export function resultBytes(): Uint8Array {
 /** The last result as text (JSON, TOML). */
 export function resultText(): string {
   const e = raw();
-  return new TextDecoder().decode(new Uint8Array(e.memory.buffer, e.ss_result_ptr(), e.ss_result_len()));
+  return new TextDecoder().decode(new Uint8Array(e.memory.buffer, e.ss_result_ptr(), e.ss_result_len()).slice());
 }
 
 /** Copy bytes into a temporary wasm buffer for the duration of `f`. */

@@ -11,6 +11,7 @@
 // are limited to HISTORY_STEPS and HISTORY_BYTES in all, the oldest dropped first.
 
 import { initEngine } from '../engine/wasm';
+import { threadsWanted } from '../engine/threads';
 import { World, type Advance, type DeltaScope, type FreezeReport, type ParamInfo, type ParamValue, type RemeshReport } from '../engine/world';
 import { sig3 } from '../format';
 import { addModel, dtFor, stepsPerFrame, useDefaults } from '../engine/models';
@@ -58,9 +59,13 @@ export interface DocumentHooks {
   ask?(q: ImportQuestion): void;
 }
 
-/** Load the engine (the wasm module's bytes, or its URL). */
-export async function loadEngine(source: BufferSource | string): Promise<void> {
-  await initEngine(source);
+/**
+ * Load the engine (the wasm module's bytes, or its URL). From a URL, the threaded build beside
+ * it (`softsculpt-threads.wasm`) on `threads` threads where memory can be shared (1: never).
+ */
+export async function loadEngine(source: BufferSource | string, threads = threadsWanted()): Promise<void> {
+  const threaded = typeof source === 'string' && threads > 1 ? { url: source.replace(/softsculpt\.wasm$/, 'softsculpt-threads.wasm'), threads } : undefined;
+  await initEngine(source, threaded);
 }
 
 /**

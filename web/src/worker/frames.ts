@@ -5,6 +5,7 @@
 
 import type { Frame } from '../protocol';
 import type { Document } from './document';
+import { engineThreads } from '../engine/wasm';
 
 export class FramePublisher {
   private free: Float32Array[] = [];
@@ -57,7 +58,7 @@ export class FramePublisher {
     if (doc.topologyVersion !== this.sent.topology) { frame.topology = doc.topology(); this.sent.topology = doc.topologyVersion; }
     if (doc.bodyVersion !== this.sent.body) { frame.body = doc.bodyData(); this.sent.body = doc.bodyVersion; }
     if (paramsKey !== this.sent.params) { frame.params = params; this.sent.params = paramsKey; }
-    if (!this.sent.table) { frame.table = doc.paramTable(); frame.presets = doc.world.materialPresets(); this.sent.table = true; }
+    if (!this.sent.table) { frame.table = doc.paramTable(); frame.presets = doc.world.materialPresets(); frame.threads = engineThreads(); this.sent.table = true; }
     if (settingsKey !== this.sent.settings) { frame.settings = { ...doc.settings }; this.sent.settings = settingsKey; }
     if (historyKey !== this.sent.history) { frame.history = doc.history.sizes; this.sent.history = historyKey; }
     if (doc.settings.strain) frame.strain = doc.strain();

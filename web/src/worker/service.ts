@@ -79,7 +79,7 @@ export class Service {
 
   private async dispatch(cmd: Command): Promise<void> {
     const doc = this.doc;
-    if (cmd.type === 'init') { if (cmd.interrupts) useInterrupts(cmd.interrupts); return this.init(cmd.wasmUrl, cmd.restore); }
+    if (cmd.type === 'init') { if (cmd.interrupts) useInterrupts(cmd.interrupts); return this.init(cmd.wasmUrl, cmd.restore, cmd.threads); }
     if (cmd.type === 'returnBuffer') return this.frames.giveBack(cmd.buffer);
     if (cmd.type === 'resync') return this.frames.resync();
     if (cmd.type === 'ui') { doc.ui = cmd.ui; return; }
@@ -115,9 +115,9 @@ export class Service {
     }
   }
 
-  private async init(wasmUrl: string, restore: boolean): Promise<void> {
+  private async init(wasmUrl: string, restore: boolean, threads?: number): Promise<void> {
     try {
-      await loadEngine(wasmUrl);
+      await loadEngine(wasmUrl, threads);
     } catch (e) {
       this.post({ type: 'fatal', text: `SoftSculpt could not start its engine: ${errorText(e)}` });
       return;

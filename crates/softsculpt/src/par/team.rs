@@ -21,11 +21,22 @@ use std::cell::UnsafeCell;
 use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering::*};
 use std::sync::{Arc, Mutex};
-use std::thread::{self, JoinHandle};
+use std::thread;
+#[cfg(not(target_arch = "wasm32"))]
 use std::time::{Duration, Instant};
 
+/// Passes a worker (not a caller) took part in, over every team: what shows that the threads
+/// work (the page's thread test reads it through `ss_thread_passes`).
+pub(crate) static PASSES_HELPED: AtomicU64 = AtomicU64::new(0);
+
 /// How long an idle thread spins before it parks.
+#[cfg(not(target_arch = "wasm32"))]
 const SPIN: Duration = Duration::from_micros(100);
+/// WebAssembly has no clock in the core (`Instant` is not implemented on wasm32-unknown-unknown):
+/// an idle thread spins this many epoch reads (about 100 µs: a read and a compare take ~1 ns)
+/// before it parks.
+#[cfg(target_arch = "wasm32")]
+const SPIN_READS: u32 = 1 << 17;
 
 type Job = dyn Fn(usize) + Sync;
 
@@ -43,6 +54,10 @@ struct Shared {
     quit: AtomicBool,
     /// Worker w (1..) is parked or about to park.
     sleeping: Vec<AtomicBool>,
+    /// Worker w's thread, set when it starts (before it can park).
+    threads: Vec<std::sync::OnceLock<thread::Thread>>,
+    /// Workers that have returned (after `quit`).
+    ended: AtomicUsize,
 }
 
 // SAFETY: `job` is only written while no worker can read it (see the field), and the job it
@@ -52,7 +67,8 @@ unsafe impl Send for Shared {}
 
 pub(crate) struct Team {
     shared: Arc<Shared>,
-    workers: Vec<JoinHandle<()>>,
+    /// Workers started (1..=workers).
+    workers: usize,
     /// One pass at a time; a caller that finds the team busy runs the pass alone.
     gate: Mutex<()>,
 }
@@ -68,19 +84,22 @@ impl Team {
             panicked: AtomicBool::new(false),
             quit: AtomicBool::new(false),
             sleeping: (0..n).map(|_| AtomicBool::new(false)).collect(),
+            threads: (0..n).map(|_| Default::default()).collect(),
+            ended: AtomicUsize::new(0),
         });
-        let mut team = Team { shared: shared.clone(), workers: Vec::new(), gate: Mutex::new(()) };
+        let mut team = Team { shared: shared.clone(), workers: 0, gate: Mutex::new(()) };
         for w in 1..n {
             let sh = shared.clone();
             // `team` is dropped on error, which stops the workers already started.
-            team.workers.push(thread::Builder::new().name(format!("softsculpt-{w}")).spawn(move || worker(&sh, w))?);
+            start(w, Box::new(move || worker(&sh, w)))?;
+            team.workers += 1;
         }
         Ok(team)
     }
 
     /// Threads in the team, the caller included.
     pub fn len(&self) -> usize {
-        self.workers.len() + 1
+        self.workers + 1
     }
 
     /// Run `f(0)` on the calling thread and `f(t)` on each worker t (1..len()) that joins the
@@ -124,9 +143,12 @@ impl Team {
     }
 
     fn wake(&self) {
-        for (w, h) in self.workers.iter().enumerate() {
-            if self.shared.sleeping[w + 1].load(SeqCst) {
-                h.thread().unpark();
+        for w in 1..self.len() {
+            if self.shared.sleeping[w].load(SeqCst) {
+                // A worker sets `sleeping` only after its thread is recorded.
+                if let Some(t) = self.shared.threads[w].get() {
+                    t.unpark();
+                }
             }
         }
     }
@@ -137,23 +159,40 @@ impl Drop for Team {
         self.shared.quit.store(true, SeqCst);
         self.shared.epoch.fetch_add(1, SeqCst);
         self.wake();
-        for h in self.workers.drain(..) {
-            let _ = h.join();
+        // Every worker returns (it borrows nothing of the caller's; waiting keeps a dropped
+        // team's threads from outliving it, and on wasm32 frees their helpers for the next).
+        while self.shared.ended.load(Acquire) < self.workers {
+            self.wake();
+            thread::yield_now();
         }
     }
 }
 
+/// Start worker `w` running `f`: a named thread natively, a host's helper on wasm32 (`host.rs`).
+fn start(w: usize, f: Box<dyn FnOnce() + Send>) -> std::io::Result<()> {
+    #[cfg(not(target_arch = "wasm32"))]
+    return thread::Builder::new().name(format!("softsculpt-{w}")).spawn(f).map(drop);
+    #[cfg(target_arch = "wasm32")]
+    {
+        let _ = w;
+        super::host::spawn(f)
+    }
+}
+
 fn worker(sh: &Shared, w: usize) {
+    let _ = sh.threads[w].set(thread::current());
     let mut seen = 0u64;
     loop {
         wait(sh, w, seen);
         seen = sh.epoch.load(Acquire);
         if sh.quit.load(Acquire) {
+            sh.ended.fetch_add(1, Release);
             return;
         }
         if !join(&sh.joined[w], seen) {
             continue; // The caller finished the pass without this worker.
         }
+        PASSES_HELPED.fetch_add(1, Relaxed);
         // SAFETY: the caller wrote the job before the epoch we saw and clears it only after
         // this worker's `done` below.
         let job = unsafe { (*sh.job.get()).expect("a pass with every epoch") };
@@ -179,11 +218,16 @@ fn close(slot: &AtomicU64, epoch: u64) -> bool {
 
 /// Until the epoch differs from `seen`: spin for up to [`SPIN`], then park.
 fn wait(sh: &Shared, w: usize, seen: u64) {
+    #[cfg(not(target_arch = "wasm32"))]
     let mut since: Option<Instant> = None;
     let mut spins = 0u32;
     while sh.epoch.load(Acquire) == seen {
         spins = spins.wrapping_add(1);
-        if !spins.is_multiple_of(64) || since.get_or_insert_with(Instant::now).elapsed() < SPIN {
+        #[cfg(not(target_arch = "wasm32"))]
+        let spin = !spins.is_multiple_of(64) || since.get_or_insert_with(Instant::now).elapsed() < SPIN;
+        #[cfg(target_arch = "wasm32")]
+        let spin = spins < SPIN_READS;
+        if spin {
             std::hint::spin_loop();
             continue;
         }
@@ -195,7 +239,11 @@ fn wait(sh: &Shared, w: usize, seen: u64) {
             thread::park();
         }
         sh.sleeping[w].store(false, SeqCst);
-        since = None;
+        #[cfg(not(target_arch = "wasm32"))]
+        {
+            since = None;
+        }
+        spins = 0;
     }
 }
 

@@ -141,12 +141,17 @@ impl World {
     }
 
     /// Run the bodies' force stages and the implicit solver on `n` threads (0: one per core;
-    /// WebAssembly builds always use one). The results do not depend on the number beyond
+    /// WebAssembly: the caller and the page's helpers, `par/host.rs`; one without atomics). The results do not depend on the number beyond
     /// rounding: the same bits on any count for the implicit solver, on 2 or more for the
     /// explicit stages (one thread sums their springs in another order; `par.rs`).
     pub fn set_threads(&mut self, n: usize) -> Result<(), String> {
         self.threads = crate::par::Threads::new(n)?;
         Ok(())
+    }
+    /// Run the passes on `threads`, a pool shared with other worlds (the page's one pool of
+    /// helper threads, `par/host.rs`: a pool per world would take helpers for each).
+    pub fn share_threads(&mut self, threads: &crate::par::Threads) {
+        self.threads = threads.clone();
     }
     /// Threads the passes run on.
     pub fn threads(&self) -> usize {
