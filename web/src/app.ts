@@ -351,7 +351,7 @@ export class App implements ToolContext {
       // How fast the simulation goes comes first (the drawing's fps can be high while it crawls).
       const pace = paceText({ playing: m.settings.playing, busy: this.busyLabel !== null, slowMotion: m.slowMotion, realTimeFraction: m.realTimeFraction, accuracy: m.accuracy, sinceFrameMs: performance.now() - this.frameArrived });
       this.hud.show([
-        `simulation: ${pace}   ${m.simMs.toFixed(1)} ms of steps/frame   ${viewText(this.hud.fps, this.hud.shapesPerSecond, m.slowMotion)}` +
+        `simulation: ${pace}   ${m.simMs.toFixed(1)} ms of steps/frame${m.threads > 1 ? ` on ${m.threads} threads` : ''}   ${viewText(this.hud.fps, this.hud.shapesPerSecond, m.slowMotion)}` +
           (m.recording ? `   ● REC ${m.recording.frames} frames, ${m.recording.seconds.toFixed(1)} s` : ''),
         `${m.vertexCount} vertices   ${m.springCount} springs   ${m.faceCount} faces   tool: ${this.tools.tool.label}`,
         `t ${s.time.toFixed(2)} s   ${volumeText(s.volume, m.closed)}   P ${sig3(s.pressure)} Pa   max speed ${sig3(s.maxSpeed)} m/s`,
