@@ -6,7 +6,8 @@
 // screenshots in e2e/screenshots/bench-grab-*.png.
 //   node bench/grab.mjs [SUB=2] [DIST…]
 // (needs web/dist built; several builds, e.g. `dist /tmp/base-dist`, are measured side by side,
-// one page at a time, in the order given, ROUNDS times: env ROUNDS, default 1)
+// one page at a time, in the order given, ROUNDS times: env ROUNDS, default 1; a DIST may end in
+// an address query, e.g. `dist 'dist?threads=1'`: the threaded page against one thread)
 import { drag, launch, openModeler, shot, startServer, topVertex } from '../e2e/harness.mjs';
 
 const sub = Number(process.argv[2] ?? 2);
@@ -14,7 +15,11 @@ const dists = process.argv.length > 3 ? process.argv.slice(3) : ['dist'];
 const rounds = Number(process.env.ROUNDS ?? 1);
 const browser = await launch();
 const servers = [];
-for (const [k, dist] of dists.entries()) servers.push({ dist, ...(await startServer(Number(process.env.E2E_PORT ?? 5187) + k, dist)) });
+for (const [k, dist] of dists.entries()) {
+  const [dir, query] = dist.split('?');
+  const s = await startServer(Number(process.env.E2E_PORT ?? 5187) + k, dir);
+  servers.push({ dist, ...s, url: query ? `${s.url}?${query}` : s.url });
+}
 
 /** Simulated seconds per real second over `ms` of wall time while `during` runs. */
 async function rate(page, ms, during) {

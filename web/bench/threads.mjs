@@ -2,7 +2,8 @@
 // process (V8, the engine Chromium runs; helpers on Node's worker_threads as the page starts
 // them on Web Workers, src/engine/threads.ts): ms per implicit step of the issue-9 workload
 // (backward Euler at dt = 1/60 s, k = 1000 N/m, the table's tolerance) and per explicit step of
-// the standard workload, best of `reps`, and the speed-up.
+// the standard workload, best of `reps`, and the speed-up; beside them the one-thread build
+// (public/softsculpt.wasm, what the page runs when it is not cross-origin isolated).
 //   node bench/threads.mjs [levels=5,6] [threads=2] [reps=3]      (from web/, after `make web`)
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
@@ -15,6 +16,7 @@ const module = new WebAssembly.Module(readFileSync(fileURLToPath(new URL('../pub
 const memory = new WebAssembly.Memory({ initial: 256, maximum: 65536, shared: true });
 const env = { memory, ss_now: () => performance.now(), ss_interrupted: () => 0 };
 const e = new WebAssembly.Instance(module, { env }).exports;
+const plain = new WebAssembly.Instance(new WebAssembly.Module(readFileSync(fileURLToPath(new URL('../public/softsculpt.wasm', import.meta.url)))), { env: { ss_now: env.ss_now, ss_interrupted: env.ss_interrupted } }).exports;
 
 // Helpers as in src/engine/threads.ts and src/engine/helper.ts.
 const HELPER = `
@@ -40,14 +42,15 @@ const useThreads = async (n) => {
   }
   throw new Error(`cannot use ${n} threads`);
 };
-const setParam = (w, id, value) => {
-  const put = (s) => { const b = new TextEncoder().encode(s), p = e.ss_alloc(b.length); new Uint8Array(memory.buffer, p, b.length).set(b); return [p, b.length]; };
+const setParam = (e, w, id, value) => {
+  const mem = e.memory ?? memory;
+  const put = (s) => { const b = new TextEncoder().encode(s), p = e.ss_alloc(b.length); new Uint8Array(mem.buffer, p, b.length).set(b); return [p, b.length]; };
   const [ip, il] = put(id), [jp, jl] = put(JSON.stringify(value));
   if (e.ss_set_param(w, 0, ip, il, jp, jl) !== 0) throw new Error(`set ${id}`);
 };
-const time = (level, implicit) => {
+const time = (e, level, implicit) => {
   const w = e.ss_workload(level);
-  if (implicit) { setParam(w, 'integrator', 'implicit'); setParam(w, 'dt', 1 / 60); setParam(w, 'stiffness', 1000); }
+  if (implicit) { setParam(e, w, 'integrator', 'implicit'); setParam(e, w, 'dt', 1 / 60); setParam(e, w, 'stiffness', 1000); }
   const steps = implicit ? 4 : 200;
   if (e.ss_step(w, implicit ? 1 : 20) !== 0) throw new Error('step');
   const t0 = performance.now();
@@ -56,18 +59,19 @@ const time = (level, implicit) => {
   e.ss_world_free(w);
   return ms;
 };
-console.log('workload        vertices  1 thread ms  ' + `${most} threads ms  speed-up`);
+console.log('workload        vertices  one-thread build ms  1 thread ms  ' + `${most} threads ms  speed-up`);
 for (const implicit of [true, false]) {
   for (const level of levels) {
-    const best = { 1: Infinity, [most]: Infinity };
+    const best = { 1: Infinity, [most]: Infinity, plain: Infinity };
     for (let r = 0; r < reps; r++) {
+      best.plain = Math.min(best.plain, time(plain, level, implicit));
       for (const n of [1, most]) {
         await useThreads(n);
-        best[n] = Math.min(best[n], time(level, implicit));
+        best[n] = Math.min(best[n], time(e, level, implicit));
       }
     }
     const nv = 10 * 4 ** level + 2;
-    console.log(`${implicit ? 'implicit 1/60 s' : 'explicit 1e-4 s'}  ${String(nv).padStart(8)}  ${best[1].toFixed(3).padStart(11)}  ${best[most].toFixed(3).padStart(12)}  ${(best[1] / best[most]).toFixed(2).padStart(8)}`);
+    console.log(`${implicit ? 'implicit 1/60 s' : 'explicit 1e-4 s'}  ${String(nv).padStart(8)}  ${best.plain.toFixed(3).padStart(19)}  ${best[1].toFixed(3).padStart(11)}  ${best[most].toFixed(3).padStart(12)}  ${(best[1] / best[most]).toFixed(2).padStart(8)}`);
   }
 }
 process.exit(0);
