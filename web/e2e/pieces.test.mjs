@@ -189,7 +189,7 @@ test('a file of the same name imported again is framed anew', async () => {
   await page.context().close();
 });
 
-test('the up axis: a Z-up STL comes upright without a question; an unsure OBJ asks once per format; Model › up axis fixes it', async () => {
+test('the up axis: a Z-up STL comes upright without a question; a flat sheet lies flat against its header; an unsure OBJ asks once per file; Model › up axis fixes it', async () => {
   const { page, errors } = await openModeler(suite.browser, suite.server.url);
   // A 1 m tall post standing on z = 0 (centred in x and y): Z-up, sure from its shape.
   const post = file('post.stl', stl(boxTriangles([-0.15, -0.1, 0], [0.15, 0.1, 1])));
@@ -201,6 +201,18 @@ test('the up axis: a Z-up STL comes upright without a question; an unsure OBJ as
   let [lo, hi] = extent(await inspect(page, () => window.softsculpt.positions()), 1);
   assert.ok(Math.abs(hi - lo - 1) < 0.05, `the post is ${hi - lo} m tall`);
   await shot(page, 'pieces-06-zup-stl-upright');
+  // A 2 × 2 m cloth written Z-up (flat in x–y) under Blender's header, whose OBJ default is Y-up:
+  // it lies flat, it does not stand as a 2 m wall on its edge.
+  const grid = ['# Blender 4.2.0', '# www.blender.org'];
+  for (let j = 0; j <= 8; j++) for (let i = 0; i <= 8; i++) grid.push(`v ${i / 4 - 1} ${j / 4 - 1} 0`);
+  for (let j = 0; j < 8; j++) for (let i = 0; i < 8; i++) { const a = 9 * j + i + 1; grid.push(`f ${a} ${a + 1} ${a + 10}`, `f ${a} ${a + 10} ${a + 9}`); }
+  before = await openedNow(page);
+  await page.locator('input[data-picker=import]').setInputFiles(file('cloth_z_up.obj', grid.join('\n') + '\n'));
+  await loaded(page, before);
+  assert.equal(await page.locator('.import-dialog').count(), 0, 'no question for the sheet');
+  [lo, hi] = extent(await inspect(page, () => window.softsculpt.positions()), 1);
+  assert.ok(hi - lo < 0.1, `the cloth lies flat: ${hi - lo} m tall`);
+  assert.ok((await inspect(page, () => window.softsculpt.messages())).some((m) => /imported cloth_z_up\.obj.*flat sheet, lying flat/.test(m.text)));
   // A box centred on the origin (0.3 × 1 × 0.2 m): nothing in the file says which way is up.
   const box = file('box.obj', boxObj([-0.15, -0.5, -0.1], [0.15, 0.5, 0.1]));
   await page.locator('input[data-picker=import]').setInputFiles(box);
@@ -213,12 +225,21 @@ test('the up axis: a Z-up STL comes upright without a question; an unsure OBJ as
   [lo, hi] = extent(await inspect(page, () => window.softsculpt.positions()), 1);
   // Its 0.2 m depth is now its height (an 8-vertex box bulges a little with its gas).
   assert.ok(hi - lo < 0.3, `Z-up: ${hi - lo} m tall`);
-  // The next unsure OBJ takes the answer without asking.
+  // The same file again takes the answer without asking.
   before = await openedNow(page);
-  await page.locator('input[data-picker=import]').setInputFiles(file('box2.obj', boxObj([-0.15, -0.5, -0.1], [0.15, 0.5, 0.1])));
+  await page.locator('input[data-picker=import]').setInputFiles(box);
   await loaded(page, before);
   assert.equal(await page.locator('.import-dialog').count(), 0, 'no question the second time');
-  assert.ok((await inspect(page, () => window.softsculpt.messages())).some((m) => /imported box2\.obj.*turned from Z-up to Y-up \(as you chose for your last OBJ file/.test(m.text)));
+  assert.ok((await inspect(page, () => window.softsculpt.messages())).some((m) => /imported box\.obj.*turned from Z-up to Y-up \(as you chose for box\.obj before/.test(m.text)));
+  // Another unsure OBJ is asked: the answer was about box.obj, not about every OBJ.
+  await page.locator('input[data-picker=import]').setInputFiles(file('box2.obj', boxObj([-0.15, -0.5, -0.1], [0.15, 0.5, 0.1])));
+  await page.waitForSelector('.import-dialog', { timeout: 15000 });
+  await page.locator('.import-dialog').getByRole('button', { name: /cancel/i }).click();
+  await page.waitForSelector('.import-dialog', { state: 'detached' });
+  // Back to box.obj to fix its axis.
+  before = await openedNow(page);
+  await page.locator('input[data-picker=import]').setInputFiles(box);
+  await loaded(page, before);
   // A wrong guess is fixed in the Model panel: Y up stands the box 1 m tall.
   before = await openedNow(page);
   await page.locator('.lil-controller', { hasText: 'up axis' }).locator('select').selectOption({ label: 'Y up' });
@@ -226,7 +247,7 @@ test('the up axis: a Z-up STL comes upright without a question; an unsure OBJ as
   await page.waitForTimeout(300);
   [lo, hi] = extent(await inspect(page, () => window.softsculpt.positions()), 1);
   assert.ok(hi - lo > 0.8, `Y-up: ${hi - lo} m tall`);
-  assert.equal(await inspect(page, () => JSON.parse(localStorage.getItem('softsculpt.upAxis')).OBJ), 'y', 'the fix is remembered for OBJ');
+  assert.equal(await inspect(page, () => JSON.parse(localStorage.getItem('softsculpt.upAxisByFile'))['box.obj']), 'y', 'the fix is remembered for box.obj');
   await shot(page, 'pieces-07-up-axis-fixed');
   assert.deepEqual(errors, []);
   await page.context().close();

@@ -153,9 +153,10 @@ export class App implements ToolContext {
 
   loadBuiltin(name: string): void { this.operate({ type: 'loadBuiltin', name }); }
   importFile(name: string, data: ArrayBuffer): void { this.operate({ type: 'import', name, data, upAnswers: rememberedUp() }, [data]); }
-  /** Turn the imported model to another up axis (a wrong guess fixed), remembered for its format. */
+  /** Turn the imported model to another up axis (a wrong guess fixed), remembered for its file. */
   setUpAxis(up: 'y' | 'z'): void {
-    rememberUp(this.mirror.settings.frame?.format, up);
+    const frame = this.mirror.settings.frame;
+    rememberUp(frame?.file, frame?.format, up);
     this.operate({ type: 'setUp', up });
   }
   openProjectFile(name: string, text: string): void { this.operate({ type: 'openProject', name, text }); }
@@ -262,8 +263,8 @@ export class App implements ToolContext {
       case 'progress': return this.setBusy(r.label, r.fraction);
       case 'download': return download(new Blob([r.bytes ? (r.bytes as Uint8Array<ArrayBuffer>) : r.text], { type: r.mime }), r.filename);
       case 'importQuestion': void askImport(r.question).then((answer) => {
-        // The user's up axis for this format settles its next unsure guesses (io/upaxis.ts).
-        if (answer && r.question.declaredUp === null) rememberUp(r.question.format, answer.up);
+        // The user's up axis for this file settles its guess when it comes again (io/upaxis.ts).
+        if (answer && r.question.declaredUp === null) rememberUp(r.question.name, r.question.format, answer.up);
         this.send({ type: 'importAnswer', answer });
       }); return;
       case 'ui': return this.applyUi(r.ui);

@@ -154,12 +154,20 @@ describe('the up axis', () => {
     expect(guessUp('STL', [standing], [])).toMatchObject({ up: 'y', sure: true, reason: 'it rests on the plane y = 0' });
     // A flat figure thinnest along z (the kangaroo balloon stands in Y): not a sure sign either way.
     expect(guessUp('OBJ', [[-1, -1, -0.1, 1, 1, 0.1]], [])).toMatchObject({ up: 'y', sure: false });
+    // A flat sheet lies flat, also against an exporter's default (Blender's OBJ is Y-up by default,
+    // but this cloth was written Z-up): 2 × 2 m, 1 mm thick along z.
+    const sheet = [-1, -1, 0, 1, 1, 0.001];
+    expect(guessUp('OBJ', [sheet], [], '# Blender 4.2.0\n# www.blender.org')).toMatchObject({ up: 'z', sure: true, reason: "it is a flat sheet, lying flat, not Blender's OBJ export (Y-up by default)'s default" });
+    expect(guessUp('STL', [[-1, 0, -1, 1, 0, 1]], [])).toMatchObject({ up: 'y', sure: true });
+    // An axis the header states still wins; a sheet thin along x says nothing.
+    expect(guessUp('OBJ', [sheet], [], '# SoftSculpt export, Y-up')).toMatchObject({ up: 'y', sure: true });
+    expect(guessUp('OBJ', [[0, -1, -1, 0.001, 1, 1]], [])).toMatchObject({ up: 'y', sure: false });
     // A cube about the origin: nothing says; STL's usual Z, OBJ's usual Y, both unsure.
     expect(guessUp('STL', [[-1, -1, -1, 1, 1, 1]], [])).toMatchObject({ up: 'z', sure: false });
     expect(guessUp('OBJ', [[-1, -1, -1, 1, 1, 1]], [])).toMatchObject({ up: 'y', sure: false });
   });
 
-  it('is asked only when unsure, the user\'s last answer settles the next unsure file, and it can be changed afterwards', async () => {
+  it('is asked only when unsure, the user\'s answer for a file settles that file (not the next one of its format), and it can be changed afterwards', async () => {
     const { doc, messages, questions } = opened(() => ({ up: 'z', pieces: 'each' }));
     // Centred on the origin (0.3 × 1 × 0.5 m): unsure, asked; answered Z.
     const box = bytes(boxObj([-0.15, -0.5, -0.25], [0.15, 0.5, 0.25]));
@@ -167,17 +175,26 @@ describe('the up axis', () => {
     await flush();
     expect(questions.length).toBe(1);
     expect(heightOf(doc.world.body(0).positions)).toBeCloseTo(0.5, 6);
-    // With the answer remembered for OBJ (the page passes it), the next one is not asked.
-    doc.importFile('box.obj', box.slice(0), { OBJ: 'z' });
+    expect(doc.settings.frame?.file).toBe('box.obj');
+    // With the answer remembered for box.obj (the page passes it), the same file again is not asked.
+    doc.importFile('box.obj', box.slice(0), { 'box.obj': 'z' });
     await flush();
     expect(questions.length).toBe(1);
-    expect(messages.find((t) => t.startsWith('imported box.obj') && /as you chose for your last OBJ file/.test(t))).toBeDefined();
-    // A sure guess is not overridden by the remembered answer.
-    doc.importFile('cube.obj', bytes(boxObj([-0.5, 0, -0.5], [0.5, 1, 0.5])), { OBJ: 'z' });
+    expect(messages.find((t) => t.startsWith('imported box.obj') && /as you chose for box\.obj before/.test(t))).toBeDefined();
+    // Another unsure OBJ is asked: the answer was about that file, not about OBJ files.
+    doc.importFile('other.obj', box.slice(0), { 'box.obj': 'z' });
+    await flush();
+    expect(questions.length).toBe(2);
+    doc.importAnswer(null);
+    // A file's remembered correction wins over a sure guess from its shape (the user fixed it).
+    doc.importFile('cube.obj', bytes(boxObj([-0.5, 0, -0.5], [0.5, 1, 0.5])), {});
     await flush();
     expect(doc.settings.frame?.up).toBe('y');
+    doc.importFile('cube.obj', bytes(boxObj([-0.5, 0, -0.5], [0.5, 1, 0.5])), { 'cube.obj': 'z' });
+    await flush();
+    expect(doc.settings.frame?.up).toBe('z');
     // Model › up axis: the box again, turned to Y (1 m tall), one undo step; undo goes back.
-    doc.importFile('box.obj', box.slice(0), { OBJ: 'z' });
+    doc.importFile('box.obj', box.slice(0), { 'box.obj': 'z' });
     await flush();
     const [undo] = doc.history.sizes;
     doc.setUp('y');

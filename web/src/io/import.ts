@@ -19,7 +19,7 @@ export type Vec3 = [number, number, number];
  * How a file's coordinates became the engine's: turned from Z-up to Y-up (if `up` is 'z'), then
  * moved by −`offset` (centred in x and z, lowest point at y = 0). Lengths are unchanged.
  */
-export interface ImportFrame { up: Up; offset: Vec3; /** The file's format (OBJ, PLY, STL, glTF), to remember an up axis chosen later. */ format?: string }
+export interface ImportFrame { up: Up; offset: Vec3; /** The file's format (OBJ, PLY, STL, glTF). */ format?: string; /** The file's name, to remember an up axis chosen later for it (io/upaxis.ts). */ file?: string }
 export const IDENTITY_FRAME: ImportFrame = { up: 'y', offset: [0, 0, 0] };
 
 /** What the page asks about a file before it is imported. */
@@ -106,6 +106,10 @@ const EXPORTERS: { re: RegExp; formats: string[]; up: Up | 'stated'; name: strin
     formats: ['STL', 'OBJ', 'PLY'], up: 'z', name: 'a Z-up CAD or 3D-printing program' },
 ];
 
+/** A flat sheet: its thinnest extent at most this share of its largest (a cloth: 0; the
+ * kangaroo balloon, the flattest figure among the test models, 0.28). */
+const FLAT_SHEET = 0.01;
+
 /** Whether the faces at the bottom along axis `d` make a flat base (share of the box's cross-section). */
 function flatBase(lists: ArrayLike<number>[], triangles: ArrayLike<number>[], d: number, lo: number, tol: number): number {
   let area = 0;
@@ -126,25 +130,33 @@ function flatBase(lists: ArrayLike<number>[], triangles: ArrayLike<number>[], d:
  * The up axis to offer for a file that does not declare one, and whether the guess is sure:
  * 1. the exporter its header or comments name (`EXPORTERS`), or the axis SoftSculpt's own
  *    export states on its first line (`OWN_EXPORT`);
- * 2. the shape: a model is made standing on its ground plane — resting on z = 0 and not on
+ * 2. a flat sheet (one extent, y or z, at most 1 % of the largest) lies flat: that axis is up,
+ *    whatever the exporter's default (a cloth exported Z-up from Blender with a Y-up default
+ *    header would stand as a wall on its edge); an axis the header states still wins;
+ * 3. the shape: a model is made standing on its ground plane — resting on z = 0 and not on
  *    y = 0 says Z-up (and the other way round); else a flat base (faces lying at the lowest
  *    level covering ≥ 10 % of the box's cross-section) at min z and not at min y says Z-up
  *    (and the other way round). Not the flattest extent: a flat figure stands as often as it
  *    lies (the kangaroo balloon, 2.1 × 1.9 × 0.59 m, stands in Y and is thinnest along z; a
  *    sheet of cloth lies flat in Y and is thinnest along y);
- * 3. otherwise unsure: the format's usual convention, STL (CAD and 3D printing) → Z, OBJ and
- *    PLY (Blender's OBJ export, scanners) → Y, and the page asks (or uses the user's last answer).
+ * 4. otherwise unsure: the format's usual convention, STL (CAD and 3D printing) → Z, OBJ and
+ *    PLY (Blender's OBJ export, scanners) → Y, and the page asks.
  */
 export function guessUp(format: string, lists: ArrayLike<number>[], triangles: ArrayLike<number>[] = [], header = ''): UpGuess {
-  for (const e of EXPORTERS) {
-    const m = e.formats.includes(format) ? e.re.exec(header) : null;
-    if (!m) continue;
-    if (e.up !== 'stated') return { up: e.up, reason: `written by ${e.name}`, sure: true };
-    const up = m[1].toLowerCase() as Up;
-    return { up, reason: `written by ${e.name} as ${up.toUpperCase()}-up`, sure: true };
-  }
   const { lo, hi } = bounds(lists);
   const ext = [0, 1, 2].map((d) => hi[d] - lo[d]);
+  const exporter = EXPORTERS.map((e) => ({ e, m: e.formats.includes(format) ? e.re.exec(header) : null })).find((x) => x.m);
+  if (exporter?.e.up === 'stated') {
+    const up = exporter.m![1].toLowerCase() as Up;
+    return { up, reason: `written by ${exporter.e.name} as ${up.toUpperCase()}-up`, sure: true };
+  }
+  const thin = ([1, 2] as const).find((d) => ext[d] <= FLAT_SHEET * Math.max(...ext) && ext[d] < Math.min(...[0, 1, 2].filter((k) => k !== d).map((k) => ext[k])));
+  if (thin !== undefined) {
+    const up: Up = thin === 1 ? 'y' : 'z';
+    const against = exporter && exporter.e.up !== up ? `, not ${exporter.e.name}'s default` : '';
+    return { up, reason: `it is a flat sheet, lying flat${against}`, sure: true };
+  }
+  if (exporter) return { up: exporter.e.up as Up, reason: `written by ${exporter.e.name}`, sure: true };
   const diag = Math.hypot(ext[0], ext[1], ext[2]);
   const onPlane = (d: number) => Math.abs(lo[d]) <= 1e-6 * diag;
   if (onPlane(2) && !onPlane(1)) return { up: 'z', reason: 'it rests on the plane z = 0', sure: true };
@@ -167,15 +179,16 @@ export function headerText(data: Uint8Array, n = 4096): string {
 
 /**
  * The question for a file the engine has read (`lists`: each piece's positions, as in the file;
- * `triangles` its faces; `header` its first bytes as text). `remembered`: the user's last up
- * axis per format, which settles an unsure guess without asking.
+ * `triangles` its faces; `header` its first bytes as text). `remembered`: the up axis the user
+ * chose or corrected for files by name (io/upaxis.ts), which settles this file's guess, sure
+ * or not, without asking (not a glTF's declared Y).
  */
 export function question(name: string, report: FileReport, lists: ArrayLike<number>[], triangles: ArrayLike<number>[] = [], header = '', remembered: Record<string, Up> = {}): ImportQuestion {
   const format = report.format ?? '?';
   const declaredUp = report.up_axis === 'unknown' ? null : report.up_axis;
   let guess: UpGuess = declaredUp ? { up: declaredUp, reason: `${format} files are Y-up by specification`, sure: true } : guessUp(format, lists, triangles, header);
-  const last = remembered[format];
-  if (!guess.sure && (last === 'y' || last === 'z')) guess = { up: last, reason: `as you chose for your last ${format} file`, sure: true };
+  const last = declaredUp ? undefined : remembered[name];
+  if (last === 'y' || last === 'z') guess = { up: last, reason: `as you chose for ${name} before`, sure: true };
   const { lo, hi } = bounds(lists);
   return {
     name, format, declaredUp, guessedUp: guess.up, guessReason: guess.reason, upSure: guess.sure,

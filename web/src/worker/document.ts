@@ -838,7 +838,7 @@ export class Document {
 function validFrame(f: unknown): ImportFrame | null {
   const x = f as ImportFrame | null | undefined;
   if (!x || (x.up !== 'y' && x.up !== 'z') || !Array.isArray(x.offset) || x.offset.length !== 3 || !x.offset.every(Number.isFinite)) return null;
-  return { up: x.up, offset: [x.offset[0], x.offset[1], x.offset[2]], ...(typeof x.format === 'string' ? { format: x.format } : {}) };
+  return { up: x.up, offset: [x.offset[0], x.offset[1], x.offset[2]], ...(typeof x.format === 'string' ? { format: x.format } : {}), ...(typeof x.file === 'string' ? { file: x.file } : {}) };
 }
 
 function fmt(t: number | undefined): string {

@@ -33,8 +33,8 @@ export class Importer {
   get waiting(): ImportQuestion | null { return this.pending?.question ?? null; }
 
   /**
-   * Read `data`; ask what the file does not say, or import it at once. `remembered`: the user's
-   * last up axis per format (io/upaxis.ts on the page), used when the guess from the file is unsure.
+   * Read `data`; ask what the file does not say, or import it at once. `remembered`: the up axis
+   * the user chose for files by name (io/upaxis.ts on the page), which settles this one's guess.
    */
   read(name: string, data: ArrayBuffer, remembered: Record<string, Up> = {}): void {
     this.pending = null;
@@ -100,6 +100,7 @@ export class Importer {
     const chosen = a.pieces === 'largest' ? [0] : p.lists.map((_, k) => k);
     const { positions, frame } = place(chosen.map((k) => p.lists[k]), a.up);
     frame.format = p.question.format;
+    frame.file = p.name;
     const size = sizeFactor(positions);
     const area = chosen.reduce((s, k) => s + p.areas[k], 0);
     let gasless = 0;
