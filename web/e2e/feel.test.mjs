@@ -152,7 +152,7 @@ test('raising the ground lifts the rooted mushroom with it: it stands on the pla
   await page.context().close();
 });
 
-test('a blow-up is said once in the user\'s terms, and loading a model plays again', async () => {
+test('a blow-up is said once in the user\'s terms, the view frames the model put back, and loading a model plays again', async () => {
   const { page, errors } = await openModeler(suite.browser, suite.server.url);
   await settle(page, 0.05, 30000);
   // An explicit integrator at the panel's largest step blows the mushroom up.
@@ -173,6 +173,18 @@ test('a blow-up is said once in the user\'s terms, and loading a model plays aga
   // The readout stays readable: the message does not cover it.
   const [readout, message] = await Promise.all(['.readout', '.message.error'].map((s) => page.locator(s).boundingBox()));
   assert.ok(message.y > readout.y + readout.height || message.x > readout.x + readout.width, 'the message is clear of the readout');
+  // The view shows the model as it was put back (the camera follows where the model is, not the
+  // path it took: the blow-up's excursion is undone with it), and the plots start again at the
+  // time it was put back to.
+  await page.waitForTimeout(1000); // the view eases back (FOLLOW_TAU), on the page's clock: nothing simulates while paused
+  const canvas = await page.locator('#view').boundingBox();
+  for (const i of [(await topVertex(page)).index, 0]) {
+    const p = await inspect(page, (j) => window.softsculpt.screenOf(j), i);
+    assert.ok(p.x > canvas.x && p.x < canvas.x + canvas.width && p.y > canvas.y && p.y < canvas.y + canvas.height, `vertex ${i} on screen at ${p.x}, ${p.y}`);
+  }
+  const back = await inspect(page, () => window.softsculpt.stats().time);
+  assert.ok((await inspect(page, () => window.softsculpt.plots())).every((s) => s.values.length <= 2), 'the plots restarted at the time put back to');
+  assert.match(text, new RegExp(`put back to t = ${back.toFixed(2)} s`), text);
   await shot(page, '41-blow-up-message');
   // Another model: plays again, the old notes go; the error is not cleared by it (it goes by
   // itself after its reading time, at least 10 s: view/hud.ts messageLifetime).
