@@ -36,7 +36,7 @@
 //! | `ss_workload(level) -> w` | the standard benchmark workload (`softsculpt::workload`) |
 //! | `ss_use_threads(n) -> count` | step every world on n threads (threaded build: the caller and n − 1 helpers; 0: all), −1 if fewer serve |
 //! | `ss_threads() -> n`, `ss_thread_passes() -> f64` | threads in use; passes a helper took part in so far |
-//! | `ss_thread_serve()` | a helper Web Worker's life on the shared memory (never returns; `web/src/engine/threads.ts`) |
+//! | `ss_thread_serve()`, `ss_thread_trapped_flag() -> ptr` | a helper Web Worker's life on the shared memory (never returns; `web/src/engine/threads.ts`); the u32 it sets when that traps |
 //! | `ss_add_builtin(w, name, len, mass) -> b` | a built-in model (`sphere`, `mushroom`, `octopus`…) of `mass` kg |
 //! | `ss_add_mesh(w, pos, n_vertices, idx, n_indices, mass, prepare) -> b` | an indexed mesh (f64 xyz, u32 indices); `prepare` 1 = weld, check, orient and reorder like a file, 0 = exactly as given; result: warnings JSON |
 //! | `ss_add_obj(w, bytes, len, mass) -> b` | an OBJ file; result: warnings JSON (array of strings) |

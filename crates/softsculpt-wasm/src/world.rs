@@ -245,6 +245,17 @@ pub extern "C" fn ss_thread_passes() -> f64 {
     softsculpt::par::passes_helped() as f64
 }
 
+/// The address of the flag a helper's JavaScript sets (`Atomics.store`, u32) when its
+/// `ss_thread_serve` traps, so a pass waiting for it fails instead of waiting forever
+/// (`softsculpt::par::host`). 0 in builds without threads.
+#[no_mangle]
+pub extern "C" fn ss_thread_trapped_flag() -> usize {
+    #[cfg(all(target_arch = "wasm32", target_feature = "atomics"))]
+    return softsculpt::par::trapped_flag() as usize;
+    #[cfg(not(all(target_arch = "wasm32", target_feature = "atomics")))]
+    0
+}
+
 /// Threads the worlds step on (1 until `ss_use_threads`).
 #[no_mangle]
 pub extern "C" fn ss_threads() -> u32 {

@@ -23,7 +23,7 @@ mod host;
 #[cfg(any(not(target_arch = "wasm32"), target_feature = "atomics"))]
 mod team;
 #[cfg(all(target_arch = "wasm32", target_feature = "atomics"))]
-pub use host::{helpers, serve};
+pub use host::{helpers, serve, trapped_flag};
 
 /// A pool of threads (or none: the calling thread). Cheap to clone (shared).
 #[derive(Clone, Default)]

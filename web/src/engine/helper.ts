@@ -2,7 +2,9 @@
 // engine's module on the page's shared memory, moves its stack pointer to the stack allocated
 // for it and sets up its thread-local block, says `ready`, and then serves the core's team of
 // threads for as long as the page lives (`ss_thread_serve` never returns; it waits on the
-// memory, burning no CPU, while no pass runs).
+// memory, burning no CPU, while no pass runs). If it traps (a panic in a pass), the helper sets
+// the engine's trap flag in the shared memory, so the pass waiting for it fails (the engine's
+// call throws, the page restarts the simulation from the autosave) instead of waiting forever.
 
 import type { HelperStart } from './threads';
 
@@ -10,6 +12,7 @@ interface HelperExports {
   __stack_pointer: WebAssembly.Global;
   __wasm_init_tls(tls: number): void;
   ss_thread_serve(): void;
+  ss_thread_trapped_flag(): number;
 }
 
 const scope = self as unknown as { onmessage: ((ev: MessageEvent<HelperStart>) => void) | null; postMessage(m: string): void };
@@ -31,5 +34,11 @@ scope.onmessage = async (ev: MessageEvent<HelperStart>) => {
     scope.postMessage(`the helper thread could not start: ${err instanceof Error ? err.message : String(err)}`);
     return;
   }
-  e.ss_thread_serve();
+  const flag = e.ss_thread_trapped_flag() >>> 0;
+  try {
+    e.ss_thread_serve();
+  } catch (err) {
+    if (flag) Atomics.store(new Uint32Array(memory.buffer, flag, 1), 0, 1);
+    throw err;
+  }
 };

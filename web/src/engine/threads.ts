@@ -82,19 +82,22 @@ export async function loadThreaded(
     console.warn(`SoftSculpt: the engine runs on one thread (${why})`);
     return null;
   };
+  let timer: ReturnType<typeof setTimeout> | undefined;
   try {
     for (let i = 1; i < threads; i++) helpers.push(spawn(helperStart(module, memory, e), i));
-    await Promise.race([Promise.all(helpers.map((h) => h.ready)), new Promise((_, fail) => setTimeout(() => fail(new Error(`no helper thread started within ${START_MS / 1000} s`)), START_MS))]);
+    await Promise.race([Promise.all(helpers.map((h) => h.ready)), new Promise((_, fail) => { timer = setTimeout(() => fail(new Error(`no helper thread started within ${START_MS / 1000} s`)), START_MS); })]);
+    // A helper counts once it waits for work (just after its `ready`): ask until all of them do.
+    for (let tries = 0; tries < 200; tries++) {
+      const n = e.ss_use_threads(threads);
+      if (n === threads) return { instance, memory, threads };
+      await new Promise((r) => setTimeout(r, 5));
+    }
+    return stop('the helper threads did not start serving');
   } catch (err) {
     return stop(err instanceof Error ? err.message : String(err));
+  } finally {
+    clearTimeout(timer);
   }
-  // A helper counts once it waits for work (just after its `ready`): ask until all of them do.
-  for (let tries = 0; tries < 200; tries++) {
-    const n = e.ss_use_threads(threads);
-    if (n === threads) return { instance, memory, threads };
-    await new Promise((r) => setTimeout(r, 5));
-  }
-  return stop('the helper threads did not start serving');
 }
 
 /** A helper's stack and thread-local block, allocated in the shared memory. */

@@ -8,8 +8,15 @@
 //! A helper waits on a condition variable (`memory.atomic.wait32`, allowed in a Worker), so an
 //! idle helper burns no CPU. [`spawn`] refuses when no helper is idle (the caller then runs its
 //! passes on one thread) instead of queueing work no one may ever take.
+//!
+//! **A helper that traps.** WebAssembly panics abort: a panic on a helper traps its instance in
+//! the middle of a pass, and the team's caller would wait for it forever. So the helper's
+//! JavaScript, when `ss_thread_serve` throws, sets [`TRAPPED`] (its address: [`trapped_flag`])
+//! in the shared memory, and the team's waits ([`trapped`]) panic on the calling thread instead
+//! — a trap of the engine's call, which the page reports and restarts from the autosave, as
+//! it does any engine failure.
 
-use std::sync::atomic::{AtomicUsize, Ordering::SeqCst};
+use std::sync::atomic::{AtomicU32, AtomicUsize, Ordering::SeqCst};
 use std::sync::{Condvar, Mutex};
 
 type Task = Box<dyn FnOnce() + Send>;
@@ -24,6 +31,18 @@ static QUEUE: Mutex<Queue> = Mutex::new(Queue { tasks: Vec::new(), idle: 0 });
 static READY: Condvar = Condvar::new();
 /// Helpers that have entered [`serve`].
 static HELPERS: AtomicUsize = AtomicUsize::new(0);
+/// Non-zero once a helper trapped (set by its JavaScript, `web/src/engine/helper.ts`).
+static TRAPPED: AtomicU32 = AtomicU32::new(0);
+
+/// The address of the trap flag (a u32 in the shared memory, for `Atomics.store`).
+pub fn trapped_flag() -> *const AtomicU32 {
+    &TRAPPED
+}
+
+/// Whether a helper trapped: a pass it joined will never finish.
+pub(crate) fn trapped() -> bool {
+    TRAPPED.load(SeqCst) != 0
+}
 
 /// Run `f` on an idle helper; an error if none is idle.
 pub(crate) fn spawn(f: Task) -> std::io::Result<()> {

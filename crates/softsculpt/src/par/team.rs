@@ -125,6 +125,10 @@ impl Team {
         let joined = (1..self.len()).filter(|&w| !close(&sh.joined[w], epoch)).count();
         let mut spins = 0u32;
         while sh.done.load(Acquire) < joined {
+            #[cfg(target_arch = "wasm32")]
+            if super::host::trapped() {
+                panic!("a helper thread of the engine stopped during a pass (host.rs, 'A helper that traps')");
+            }
             spins += 1;
             if spins < 1 << 14 {
                 std::hint::spin_loop();
@@ -162,6 +166,10 @@ impl Drop for Team {
         // Every worker returns (it borrows nothing of the caller's; waiting keeps a dropped
         // team's threads from outliving it, and on wasm32 frees their helpers for the next).
         while self.shared.ended.load(Acquire) < self.workers {
+            #[cfg(target_arch = "wasm32")]
+            if super::host::trapped() {
+                return; // a trapped helper never ends; the others are not waited for either
+            }
             self.wake();
             thread::yield_now();
         }
