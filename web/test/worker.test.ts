@@ -579,7 +579,7 @@ describe('importing', () => {
     // A project keeps both bodies (and the file's frame).
     h.service.doc.openProjectText(h.service.doc.projectText());
     expect(w.bodyCount).toBe(2);
-    expect(h.service.doc.settings.frame).toEqual({ up: 'y', offset: [-0.125, 0, 0], format: 'OBJ' });
+    expect(h.service.doc.settings.frame).toEqual({ up: 'y', offset: [-0.125, 0, 0], format: 'OBJ', file: 'two.obj' });
     await h.send({ type: 'import', name: 'two.obj', data: bytes(file) });
     await h.send({ type: 'importAnswer', answer: { up: 'y', pieces: 'largest' } });
     expect(w.bodyCount).toBe(1);
@@ -604,7 +604,7 @@ describe('importing', () => {
     const p = h.service.doc.world.params(0);
     expect(p.stiffness as number).toBeCloseTo(100 * s * s, 9);
     expect(p.dt as number).toBeCloseTo(Math.sqrt(s) / 60, 12);
-    expect(h.service.doc.settings.frame).toEqual({ up: 'z', offset: [0.01, 0, -0.025], format: 'OBJ' });
+    expect(h.service.doc.settings.frame).toEqual({ up: 'z', offset: [0.01, 0, -0.025], format: 'OBJ', file: 'box.obj' });
   });
 
   it('a 40 m cube keeps its size and stands on the ground like the 1 m one', async () => {
