@@ -226,3 +226,17 @@ test('the wind arrow stays inside the view, as the wind is set and as the view t
   await shot(page, 'details-08-wind-arrow');
   assert.deepEqual(errors, []);
 });
+
+test('an implicit dt far below 1/60 s says it will run in slow motion', async (t) => {
+  const { page, errors } = await open(t);
+  await openFolder(page, 'Simulation');
+  const dt = control(page, 'dt (s)').locator('input').first();
+  await dt.fill('0.000001');
+  await dt.press('Enter');
+  // Before: the page went to 0.4 % of real time with no word.
+  await page.waitForFunction(() => window.softsculpt.messages().some((m) => /implicit steps for each 1\/60 s frame, so expect slow motion/.test(m.text)), null, { timeout: 15000 });
+  const m = (await inspect(page, () => window.softsculpt.messages())).find((x) => /slow motion/.test(x.text));
+  assert.match(m.text, /16,667 implicit steps/);
+  await shot(page, 'details-09-small-implicit-dt');
+  assert.deepEqual(errors, []);
+});

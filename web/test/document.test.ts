@@ -224,3 +224,20 @@ describe('autosave', () => {
   });
 });
 
+
+describe('the time step', () => {
+  it('an implicit dt far below 1/60 s says it runs in slow motion and why; 1/60 s and an explicit dt say nothing of it', () => {
+    const { doc, messages } = opened();
+    expect(doc.world.params(0).integrator).toBe('implicit');
+    doc.setParam('dt', 1e-6);
+    // 1/60 s in steps of 1 µs: round(16,666.7) = 16,667 solves a frame.
+    expect(messages.at(-1)).toMatch(/16,667 implicit steps for each 1\/60 s frame, so expect slow motion; the implicit integrator is stable at dt = 1\/60 s/);
+    const said = messages.length;
+    doc.setParam('dt', 1 / 60);
+    doc.setParam('dt', 1 / 240); // four steps a frame: not yet
+    expect(messages.slice(said).some((t) => /slow motion/.test(t))).toBe(false);
+    doc.setParam('integrator', 'symplectic');
+    doc.setParam('dt', 1e-6);
+    expect(messages.slice(said).some((t) => /slow motion/.test(t))).toBe(false);
+  });
+});

@@ -30,8 +30,8 @@ export class Plots {
     { label: 'volume m³', color: '#7fd1ff', values: [] },
     { label: 'pressure Pa', color: '#ffd27f', values: [] },
     { label: 'kinetic J', color: '#ff8f8f', values: [], group: 'energy' },
-    { label: 'elastic J', color: '#9dff8f', values: [], group: 'energy', whyNegative: '< 0: a frozen load at work' },
-    { label: 'gas J', color: '#d59dff', values: [], group: 'energy', fromFirst: true, whyNegative: '< 0: expanded since shown' },
+    { label: 'elastic J', color: '#9dff8f', values: [], group: 'energy', whyNegative: 'below 0: frozen under a load' },
+    { label: 'gas J', color: '#d59dff', values: [], group: 'energy', fromFirst: true, whyNegative: 'below 0: the gas has expanded' },
   ];
   private times: number[] = [];
   /** The first value of each `fromFirst` series since the last clear (NaN: none yet). */

@@ -68,6 +68,10 @@ export async function loadEngine(source: BufferSource | string, threads = thread
   await initEngine(source, threaded);
 }
 
+/** Implicit steps per 1/60 s frame past which a smaller dt is said to run in slow motion: each is
+ * a Newton solve, where the modeler's default (dt = 1/60 s) takes one a frame. */
+const SLOW_IMPLICIT_STEPS = 4;
+
 /**
  * Vertices up to which the modeler's steps converge in real time on a machine like this one
  * (BENCHMARKS.md, "Every frame on time": the mushroom subdivided once, 1,442 vertices, runs in
@@ -350,7 +354,10 @@ export class Document {
       ? this.edit(`set ${id}`, true, () => this.world.moveGround(value), 'whole')
       : this.edit(`set ${id}`, true, () => this.world.setParam(0, id, value), 'none');
     if (ok) this.changes = [...this.changes.slice(-7), { id, value, time: this.stats().time }];
-    if (ok && id === 'dt') this.settings.dt = value as number;
+    if (ok && id === 'dt') {
+      this.settings.dt = value as number;
+      this.sayIfSlow();
+    }
     // Another integrator gets a step it is stable at: 1/60 s implicit, else the explicit limit.
     if (ok && id === 'integrator') {
       this.setDt(dtFor(this.world, value as string));
@@ -422,8 +429,21 @@ export class Document {
     try {
       this.world.setParam(0, 'dt', dt);
       this.settings.dt = dt;
+      this.sayIfSlow();
     } catch (e) {
       this.hooks.message(errorText(e), 'error');
+    }
+  }
+
+  /**
+   * An implicit dt below 1/60 s buys no stability (backward Euler is stable at 1/60 s) and costs
+   * a solve per step: say what to expect (a new-user trial ran dt = 1e-6 s at 0.4 % of real
+   * time, 16,667 steps a frame, with no word).
+   */
+  private sayIfSlow(): void {
+    const dt = this.settings.dt, n = stepsPerFrame(dt);
+    if (n > SLOW_IMPLICIT_STEPS && String(this.world.params(0).integrator) === 'implicit') {
+      this.hooks.message(`dt = ${Number(dt.toPrecision(3))} s is ${n.toLocaleString('en-US')} implicit steps for each 1/60 s frame, so expect slow motion; the implicit integrator is stable at dt = 1/60 s`, 'warn');
     }
   }
 
