@@ -237,6 +237,8 @@ test('an implicit dt far below 1/60 s says it will run in slow motion', async (t
   await page.waitForFunction(() => window.softsculpt.messages().some((m) => /implicit steps for each 1\/60 s frame, so expect slow motion/.test(m.text)), null, { timeout: 15000 });
   const m = (await inspect(page, () => window.softsculpt.messages())).find((x) => /slow motion/.test(x.text));
   assert.match(m.text, /16,667 implicit steps/);
+  // The HUD says how slow in a percentage below 1 (before: "0% of real time").
+  await page.waitForFunction(() => /\b0\.\d+% of real time \(slow motion\)/.test(document.querySelector('#hud')?.textContent ?? ''), null, { timeout: 30000 });
   await shot(page, 'details-09-small-implicit-dt');
   assert.deepEqual(errors, []);
 });

@@ -11,6 +11,12 @@ describe('the HUD pace', () => {
   it('shows the last frame’s pace while frames come', () => {
     expect(paceText(base)).toBe('real time');
     expect(paceText({ ...base, slowMotion: true, realTimeFraction: 0.126 })).toBe('13% of real time (slow motion)');
+    // Never "0%" or "100%" in slow motion (a new-user trial read "100 % of real time (slow motion)").
+    expect(paceText({ ...base, slowMotion: true, realTimeFraction: 0.004 })).toBe('0.4% of real time (slow motion)');
+    expect(paceText({ ...base, slowMotion: true, realTimeFraction: 0.0004 })).toBe('0.04% of real time (slow motion)');
+    expect(paceText({ ...base, slowMotion: true, realTimeFraction: 0.996 })).toBe('99.6% of real time (slow motion)');
+    expect(paceText({ ...base, slowMotion: true, realTimeFraction: 0.9999 })).toBe('99.9% of real time (slow motion)');
+    expect(paceText({ ...base, slowMotion: true, realTimeFraction: 1.2 })).toBe('99.9% of real time (slow motion)');
   });
   it('says it waits, and how long, when no frame came for a second while playing', () => {
     expect(paceText({ ...base, sinceFrameMs: STALL_MS - 1 })).toBe('real time');

@@ -25,8 +25,20 @@ export interface PaceInput {
 export function paceText(p: PaceInput): string {
   if (!p.playing) return 'paused';
   if (!p.busy && p.sinceFrameMs >= STALL_MS) return `waiting for a step: ${(p.sinceFrameMs / 1000).toFixed(1)} s so far`;
-  const speed = p.slowMotion ? `${(p.realTimeFraction * 100).toFixed(0)}% of real time (slow motion)` : 'real time';
+  const speed = p.slowMotion ? `${fractionText(p.realTimeFraction)} of real time (slow motion)` : 'real time';
   return p.accuracy ? `${speed}, steps accurate to ${accuracyText(p.accuracy)} (time-limited)` : speed;
+}
+
+/**
+ * A fraction of real time in slow motion as a percentage that never contradicts it: whole
+ * percents, one decimal below 1 % (0.004 reads "0.4%", not "0%") and above 99 % (0.996 reads
+ * "99.6%", not "100%"), and never 100 %.
+ */
+export function fractionText(f: number): string {
+  const pct = Math.max(0, f * 100);
+  if (pct < 1) return `${pct < 0.1 ? pct.toPrecision(1) : pct.toFixed(1)}%`;
+  if (pct < 99) return `${pct.toFixed(0)}%`;
+  return `${Math.min(99.9, Math.floor(pct * 10) / 10).toFixed(1)}%`;
 }
 
 /** A relative residual as the HUD says it: "3%", "0.4%". */
