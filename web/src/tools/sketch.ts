@@ -10,6 +10,9 @@ import type { Tool, ToolContext } from './tool';
 /** Screen distance (px) between kept samples of the stroke. */
 const SPACING_PX = 4;
 
+/** The view's horizontal share of its direction above which an outline is drawn on an upright plane. */
+const UPRIGHT_BELOW = 0.1;
+
 export class SketchTool implements Tool {
   readonly name = 'sketch' as const;
   readonly label = 'Sketch';
@@ -56,12 +59,23 @@ export class SketchTool implements Tool {
     const ctx = this.ctx, stroke = this.stroke;
     this.clear();
     if (!ctx || stroke.length < 3) return;
-    // The view plane: through the trackball's centre, facing the camera.
+    // The plane the outline is drawn on: through the trackball's centre, upright (containing the
+    // world's up) and facing the camera's horizontal direction, so a balloon drawn on a tilted
+    // view stands as drawn (the view plane itself laid a 60°-tilted drawing nearly flat on the
+    // ground). The view rays through the outline meet it where the camera sees the outline,
+    // so it looks as drawn. Looking nearly straight down (the horizontal direction under a tenth
+    // of the view's), the view plane: an outline drawn from above lies as drawn.
     const { camera, controls, canvas } = ctx.viewport;
     const origin = controls.target.clone();
-    const right = new THREE.Vector3().setFromMatrixColumn(camera.matrixWorld, 0).normalize();
-    const up = new THREE.Vector3().setFromMatrixColumn(camera.matrixWorld, 1).normalize();
-    const normal = new THREE.Vector3().setFromMatrixColumn(camera.matrixWorld, 2).normalize();
+    let right = new THREE.Vector3().setFromMatrixColumn(camera.matrixWorld, 0).normalize();
+    let up = new THREE.Vector3().setFromMatrixColumn(camera.matrixWorld, 1).normalize();
+    let normal = new THREE.Vector3().setFromMatrixColumn(camera.matrixWorld, 2).normalize();
+    const level = new THREE.Vector3(normal.x, 0, normal.z);
+    if (level.length() > UPRIGHT_BELOW) {
+      normal = level.normalize();
+      up = new THREE.Vector3(0, 1, 0);
+      right = new THREE.Vector3().crossVectors(up, normal);
+    }
     const plane = new THREE.Plane().setFromNormalAndCoplanarPoint(normal, origin);
     const rect = canvas.getBoundingClientRect();
     const ray = new THREE.Raycaster(), hit = new THREE.Vector3();
