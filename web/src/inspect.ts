@@ -29,6 +29,8 @@ export function inspector(app: App) {
     bodies: () => 1 + m.others.length,
     faceCount: () => m.faceCount,
     springCount: () => m.springCount,
+    /** The active body's triangles (vertex indices, three per face). */
+    triangles: () => Array.from(m.triangles),
     positions: () => Array.from(m.positions),
     pinned: () => Array.from(m.pinned),
     masses: () => Array.from(m.masses),
@@ -59,7 +61,7 @@ export function inspector(app: App) {
       const e = c.matrixWorld.elements;
       return { mode: app.viewport.rig.mode, target: app.viewport.rig.target.toArray(), position: c.position.toArray(), right: [e[0], e[1], e[2]], up: [e[4], e[5], e[6]] };
     },
-    /** The brush ring as last drawn: radius (m), strength fraction, copies (mirror images), or null. */
+    /** The brush ring as last drawn: radius (m), strength fraction, copies (mirror images), their centres (m), or null. */
     ring: () => (app.cursor.ring.shown ? { ...app.cursor.ring.shown } : null),
     brush: () => ({ radius: app.brush.radius, strength: app.tools.tool.strength }),
     symmetry: () => [...app.symmetryAxes],

@@ -98,7 +98,7 @@ export class BrushCursor {
     this.moved = true;
   }
 
-  /** Redraw the ring if the pointer, the brush or the body moved (every animation frame). */
+    /** Redraw the ring if the pointer, the brush or the body moved (every animation frame). */
   update(bodyMoved: boolean): void {
     if (!this.moved && !bodyMoved) return;
     this.moved = false;
@@ -114,10 +114,34 @@ export class BrushCursor {
     const p = hit.point, n = hit.face.normal;
     const points = signs.map((s) => new THREE.Vector3(...reflect([p.x, p.y, p.z], s, centre as [number, number, number])));
     const normals = signs.map((s) => new THREE.Vector3(...reflectVector([n.x, n.y, n.z], s)));
+    // A body is symmetric only up to about an edge (and less once deformed): a mirror image of
+    // the point under the cursor can sit off the surface. Each copy goes onto the surface along
+    // its normal (the nearest hit within a brush radius), as the stroke's copies act there.
+    for (let i = 1; i < points.length; i++) onSurface(hit.object, points[i], normals[i], this.ctx.brush.radius);
     this.ring.show(points, normals, this.ctx.brush.radius, strengthFraction(this.ctx.tools.tool));
     v.invalidate();
   }
 
   /** The brush or strength changed from elsewhere (keys, panel). */
   poke(): void { this.moved = true; }
+}
+
+/** Scratch for `onSurface`. */
+const ray = new THREE.Raycaster();
+const along = new THREE.Vector3();
+
+/**
+ * Move `p` (with its normal `n`) onto `mesh`'s surface: the nearer of the hits of the line
+ * through p along n within `reach` either way; unchanged if there is none.
+ */
+function onSurface(mesh: THREE.Object3D, p: THREE.Vector3, n: THREE.Vector3, reach: number): void {
+  along.copy(n).normalize();
+  ray.set(along.clone().multiplyScalar(reach).add(p), along.clone().negate());
+  ray.far = 2 * reach;
+  const hits = ray.intersectObject(mesh, false);
+  let best: THREE.Intersection | null = null;
+  for (const h of hits) if (!best || Math.abs(h.distance - reach) < Math.abs(best.distance - reach)) best = h;
+  if (!best?.face) return;
+  p.copy(best.point);
+  n.copy(best.face.normal);
 }

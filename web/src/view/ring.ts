@@ -24,7 +24,7 @@ export class BrushRing {
   readonly group = new THREE.Group();
   private rings: { outer: THREE.LineLoop; inner: THREE.LineLoop; g: THREE.Group }[] = [];
   /** What was last shown (for tests and the HUD): radius (m), strength fraction in [0, 1]. */
-  shown: { radius: number; fraction: number; copies: number } | null = null;
+  shown: { radius: number; fraction: number; copies: number; centres: [number, number, number][] } | null = null;
 
   constructor() { this.group.visible = false; }
 
@@ -57,7 +57,7 @@ export class BrushRing {
       (r.outer.material as THREE.LineBasicMaterial).opacity = i === 0 ? 0.9 : 0.45;
     });
     for (let i = points.length; i < this.rings.length; i++) this.rings[i].g.visible = false;
-    this.shown = { radius, fraction: fraction ?? 0, copies: points.length };
+    this.shown = { radius, fraction: fraction ?? 0, copies: points.length, centres: points.map((p) => [p.x, p.y, p.z]) };
   }
 
   hide(): void {
