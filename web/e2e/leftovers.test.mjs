@@ -94,12 +94,26 @@ test('W at its default leans the mushroom visibly and keeps a light sketched bal
   await settle(page, 0.05, 30000);
   // The mushroom (1 kg, stem pinned): the wind bends it by more than a centimetre.
   const c0 = await centre(page);
+  const x0 = await inspect(page, () => window.softsculpt.positions());
   await page.mouse.move(100, 700);
   await page.keyboard.press('w');
-  await page.waitForTimeout(4000);
+  const t0 = await inspect(page, () => window.softsculpt.stats().time);
+  await page.waitForFunction((t) => window.softsculpt.stats().time > t + 3, t0, { timeout: 60000, polling: 100 });
   const c1 = await centre(page);
   const wind = await inspect(page, () => window.softsculpt.param('wind'));
   assert.ok(dist(c0, c1) > 0.01, `the mushroom leans ${dist(c0, c1)} m in the wind ${JSON.stringify(wind)}`);
+  // Issue #37 item 3: its cap's rim (the vertices of the widest ring, a tenth of the height
+  // around it) sways at least 5 cm, 3 s of simulated time into the wind.
+  const rim = await inspect(page, (x0) => {
+    const x = window.softsculpt.positions();
+    let top = -Infinity, wide = 0, wideY = 0;
+    for (let i = 0; i < x.length; i += 3) top = Math.max(top, x0[i + 1]);
+    for (let i = 0; i < x.length; i += 3) { const r = Math.hypot(x0[i], x0[i + 2]); if (r > wide) { wide = r; wideY = x0[i + 1]; } }
+    let most = 0;
+    for (let i = 0; i < x.length; i += 3) if (Math.abs(x0[i + 1] - wideY) < 0.1 * top) most = Math.max(most, Math.hypot(x[i] - x0[i], x[i + 1] - x0[i + 1], x[i + 2] - x0[i + 2]));
+    return most;
+  }, x0);
+  assert.ok(rim >= 0.05, `the cap's rim sways ${(100 * rim).toFixed(1)} cm in the wind ${JSON.stringify(wind)}`);
   assert.ok(await inView(page), 'the mushroom stays in view');
   await shot(page, 'leftovers-02-wind-mushroom');
   // Shift+W calms it (before: only the Wind folder's "calm" did; W again re-aims it).
