@@ -326,3 +326,50 @@ fn a_failed_frame_goes_back_to_the_last_sound_state_never_before_the_last_change
         assert!(w.time() >= back);
     }
 }
+
+/// A scene event is a change too. The world steps in 1/240 s (four steps a frame; measured: the
+/// frame from 1.725 s fails at its third step, 1.733 s, and rewinds to 1.258 s without events),
+/// so a frame's failure can come steps after an event fired in it: then no rewind (the points are from before
+/// the event, which the rollback to the failing step's start does not undo: it stands). An event
+/// due at the failing step itself is undone with it by the rollback (it fires again when its
+/// time comes), so that frame rewinds as without it. The event sets the wind the world already
+/// has: the motion is bit for bit the run without it, the failure in the same step.
+#[test]
+fn a_failed_frame_does_not_rewind_past_a_scene_event_fired_in_it() {
+    use softsculpt::params::Value::Number;
+    use softsculpt::world::{Action, Event};
+    let budget = Budget { rewind: true, splits: 3, relax: true, ..Budget::converge() };
+    let dt = 1.0 / 240.0;
+    let world = || {
+        let (mut w, _) = caving_mushroom();
+        w.set_param(0, "dt", Number(dt)).unwrap();
+        w.forget_rewind();
+        // Half a frame first: the frames then start between the steps of the run's own frames,
+        // so the failing step (the same one: the steps do not depend on how they are grouped)
+        // is not a frame's first.
+        w.advance(2.0 * dt, &budget).unwrap();
+        w
+    };
+    // The run without events: the failing frame's start, the failing step's time, the rewind.
+    let mut w = world();
+    let mut start = 0.0;
+    let e = (0..2400)
+        .find_map(|_| {
+            start = w.time();
+            w.advance(FRAME, &budget).err()
+        })
+        .expect("the mushroom caves in and a step fails");
+    let back = e.rewound_to.expect("without events the failure rewinds");
+    assert!(e.time > start + 0.5 * dt, "the failure is not the frame's first step (frame from {start} s, failed at {} s)", e.time);
+    // An event at the frame's start (fired by its first step, which succeeded): no rewind.
+    // An event at the failing step's time: undone by the rollback, the rewind as without it.
+    for (at, expect) in [(start, None), (e.time, Some(back))] {
+        let mut w = world();
+        let wind = w.settings.wind;
+        w.set_events(vec![Event { time: at, body: 0, action: Action::SetWind(wind), line: 1 }]);
+        let f = (0..2400).find_map(|_| w.advance(FRAME, &budget).err()).expect("the same failure");
+        assert_eq!(f.time, e.time, "the same failing step");
+        assert_eq!(f.rewound_to, expect, "event at {at} s: {f}");
+        assert!(w.bodies[0].positions().iter().all(|x| x.is_finite()));
+    }
+}
