@@ -29,6 +29,12 @@ async function openFolder(page, title) {
   const t = page.locator('.lil-title', { hasText: title }).first();
   if ((await t.getAttribute('aria-expanded')) === 'false') await t.click();
 }
+/** Type `value` into the panel's number field `name` and press Enter, as a user sets it. */
+async function typeInto(page, name, value) {
+  const field = control(page, name).locator('input').first();
+  await field.fill(String(value));
+  await field.press('Enter');
+}
 /** Significant digits of a number as written ("0.2025" → 4, "0.35" → 2, "100" → 1). */
 const significant = (text) => text.replace(/^[-−]?0*\.?0*/, '').replace(/\.|e.*$/g, '').replace(/0+$/, '').length;
 
@@ -175,9 +181,7 @@ test('the help overlay fits a small window, above the panel, and scrolls', async
 test('choosing the loaded built-in model again starts it over, undoably', async (t) => {
   const { page, errors } = await open(t);
   await openFolder(page, 'Simulation');
-  const stiffness = control(page, 'stiffness k').locator('input').first();
-  await stiffness.fill('250');
-  await stiffness.press('Enter');
+  await typeInto(page, 'stiffness k', 250);
   await page.waitForFunction(() => window.softsculpt.param('stiffness') === 250);
   const [undo] = await inspect(page, () => window.softsculpt.history());
   const opened = await inspect(page, () => window.softsculpt.settings().opened);
@@ -230,9 +234,7 @@ test('the wind arrow stays inside the view, as the wind is set and as the view t
 test('an implicit dt far below 1/60 s says it will run in slow motion', async (t) => {
   const { page, errors } = await open(t);
   await openFolder(page, 'Simulation');
-  const dt = control(page, 'dt (s)').locator('input').first();
-  await dt.fill('0.000001');
-  await dt.press('Enter');
+  await typeInto(page, 'dt (s)', '0.000001');
   // Before: the page went to 0.4 % of real time with no word.
   await page.waitForFunction(() => window.softsculpt.messages().some((m) => /implicit steps for each 1\/60 s frame, so expect slow motion/.test(m.text)), null, { timeout: 15000 });
   const m = (await inspect(page, () => window.softsculpt.messages())).find((x) => /slow motion/.test(x.text));

@@ -176,9 +176,12 @@ test('a blow-up is said once in the user\'s terms, the view frames the model put
   // The view shows the model as it was put back (the camera follows where the model is, not the
   // path it took: the blow-up's excursion is undone with it), and the plots start again at the
   // time it was put back to.
-  await page.waitForTimeout(1000); // the view eases back (FOLLOW_TAU), on the page's clock: nothing simulates while paused
+  // The view eases back (FOLLOW_TAU) on the page's clock (nothing simulates while paused): wait
+  // for the vertices to be on screen, then check them.
   const canvas = await page.locator('#view').boundingBox();
-  for (const i of [(await topVertex(page)).index, 0]) {
+  const shown = [(await topVertex(page)).index, 0];
+  await page.waitForFunction(([c, is]) => is.every((i) => { const p = window.softsculpt.screenOf(i); return p.x > c.x && p.x < c.x + c.width && p.y > c.y && p.y < c.y + c.height; }), [canvas, shown], { timeout: 10000 }).catch(() => {});
+  for (const i of shown) {
     const p = await inspect(page, (j) => window.softsculpt.screenOf(j), i);
     assert.ok(p.x > canvas.x && p.x < canvas.x + canvas.width && p.y > canvas.y && p.y < canvas.y + canvas.height, `vertex ${i} on screen at ${p.x}, ${p.y}`);
   }

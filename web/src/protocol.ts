@@ -83,7 +83,7 @@ export type Command =
   | { type: 'init'; wasmUrl: string; restore: boolean; interrupts?: SharedArrayBuffer; threads?: number }
   | { type: 'loadBuiltin'; name: string }
   /** A model file (OBJ, PLY, STL, glTF/GLB); `data` is transferred. */
-  /** `upAnswers`: the user's last up axis per format (io/upaxis.ts), used when the file's own guess is unsure. */
+  /** `upAnswers`: the up axis the user chose for files by name (io/upaxis.ts), which settles that file's guess. */
   | { type: 'import'; name: string; data: ArrayBuffer; upAnswers?: Record<string, 'y' | 'z'> }
   /** The imported model turned to another up axis (re-built from the file; undoable). */
   | { type: 'setUp'; up: 'y' | 'z' }

@@ -68,6 +68,8 @@ export interface RawEngine {
 }
 
 let engine: RawEngine | null = null;
+/** Threads the engine steps on (`engineThreads`). */
+let threadCount = 1;
 
 /** The page's interrupting commands sent [0] and taken [1] (protocol.ts `interrupts`), if shared. */
 let counters: Int32Array | null = null;
@@ -110,7 +112,6 @@ export async function initEngine(source: BufferSource | string, threaded?: { url
   return engine;
 }
 
-let threadCount = 1;
 /** Threads the engine steps on (1: the one-thread build, or the threaded one on one thread). */
 export function engineThreads(): number { return threadCount; }
 
@@ -130,8 +131,7 @@ export const view = {
 /** The last error: `{kind, message, …}` (see the crate documentation). */
 export function errorJson(): Record<string, unknown> {
   const e = raw();
-  // A copy: TextDecoder refuses views of shared memory (the threaded build).
-  const text = new TextDecoder().decode(new Uint8Array(e.memory.buffer, e.ss_error_ptr(), e.ss_error_len()).slice());
+  const text = new TextDecoder().decode(copyOut(e.ss_error_ptr(), e.ss_error_len()));
   try {
     return JSON.parse(text) as Record<string, unknown>;
   } catch {
@@ -139,16 +139,20 @@ export function errorJson(): Record<string, unknown> {
   }
 }
 
+/** A copy of `len` bytes at `ptr` (also what TextDecoder needs: it refuses views of shared memory, the threaded build's). */
+function copyOut(ptr: number, len: number): Uint8Array {
+  return new Uint8Array(raw().memory.buffer, ptr, len).slice();
+}
+
 /** A copy of the last result's bytes. */
 export function resultBytes(): Uint8Array {
   const e = raw();
-  return new Uint8Array(e.memory.buffer, e.ss_result_ptr(), e.ss_result_len()).slice();
+  return copyOut(e.ss_result_ptr(), e.ss_result_len());
 }
 
 /** The last result as text (JSON, TOML). */
 export function resultText(): string {
-  const e = raw();
-  return new TextDecoder().decode(new Uint8Array(e.memory.buffer, e.ss_result_ptr(), e.ss_result_len()).slice());
+  return new TextDecoder().decode(resultBytes());
 }
 
 /** Copy bytes into a temporary wasm buffer for the duration of `f`. */

@@ -110,6 +110,13 @@ const EXPORTERS: { re: RegExp; formats: string[]; up: Up | 'stated'; name: strin
  * kangaroo balloon, the flattest figure among the test models, 0.28). */
 const FLAT_SHEET = 0.01;
 
+/** The axis (y: 1 or z: 2) along which extents `ext` make a flat sheet: strictly the thinnest and
+ * at most FLAT_SHEET of the largest (a sheet thin along x says nothing of up). */
+function flatAxis(ext: number[]): 1 | 2 | undefined {
+  const largest = Math.max(...ext);
+  return ([1, 2] as const).find((d) => ext[d] <= FLAT_SHEET * largest && ext.every((e, k) => k === d || ext[d] < e));
+}
+
 /** Whether the faces at the bottom along axis `d` make a flat base (share of the box's cross-section). */
 function flatBase(lists: ArrayLike<number>[], triangles: ArrayLike<number>[], d: number, lo: number, tol: number): number {
   let area = 0;
@@ -150,7 +157,7 @@ export function guessUp(format: string, lists: ArrayLike<number>[], triangles: A
     const up = exporter.m![1].toLowerCase() as Up;
     return { up, reason: `written by ${exporter.e.name} as ${up.toUpperCase()}-up`, sure: true };
   }
-  const thin = ([1, 2] as const).find((d) => ext[d] <= FLAT_SHEET * Math.max(...ext) && ext[d] < Math.min(...[0, 1, 2].filter((k) => k !== d).map((k) => ext[k])));
+  const thin = flatAxis(ext);
   if (thin !== undefined) {
     const up: Up = thin === 1 ? 'y' : 'z';
     const against = exporter && exporter.e.up !== up ? `, not ${exporter.e.name}'s default` : '';

@@ -98,7 +98,7 @@ export class BrushCursor {
     this.moved = true;
   }
 
-    /** Redraw the ring if the pointer, the brush or the body moved (every animation frame). */
+  /** Redraw the ring if the pointer, the brush or the body moved (every animation frame). */
   update(bodyMoved: boolean): void {
     if (!this.moved && !bodyMoved) return;
     this.moved = false;
@@ -126,9 +126,10 @@ export class BrushCursor {
   poke(): void { this.moved = true; }
 }
 
-/** Scratch for `onSurface`. */
+/** Scratch for `onSurface` (called as the pointer moves: no allocation). */
 const ray = new THREE.Raycaster();
 const along = new THREE.Vector3();
+const from = new THREE.Vector3();
 
 /**
  * Move `p` (with its normal `n`) onto `mesh`'s surface: the nearer of the hits of the line
@@ -136,7 +137,8 @@ const along = new THREE.Vector3();
  */
 function onSurface(mesh: THREE.Object3D, p: THREE.Vector3, n: THREE.Vector3, reach: number): void {
   along.copy(n).normalize();
-  ray.set(along.clone().multiplyScalar(reach).add(p), along.clone().negate());
+  from.copy(p).addScaledVector(along, reach);
+  ray.set(from, along.negate());
   ray.far = 2 * reach;
   const hits = ray.intersectObject(mesh, false);
   let best: THREE.Intersection | null = null;

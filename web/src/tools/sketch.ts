@@ -10,8 +10,9 @@ import type { Tool, ToolContext } from './tool';
 /** Screen distance (px) between kept samples of the stroke. */
 const SPACING_PX = 4;
 
-/** The view's horizontal share of its direction above which an outline is drawn on an upright plane. */
-const UPRIGHT_BELOW = 0.1;
+/** An outline is drawn on an upright plane when the view direction's horizontal part is at least
+ * this (of 1); below it the view looks almost straight down and the view plane is kept. */
+const UPRIGHT_FROM = 0.1;
 
 export class SketchTool implements Tool {
   readonly name = 'sketch' as const;
@@ -71,7 +72,7 @@ export class SketchTool implements Tool {
     let up = new THREE.Vector3().setFromMatrixColumn(camera.matrixWorld, 1).normalize();
     let normal = new THREE.Vector3().setFromMatrixColumn(camera.matrixWorld, 2).normalize();
     const level = new THREE.Vector3(normal.x, 0, normal.z);
-    if (level.length() > UPRIGHT_BELOW) {
+    if (level.length() > UPRIGHT_FROM) {
       normal = level.normalize();
       up = new THREE.Vector3(0, 1, 0);
       right = new THREE.Vector3().crossVectors(up, normal);

@@ -9,7 +9,7 @@
 // the trial slow, with the reason in one line.
 
 import { World, type Quality } from '../engine/world';
-import { FRAME_DT } from '../engine/models';
+import { FRAME_DT, stepsPerFrame } from '../engine/models';
 import type { MeshCost } from '../io/import';
 import { SOLVE_BUDGET_MS } from './stepper';
 
@@ -80,7 +80,7 @@ export function trial(empty: Uint8Array, build: (w: World) => void, now: () => n
     // most one linear solve.
     // A frame is the nearest whole number of steps of dt (World::advance), so a whole one may
     // simulate up to dt/2 less than FRAME_DT; a frame the budget cut lacks at least one step.
-    const dt = Number(w.params(0).dt);
+    const dt = Number(w.params(0).dt), whole = stepsPerFrame(dt) * dt - dt / 2;
     const t0 = now();
     let frames = 0, finished = t0;
     while (frames < TRIAL_FRAMES) {
@@ -89,7 +89,7 @@ export function trial(empty: Uint8Array, build: (w: World) => void, now: () => n
       const a = w.advance(FRAME_DT, left, 1e9);
       const t = now();
       // A step stopped by its deadline, or a frame not all simulated: not a converged frame.
-      if (a.early > 0 || a.simulated < Math.max(1, Math.round(FRAME_DT / dt)) * dt - dt / 2 || t - t0 > 1000 * TRIAL_SECONDS) break;
+      if (a.early > 0 || a.simulated < whole || t - t0 > 1000 * TRIAL_SECONDS) break;
       frames++;
       finished = t;
     }

@@ -141,9 +141,10 @@ impl World {
     }
 
     /// Run the bodies' force stages and the implicit solver on `n` threads (0: one per core;
-    /// WebAssembly: the caller and the page's helpers, `par/host.rs`; one without atomics). The results do not depend on the number beyond
-    /// rounding: the same bits on any count for the implicit solver, on 2 or more for the
-    /// explicit stages (one thread sums their springs in another order; `par.rs`).
+    /// WebAssembly: the caller and the page's helpers, `par/host.rs`; one without atomics). The
+    /// results do not depend on the number beyond rounding: the same bits on any count for the
+    /// implicit solver, on 2 or more for the explicit stages (one thread sums their springs in
+    /// another order; `par.rs`).
     pub fn set_threads(&mut self, n: usize) -> Result<(), String> {
         self.threads = crate::par::Threads::new(n)?;
         Ok(())
