@@ -2,7 +2,7 @@
 //! changed (SculptGL's rule: undo stores what a stroke touched).
 //!
 //! A delta is computed between two worlds, `before` and `after`, in the snapshot's payload terms
-//! (`crate::snapshot::WorldV6`, so every field a snapshot keeps is covered and nothing else):
+//! (`crate::snapshot::WorldV7`, so every field a snapshot keeps is covered and nothing else):
 //! - if the structure changed (another number of bodies, or a body's triangles differ: a new
 //!   model, a subdivision, an opened scene), the delta is the whole earlier world, as a snapshot;
 //! - otherwise, per body, the values of each per-vertex, per-spring or per-face array that differ
@@ -22,7 +22,7 @@
 //! payload in postcard (the same serde path as snapshots).
 
 use crate::mesh::topology;
-use crate::snapshot::{self, BodyV1, SnapshotError, WorldV1, WorldV6};
+use crate::snapshot::{self, BodyV1, SnapshotError, WorldV1, WorldV7};
 use crate::world::World;
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -192,6 +192,9 @@ enum Kind {
         /// The version-6 additions (each body's kept coarse levels), when they differ; kept
         /// with [`StateScope::All`] only, like the warm start.
         ext6: Option<snapshot::ExtensionV6>,
+        /// The version-7 additions (each body's hinge rest angles moved by the plastic stage),
+        /// when they differ: kept whatever the scope, as the rest lengths are.
+        ext7: Option<snapshot::ExtensionV7>,
         timeline: Option<Timeline>,
         bodies: Vec<Option<BodyDelta>>,
         /// Each body's mesh it was made for: vertex count and a hash of the triangles.
@@ -208,8 +211,9 @@ pub struct Delta {
 
 const MAGIC: &[u8; 5] = b"SSDLT";
 /// 2: the version-3 snapshot additions (1 had none; deltas live only in a session's memory);
-/// 3: the version-4 additions; 4: the version-5 additions; 5: the version-6 additions.
-const VERSION: u32 = 5;
+/// 3: the version-4 additions; 4: the version-5 additions; 5: the version-6 additions; 6: the
+/// version-7 additions.
+const VERSION: u32 = 6;
 const HEADER: usize = 5 + 4 + 4;
 
 fn same_bits(a: &[f64], b: &[f64]) -> bool {
@@ -301,14 +305,15 @@ fn timeline(w: &WorldV1) -> Timeline {
     Timeline { steps: w.steps, t_base: w.t_base, since: w.since, clock_dt: w.clock_dt, events: w.events.clone(), next_event: w.next_event, loads: w.loads.clone() }
 }
 
-fn diff(before6: &WorldV6, after6: &WorldV6, scope: StateScope) -> Delta {
+fn diff(before7: &WorldV7, after7: &WorldV7, scope: StateScope) -> Delta {
+    let (before6, after6) = (&before7.v6, &after7.v6);
     let (before5, after5) = (&before6.v5, &after6.v5);
     let (before4, after4) = (&before5.v4, &after5.v4);
     let (before2, after2) = (&before4.v3, &after4.v3);
     let (before, after) = (&before2.base, &after2.base);
     let same_structure = before.bodies.len() == after.bodies.len() && before.bodies.iter().zip(&after.bodies).all(|(b, a)| b.triangles == a.triangles);
     if !same_structure {
-        let whole = snapshot::frame(snapshot::VERSION, &encoded(before6));
+        let whole = snapshot::frame(snapshot::VERSION, &encoded(before7));
         return Delta { scope, kind: Kind::Whole(whole) };
     }
     let settings = (encoded(&before.settings) != encoded(&after.settings)).then(|| before.settings.clone());
@@ -317,9 +322,10 @@ fn diff(before6: &WorldV6, after6: &WorldV6, scope: StateScope) -> Delta {
     let ext4 = (scope == StateScope::All && encoded(&before4.ext4) != encoded(&after4.ext4)).then(|| before4.ext4.clone());
     let ext5 = (encoded(&before5.ext5) != encoded(&after5.ext5)).then(|| before5.ext5.clone());
     let ext6 = (scope == StateScope::All && encoded(&before6.ext6) != encoded(&after6.ext6)).then(|| before6.ext6.clone());
+    let ext7 = (encoded(&before7.ext7) != encoded(&after7.ext7)).then(|| before7.ext7.clone());
     let timeline = (scope == StateScope::All && encoded(&timeline(before)) != encoded(&timeline(after))).then(|| timeline(before));
     let bodies = before.bodies.iter().zip(&after.bodies).map(|(b, a)| body_delta(b, a, scope)).collect();
-    Delta { scope, kind: Kind::Parts { settings, ext, ext3, ext4, ext5, ext6, timeline, bodies, meshes: meshes(before) } }
+    Delta { scope, kind: Kind::Parts { settings, ext, ext3, ext4, ext5, ext6, ext7, timeline, bodies, meshes: meshes(before) } }
 }
 
 /// Each body's vertex count and an FNV-1a hash of its triangles: which meshes a delta fits.
@@ -383,7 +389,7 @@ fn carry_over(now: &World, to: &mut World) {
 impl Delta {
     /// What takes `after` back to `before` (see the module documentation for `scope`).
     pub fn between(before: &World, after: &World, scope: StateScope) -> Delta {
-        diff(&snapshot::payload_v6(before), &snapshot::payload_v6(after), scope)
+        diff(&snapshot::payload_v7(before), &snapshot::payload_v7(after), scope)
     }
 
     /// What takes any later world back to `before` whole: every setting, mesh and the whole
@@ -405,32 +411,35 @@ impl Delta {
                 *world = earlier;
                 Ok(inverse)
             }
-            Kind::Parts { settings, ext, ext3, ext4, ext5, ext6, timeline, bodies, meshes: made_for } => {
-                let now = snapshot::payload_v6(world);
-                let here = meshes(&now.v5.v4.v3.base);
+            Kind::Parts { settings, ext, ext3, ext4, ext5, ext6, ext7, timeline, bodies, meshes: made_for } => {
+                let now = snapshot::payload_v7(world);
+                let here = meshes(&now.v6.v5.v4.v3.base);
                 if made_for.len() == here.len() && made_for != &here {
                     let k = (0..here.len()).find(|&k| made_for[k] != here[k]).unwrap_or(0);
                     return Err(DeltaError::DoesNotFit(format!("body {k} has another mesh ({} vertices) than it was made for ({})", here[k].0, made_for[k].0)));
                 }
                 let mut earlier = now.clone();
-                patch(&mut earlier.v5.v4.v3.base, settings, timeline, bodies)?;
+                patch(&mut earlier.v6.v5.v4.v3.base, settings, timeline, bodies)?;
                 if let Some(e) = ext {
-                    earlier.v5.v4.v3.ext = e.clone();
+                    earlier.v6.v5.v4.v3.ext = e.clone();
                 }
                 if let Some(e) = ext3 {
-                    earlier.v5.v4.v3.ext3 = e.clone();
+                    earlier.v6.v5.v4.v3.ext3 = e.clone();
                 }
                 if let Some(e) = ext4 {
-                    earlier.v5.v4.ext4 = e.clone();
+                    earlier.v6.v5.v4.ext4 = e.clone();
                 }
                 if let Some(e) = ext5 {
-                    earlier.v5.ext5 = e.clone();
+                    earlier.v6.v5.ext5 = e.clone();
                 }
                 if let Some(e) = ext6 {
-                    earlier.ext6 = e.clone();
+                    earlier.v6.ext6 = e.clone();
+                }
+                if let Some(e) = ext7 {
+                    earlier.ext7 = e.clone();
                 }
                 let inverse = diff(&now, &earlier, self.scope);
-                let mut earlier = snapshot::world_from_v6(earlier).map_err(DeltaError::Invalid)?;
+                let mut earlier = snapshot::world_from_v7(earlier).map_err(DeltaError::Invalid)?;
                 carry_over(world, &mut earlier);
                 *world = earlier;
                 Ok(inverse)
@@ -452,8 +461,8 @@ impl Delta {
     pub fn is_empty(&self) -> bool {
         match &self.kind {
             Kind::Whole(_) => false,
-            Kind::Parts { settings, ext, ext3, ext5, timeline, bodies, .. } => {
-                settings.is_none() && ext.is_none() && ext3.is_none() && ext5.is_none() && timeline.is_none() && bodies.iter().all(Option::is_none)
+            Kind::Parts { settings, ext, ext3, ext5, ext7, timeline, bodies, .. } => {
+                settings.is_none() && ext.is_none() && ext3.is_none() && ext5.is_none() && ext7.is_none() && timeline.is_none() && bodies.iter().all(Option::is_none)
             }
         }
     }

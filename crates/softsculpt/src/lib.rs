@@ -35,6 +35,7 @@ pub mod snapshot_v3;
 pub mod snapshot_v4;
 pub mod snapshot_v5;
 pub mod snapshot_v6;
+pub mod snapshot_v7;
 pub mod vec3;
 pub mod workload;
 pub mod world;

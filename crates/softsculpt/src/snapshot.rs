@@ -9,7 +9,7 @@
 //! | 4 | format version (u32), [`VERSION`] |
 //! | 8 | payload length in bytes (u64) |
 //! | 4 | CRC-32 (IEEE) of the payload (u32) |
-//! | … | payload: [`WorldV6`] encoded with postcard (serde); version 5: [`WorldV5`]; version 4: [`WorldV4`]; version 3: [`WorldV3`]; version 2: [`WorldV2`]; version 1: [`WorldV1`] |
+//! | … | payload: [`WorldV7`] encoded with postcard (serde); version 6: [`WorldV6`]; version 5: [`WorldV5`]; version 4: [`WorldV4`]; version 3: [`WorldV3`]; version 2: [`WorldV2`]; version 1: [`WorldV1`] |
 //!
 //! The payload holds everything that carries over from one step to the next: every body's mesh
 //! (triangles), state, rest and bending rest lengths, masses, pins, prestress, user forces and
@@ -41,6 +41,10 @@
 //! `ExtensionV6` (`crate::snapshot_v6`): where each body's kept multigrid levels were assembled.
 //! Versions 1 to 5 read with none kept.
 //!
+//! Version 7 (the hinges' plastic rest angles) is the version-6 payload followed by
+//! `ExtensionV7` (`crate::snapshot_v7`): each body's hinge rest angles where the plastic stage
+//! moved them. Versions 1 to 6 read with the frozen shape's.
+//!
 //! Version policy: any change to the payload's types is a new version; this build reads the
 //! versions up to [`VERSION`] (a newer one is refused with a message saying so), and keeps the
 //! types of every older version it reads here, each with its conversion.
@@ -59,11 +63,13 @@ pub use crate::snapshot_v5::{BodyV5, ExtensionV5, WorldV5};
 pub(crate) use crate::snapshot_v5::{payload_v5, world_from_v5};
 pub use crate::snapshot_v6::{ExtensionV6, KeptV6, WorldV6};
 pub(crate) use crate::snapshot_v6::{payload_v6, world_from_v6};
+pub use crate::snapshot_v7::{ExtensionV7, WorldV7};
+pub(crate) use crate::snapshot_v7::{payload_v7, world_from_v7};
 
 /// The first bytes of every snapshot.
 pub const MAGIC: &[u8; 5] = b"SSNAP";
 /// The format version this build writes (and the newest it reads).
-pub const VERSION: u32 = 6;
+pub const VERSION: u32 = 7;
 /// The first version, still read.
 pub const V1: u32 = 1;
 /// The second version (the implicit integrator), still read.
@@ -74,6 +80,8 @@ pub const V3: u32 = 3;
 pub const V4: u32 = 4;
 /// The fifth version (the hinges' rigidity), still read.
 pub const V5: u32 = 5;
+/// The sixth version (the implicit integrator's kept coarse levels), still read.
+pub const V6: u32 = 6;
 /// Magic, version, payload length, checksum.
 pub const HEADER_LEN: usize = 5 + 4 + 8 + 4;
 
@@ -419,7 +427,7 @@ fn load_v1(l: &Load) -> LoadV1 {
 /// The snapshot of `w`: header and payload (see the module documentation).
 pub fn write(w: &World) -> Vec<u8> {
     // Plain numbers, vectors and enums: postcard cannot fail on them.
-    frame(VERSION, &postcard::to_stdvec(&payload_v6(w)).unwrap_or_default())
+    frame(VERSION, &postcard::to_stdvec(&payload_v7(w)).unwrap_or_default())
 }
 
 /// The version-1 part of `w`'s snapshot (also what `crate::delta` compares).
@@ -494,11 +502,13 @@ fn open(bytes: &[u8]) -> Result<(u32, &[u8]), SnapshotError> {
 pub fn read(bytes: &[u8]) -> Result<World, SnapshotError> {
     let (version, payload) = open(bytes)?;
     let undecodable = |e: postcard::Error| corrupted(format!("the payload does not decode ({e})"));
-    // Versions 1 to 5 take the later extensions' defaults (`ExtensionV5::default()`: rigidity 0;
-    // `ExtensionV6::default()`: no kept coarse levels).
-    let v6 = |v5: WorldV5| WorldV6 { v5, ext6: ExtensionV6::default() };
+    // Versions 1 to 6 take the later extensions' defaults (`ExtensionV5::default()`: rigidity 0;
+    // `ExtensionV6::default()`: no kept coarse levels; `ExtensionV7::default()`: the frozen
+    // shape's hinge rest angles).
+    let v7 = |v6: WorldV6| WorldV7 { v6, ext7: ExtensionV7::default() };
+    let v6 = |v5: WorldV5| v7(WorldV6 { v5, ext6: ExtensionV6::default() });
     let v5 = |v4: WorldV4| v6(WorldV5 { v4, ext5: ExtensionV5::default() });
-    let (v6, rest): (WorldV6, &[u8]) = match version {
+    let (v7, rest): (WorldV7, &[u8]) = match version {
         V1 => {
             let (base, rest) = postcard::take_from_bytes(payload).map_err(undecodable)?;
             let ext = ExtensionV2 { implicit: false, tolerance: crate::params::TOLERANCE.number(), newton_iterations: crate::params::NEWTON_ITERATIONS.number() as u32, targets: Vec::new() };
@@ -520,12 +530,16 @@ pub fn read(bytes: &[u8]) -> Result<World, SnapshotError> {
             let (v5, rest) = postcard::take_from_bytes(payload).map_err(undecodable)?;
             (v6(v5), rest)
         }
+        V6 => {
+            let (v6, rest) = postcard::take_from_bytes(payload).map_err(undecodable)?;
+            (v7(v6), rest)
+        }
         _ => postcard::take_from_bytes(payload).map_err(undecodable)?,
     };
     if !rest.is_empty() {
         return Err(corrupted(format!("{} unread bytes at the end of the payload", rest.len())));
     }
-    world_from_v6(v6).map_err(corrupted)
+    world_from_v7(v7).map_err(corrupted)
 }
 
 /// A world from a whole payload (an empty target list means none on any body, an empty

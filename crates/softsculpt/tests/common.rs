@@ -141,3 +141,177 @@ pub fn pulled_sphere() -> (World, impl Fn(usize) -> Vec<Target>) {
     };
     (a, pull)
 }
+
+/// How a material takes the modeler's press or grab (issue #37, `examples/clay.rs`,
+/// `tests/presets.rs`): the change of the body's depth at the brush's centre — the distance from
+/// the front-most vertex (largest z) to the back-most — under the tool, 5 s and 10 s after
+/// release (m; < 0 shallower).
+pub struct ToolRun {
+    pub vertices: usize,
+    pub held: f64,
+    pub at5: f64,
+    pub at10: f64,
+}
+
+/// The modeler's `model` (the rooted mushroom, or the sphere or octopus set on the ground)
+/// subdivided `subdivisions` times, settled 2 s, frozen under load and given the material
+/// `preset` with the gas's push kept (what the page's material switch does), then `overrides`
+/// (parameter id, value), settled 1 s; then the modeler's default press (15 cm at the centre of
+/// a 35 cm brush, weight (1 − (d/r)²)², target springs of ω = 600 1/s, pressed in over 0.25 s
+/// and held to 1.5 s) or grab (the brush's vertices on target springs of m w ω², moved 0.4 m out
+/// along z over 0.5 s, held to 1.5 s), let go, stepped as the page steps (`World::advance`:
+/// split or relaxed where a step does not finish). The depth is measured between two vertices so
+/// that what the body does as a whole (an unrooted body slides and tips under the tool) does not
+/// count.
+pub fn press_or_pull(preset: &str, model: &str, pull: bool, subdivisions: u32, overrides: &[(&str, f64)]) -> ToolRun {
+    use softsculpt::body::{FreezeOptions, GasReference};
+    use softsculpt::params::Value;
+    use softsculpt::world::Budget;
+    let mut w: World = if model == "mushroom" { rooted_mushroom_subdivided(subdivisions) } else { on_ground(&builtin(model).unwrap(), subdivisions, "modeler") };
+    let budget = Budget { splits: 3, relax: true, ..Budget::converge() };
+    w.advance(2.0, &budget).unwrap();
+    w.freeze(0, FreezeOptions { under_load: true, keep_tension: false }).unwrap();
+    let push = w.stats(0).pressure - w.bodies[0].gas_reference().ambient_pressure;
+    w.apply_preset(0, preset).unwrap();
+    for &(id, v) in overrides {
+        w.set_param(0, id, Value::Number(v)).unwrap();
+    }
+    let gas = GasReference { ambient_pressure: (w.stats(0).pressure - push).max(0.0), ..w.bodies[0].gas_reference() };
+    w.bodies[0].set_gas_reference(gas).unwrap();
+    w.advance(1.0, &budget).unwrap();
+    let x0 = w.bodies[0].positions().to_vec();
+    let m = w.bodies[0].masses().to_vec();
+    let n = m.len();
+    let c = (0..n).max_by(|&p, &q| x0[3 * p + 2].total_cmp(&x0[3 * q + 2])).unwrap();
+    let b = (0..n).min_by(|&p, &q| x0[3 * p + 2].total_cmp(&x0[3 * q + 2])).unwrap();
+    let r = 0.35;
+    let brush: Vec<(usize, f64)> = (0..n)
+        .filter_map(|i| {
+            let d = (0..3).map(|k| (x0[3 * i + k] - x0[3 * c + k]).powi(2)).sum::<f64>().sqrt();
+            (d < r).then(|| (i, (1.0 - d * d / (r * r)).powi(2)))
+        })
+        .collect();
+    let omega: f64 = 600.0;
+    let frame = 1.0 / 60.0;
+    let span = |x: &[f64]| (0..3).map(|k| (x[3 * c + k] - x[3 * b + k]).powi(2)).sum::<f64>().sqrt();
+    let span0 = span(&x0);
+    let shift = |w: &World| span(w.bodies[0].positions()) - span0;
+    for f in 0..90 {
+        let t = (f + 1) as f64 * frame;
+        let targets: Vec<Target> = brush
+            .iter()
+            .map(|&(i, wt)| {
+                let (dz, k) = if pull { (0.4 * (t / 0.5).min(1.0), wt) } else { (-0.15 * wt * (t / 0.25).min(1.0), 1.0) };
+                Target { vertex: i, anchor: [x0[3 * i], x0[3 * i + 1], x0[3 * i + 2] + dz], stiffness: m[i] * k * omega * omega, damping: 2.0 * m[i] * k * omega }
+            })
+            .collect();
+        w.bodies[0].set_targets(&targets).unwrap();
+        w.advance(frame, &budget).unwrap();
+    }
+    let held = shift(&w);
+    w.bodies[0].clear_targets();
+    w.advance(5.0, &budget).unwrap();
+    let at5 = shift(&w);
+    w.advance(5.0, &budget).unwrap();
+    ToolRun { vertices: n, held, at5, at10: shift(&w) }
+}
+
+/// A held inflate's bulge (`inflated`): its height (m) and the largest angle between
+/// neighbouring faces' normals within twice the brush radius of its centre before and after
+/// (rad), against the smooth bound ([`bulge_bound`]).
+pub struct Bulge {
+    pub vertices: usize,
+    pub height: f64,
+    pub before: f64,
+    pub after: f64,
+    pub bound: f64,
+}
+
+/// Largest angle (rad) between the normals of two faces sharing an edge, over faces whose
+/// centroid lies within `radius` of `centre`, and the largest distance between such neighbours'
+/// centroids (m).
+pub fn normal_jumps(x: &[f64], tris: &[[u32; 3]], centre: [f64; 3], radius: f64) -> (f64, f64) {
+    use std::collections::HashMap;
+    let p = |i: u32| [x[3 * i as usize], x[3 * i as usize + 1], x[3 * i as usize + 2]];
+    let face = |t: &[u32; 3]| {
+        let (a, b, c) = (p(t[0]), p(t[1]), p(t[2]));
+        let (u, v) = ([b[0] - a[0], b[1] - a[1], b[2] - a[2]], [c[0] - a[0], c[1] - a[1], c[2] - a[2]]);
+        let n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+        let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        ([n[0] / l, n[1] / l, n[2] / l], [(a[0] + b[0] + c[0]) / 3.0, (a[1] + b[1] + c[1]) / 3.0, (a[2] + b[2] + c[2]) / 3.0])
+    };
+    let mut by_edge: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
+    for (f, t) in tris.iter().enumerate() {
+        for k in 0..3 {
+            let (i, j) = (t[k], t[(k + 1) % 3]);
+            by_edge.entry((i.min(j), i.max(j))).or_default().push(f);
+        }
+    }
+    let dist = |a: [f64; 3], b: [f64; 3]| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
+    let (mut angle, mut spacing) = (0.0f64, 0.0f64);
+    for faces in by_edge.values().filter(|f| f.len() == 2) {
+        let ((n1, c1), (n2, c2)) = (face(&tris[faces[0]]), face(&tris[faces[1]]));
+        if dist(c1, centre) < radius && dist(c2, centre) < radius {
+            let cos = (n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2]).clamp(-1.0, 1.0);
+            angle = angle.max(cos.acos());
+            spacing = spacing.max(dist(c1, c2));
+        }
+    }
+    (angle, spacing)
+}
+
+/// The largest angle between neighbouring faces' normals a smooth bulge allows: a bump of height
+/// H shaped as the brush's weight, H (1 − (d/r)²)², on a surface whose own neighbouring normals
+/// differ by at most `rest` (rad), has a profile curvature of at most |f''| = 8 H / r² (at its
+/// rim; 4 H / r² at its top), so neighbouring faces whose centroids are at most s apart turn by
+/// at most rest + s 8 H / r² more; twice that, for a bulge whose shape is the gas's and the
+/// membrane's, not exactly the weight's. A ridge — springs grown with no falloff across the
+/// brush's edge — folds the surface by far more than that at one edge.
+pub fn bulge_bound(rest: f64, spacing: f64, height: f64, r: f64) -> f64 {
+    2.0 * (rest + spacing * 8.0 * height / (r * r))
+}
+
+/// The modeler's `model` (the rooted mushroom, or the sphere or octopus on the ground)
+/// subdivided `subdivisions` times, settled 2 s, frozen under load and given the material
+/// `preset` as the page's material switch does, settled 1 s; then the modeler's inflate brush
+/// held at its front-most vertex for `seconds` (radius 0.35 m, weight (1 − (d/r)²)², each frame
+/// every rest length × the mean of its ends' 1 + rate w dt, rate 0.3 1/s: `tools/brush.ts`
+/// `inflateFactor`), then 2 s to settle.
+pub fn inflated(preset: &str, model: &str, seconds: f64, subdivisions: u32) -> Bulge {
+    use softsculpt::body::{FreezeOptions, GasReference};
+    use softsculpt::world::Budget;
+    let mut w: World = if model == "mushroom" { rooted_mushroom_subdivided(subdivisions) } else { on_ground(&builtin(model).unwrap(), subdivisions, "modeler") };
+    let budget = Budget { splits: 3, relax: true, ..Budget::converge() };
+    w.advance(2.0, &budget).unwrap();
+    w.freeze(0, FreezeOptions { under_load: true, keep_tension: false }).unwrap();
+    let push = w.stats(0).pressure - w.bodies[0].gas_reference().ambient_pressure;
+    w.apply_preset(0, preset).unwrap();
+    let gas = GasReference { ambient_pressure: (w.stats(0).pressure - push).max(0.0), ..w.bodies[0].gas_reference() };
+    w.bodies[0].set_gas_reference(gas).unwrap();
+    w.advance(1.0, &budget).unwrap();
+    let x0 = w.bodies[0].positions().to_vec();
+    let n = x0.len() / 3;
+    let c = (0..n).max_by(|&p, &q| x0[3 * p + 2].total_cmp(&x0[3 * q + 2])).unwrap();
+    let centre = [x0[3 * c], x0[3 * c + 1], x0[3 * c + 2]];
+    let r = 0.35;
+    let (frame, rate) = (1.0 / 60.0, 0.3);
+    let weights: Vec<f64> = (0..n)
+        .map(|i| {
+            let d = (0..3).map(|k| (x0[3 * i + k] - centre[k]).powi(2)).sum::<f64>().sqrt();
+            if d < r { (1.0 - d * d / (r * r)).powi(2) } else { 0.0 }
+        })
+        .collect();
+    let tris = w.bodies[0].triangles().to_vec();
+    let (before, spacing) = normal_jumps(&x0, &tris, centre, 2.0 * r);
+    for _ in 0..(seconds / frame).round() as usize {
+        let f: Vec<f64> = weights.iter().map(|wt| 1.0 + rate * wt * frame).collect();
+        w.bodies[0].scale_rest_lengths_by_vertex(&f).unwrap();
+        w.advance(frame, &budget).unwrap();
+    }
+    w.advance(2.0, &budget).unwrap();
+    let x = w.bodies[0].positions();
+    // The bulge's height: the centre's move along its outward direction (+z here).
+    let height = x[3 * c + 2] - x0[3 * c + 2];
+    let (after, _) = normal_jumps(x, &tris, [x[3 * c], x[3 * c + 1], x[3 * c + 2]], 2.0 * r);
+    Bulge { vertices: n, height, before, after, bound: bulge_bound(before, spacing, height.max(0.0), r) }
+}

@@ -12,7 +12,7 @@
 //!    integrator, dt, contacts): it holds obstacles and takes its defaults from the table.
 //! 4. `body`: a soft body, stepped with the settings it is handed.
 //! 5. `world`: the unit of simulation, which owns bodies and settings and runs the step.
-//! 6. `scene`, `snapshot`, `snapshot_v3`…`snapshot_v6`, `delta`, `workload`, `sketch`,
+//! 6. `scene`, `snapshot`, `snapshot_v3`…`snapshot_v7`, `delta`, `workload`, `sketch`,
 //!    `compat`, and the crate root `lib`: they build, save, load, compare or drive whole
 //!    worlds.
 //!
@@ -37,7 +37,7 @@ const LAYERS: &[&[&str]] = &[
     &["settings"],
     &["body"],
     &["world"],
-    &["scene", "snapshot", "snapshot_v3", "snapshot_v4", "snapshot_v5", "snapshot_v6", "delta", "workload", "sketch", "compat", "lib"],
+    &["scene", "snapshot", "snapshot_v3", "snapshot_v4", "snapshot_v5", "snapshot_v6", "snapshot_v7", "delta", "workload", "sketch", "compat", "lib"],
 ];
 
 fn layer(module: &str) -> Option<usize> {

@@ -184,10 +184,13 @@ fn energy_balance(mut body: SoftBody, y: f64, flow: f64, steps: usize) -> (f64, 
 /// only show the same kind of error: bound 3× the elastic run's plus 1e-3 of the dissipation
 /// (the stage acts at the step's end, the statistics see the integrator's half-step offset).
 /// The dissipation must be a sizable part of the energy for the test to mean anything.
+/// With hinges (D = 0.5 J, a plate 21 cm thick on k = 100 N/m, yield curvature 0.19 1/m at
+/// ε_y = 2 %) their rest angles flow too, and their released bending energy is in the
+/// dissipation as well: the same bound.
 #[test]
 fn the_energy_removed_is_the_plastic_dissipation() {
-    for nrt in [0.0, 5.0] {
-        let mut m = bare();
+    for (nrt, rigidity) in [(0.0, 0.0), (5.0, 0.0), (5.0, 0.5)] {
+        let mut m = Material { rigidity, ..bare() };
         m.set_nrt(nrt);
         let body = sphere_body(2, 1.0, m);
         let e0 = {
@@ -195,12 +198,23 @@ fn the_energy_removed_is_the_plastic_dissipation() {
             swirl(&mut b, 2.0);
             alone(b, still()).stats(0).kinetic_energy
         };
+        let hinges = body.hinge_rest_angles().to_vec();
         let (elastic, none) = energy_balance(body.clone(), 0.0, 0.0, 10_000);
-        let (plastic, dissipated) = energy_balance(body, 0.02, 5.0, 10_000);
-        println!("nRT {nrt}: kinetic {e0} J, elastic run error {elastic} J, plastic run error {plastic} J, dissipated {dissipated} J");
+        let (plastic, dissipated) = energy_balance(body.clone(), 0.02, 5.0, 10_000);
+        if rigidity > 0.0 {
+            let mut flowed = body;
+            flowed.material.yield_strain = 0.02;
+            flowed.material.flow_rate = 5.0;
+            swirl(&mut flowed, 2.0);
+            let mut w = alone(flowed, WorldSettings { dt: 1e-4, ..still() });
+            w.step_n(10_000).unwrap();
+            let moved = w.bodies[0].hinge_rest_angles().iter().zip(&hinges).filter(|(a, b)| a != b).count();
+            assert!(moved > hinges.len() / 10, "only {moved} of {} hinges flowed", hinges.len());
+        }
+        println!("nRT {nrt}, D {rigidity}: kinetic {e0} J, elastic run error {elastic} J, plastic run error {plastic} J, dissipated {dissipated} J");
         assert_eq!(none, 0.0);
-        assert!(dissipated > 0.1 * e0, "nRT {nrt}: only {dissipated} J of {e0} J flowed");
-        assert!(plastic < 3.0 * elastic + 1e-3 * dissipated, "nRT {nrt}: energy off by {plastic} J (elastic run {elastic} J)");
+        assert!(dissipated > 0.1 * e0, "nRT {nrt}, D {rigidity}: only {dissipated} J of {e0} J flowed");
+        assert!(plastic < 3.0 * elastic + 1e-3 * dissipated, "nRT {nrt}, D {rigidity}: energy off by {plastic} J (elastic run {elastic} J)");
     }
 }
 
@@ -321,6 +335,7 @@ fn pulled_clay_mushroom(plastic: bool) -> (f64, f64) {
         })
         .collect();
     let omega: f64 = 600.0;
+    let budget = softsculpt::world::Budget { splits: 3, relax: true, ..softsculpt::world::Budget::converge() };
     let (mut least, mut ambient) = (f64::INFINITY, w.bodies[0].gas_reference().ambient_pressure);
     for step in 0..270 {
         if step < 90 {
@@ -333,7 +348,9 @@ fn pulled_clay_mushroom(plastic: bool) -> (f64, f64) {
         } else if step == 90 {
             w.bodies[0].clear_targets();
         }
-        w.step().unwrap();
+        // As the page steps: a step that does not finish is split or retried with crushed hinges
+        // let go (`World::advance`).
+        w.advance(w.settings.dt, &budget).unwrap();
         let (p, now) = (w.stats(0).pressure, w.bodies[0].gas_reference().ambient_pressure);
         // Rounding of P_ref's update: a few ulps of P.
         assert!(now <= ambient.max(p * (1.0 + 1e-12)), "step {step}: P_ref rose to {now} Pa past the gas's {p} Pa");
@@ -350,12 +367,114 @@ fn pulled_clay_mushroom(plastic: bool) -> (f64, f64) {
 /// never past P (`body/plastic.rs`, "The gas's share"). Crediting it with every flow (before)
 /// ran P_ref to thousands of Pa and crushed the body (0.3 % of its volume; the step then failed).
 /// Bounds: the clay body may keep what the pull did — down to the least volume the same pull
-/// gives the elastic body (measured 1.53 of 2.46 m³) — less 10 % for a plastic body pulled a
-/// little differently (it yields as it is pulled); measured 1.78 m³ at the end.
+/// gives the elastic body (measured 1.98 of 2.46 m³; 1.53 before clay had hinges) — less 10 %
+/// for a plastic body pulled a little differently (it yields as it is pulled); measured 2.34 m³
+/// at the end (1.78 without hinges).
 #[test]
 fn a_pulled_clay_body_keeps_its_gas_and_the_pulled_shape() {
     let (elastic_least, _) = pulled_clay_mushroom(false);
     let (_, clay_end) = pulled_clay_mushroom(true);
     println!("least volume under the pull, elastic: {elastic_least} m³; clay after it: {clay_end} m³");
     assert!(clay_end >= 0.9 * elastic_least, "the clay body lost more than the pull took: {clay_end} m³ against {elastic_least} m³");
+}
+
+/// The issue's clay ball (#37): the clay preset on a unit ball of 642 vertices, its bottom cap
+/// pinned, no gravity, implicit steps of 1/60 s; the vertices within 0.6 m of its top pressed
+/// down (target springs of ω = 600 1/s, anchors 0.6 m × (1 − (d/0.6)²)² below where they were)
+/// for 1 s, let go. Returns the dent at the top under the press and 5 s and 10 s after release.
+fn pressed_clay_ball(rigidity: f64) -> (f64, f64, f64) {
+    use softsculpt::body::Target;
+    let mut w = alone(sphere_body(3, 1.0, bare()), WorldSettings { integrator: Integrator::Implicit, dt: 1.0 / 60.0, tolerance: 1e-6, ..still() });
+    w.apply_preset(0, "clay").unwrap();
+    for (id, v) in [("rigidity", rigidity), ("gas.nrt", 8.0), ("yield", 0.02)] {
+        w.set_param(0, id, softsculpt::params::Value::Number(v)).unwrap();
+    }
+    let n = w.bodies[0].vertex_count();
+    for i in 0..n {
+        if w.bodies[0].positions()[3 * i + 1] < -0.9 {
+            w.bodies[0].set_pinned(i, true).unwrap();
+        }
+    }
+    w.step_n(120).unwrap();
+    let (x0, m) = (w.bodies[0].positions().to_vec(), w.bodies[0].masses().to_vec());
+    let top = (0..n).max_by(|&a, &b| x0[3 * a + 1].total_cmp(&x0[3 * b + 1])).unwrap();
+    let omega: f64 = 600.0;
+    let targets: Vec<Target> = (0..n)
+        .filter_map(|i| {
+            let d = (0..3).map(|k| (x0[3 * i + k] - x0[3 * top + k]).powi(2)).sum::<f64>().sqrt();
+            let anchor = [x0[3 * i], x0[3 * i + 1] - 0.6 * (1.0 - d * d / 0.36).powi(2), x0[3 * i + 2]];
+            (d < 0.6).then(|| Target { vertex: i, anchor, stiffness: m[i] * omega * omega, damping: 2.0 * m[i] * omega })
+        })
+        .collect();
+    w.bodies[0].set_targets(&targets).unwrap();
+    w.step_n(60).unwrap();
+    let dent = |w: &World| x0[3 * top + 1] - w.bodies[0].positions()[3 * top + 1];
+    let held = dent(&w);
+    w.bodies[0].clear_targets();
+    w.step_n(300).unwrap();
+    let at5 = dent(&w);
+    w.step_n(300).unwrap();
+    (held, at5, dent(&w))
+}
+
+/// A potter's dent is a bending change (`body/plastic.rs`, "Bending"): pressed 0.6 m deep for
+/// 1 s, the clay ball keeps its dent with its hinges' rest angles flowing, and without hinges
+/// it springs back (the inverted cap is nearly isometric, so hardly a spring passed the yield
+/// strain; the issue measured all of it back). Measured: kept 0.xx of 0.yy m with hinges, 0.zz
+/// m without. Bounds: the issue's goal, ≥ 70 % kept 5 s after release, and no creep after:
+/// from 5 s to 10 s less than 1 % of the dent (the flow has stopped once every hinge is within
+/// its yield angle; the damped body has settled: c = 4 1/s leaves e^(−20) of any motion).
+#[test]
+fn a_pressed_clay_ball_keeps_its_dent_by_its_hinges() {
+    let (held, at5, at10) = pressed_clay_ball(softsculpt::params::presets::CLAY_RIGIDITY);
+    let (held0, at5_0, _) = pressed_clay_ball(0.0);
+    println!("with hinges: pressed {held} m, {at5} m after 5 s, {at10} m after 10 s; without: pressed {held0} m, {at5_0} m after 5 s");
+    assert!(held > 0.4, "the press should go deep: {held} m");
+    assert!(at5 >= 0.7 * held, "kept {at5} m of {held} m");
+    assert!((at10 - at5).abs() < 0.01 * held, "crept from {at5} m to {at10} m");
+    assert!(at5_0 < at5, "without hinges {at5_0} m, with {at5} m");
+}
+
+/// The hinges' flowed rest angles are state like the rest lengths: a snapshot keeps them
+/// (version 7) and the restored world continues bit for bit; an undo delta over steps that
+/// flowed them puts them back, and its redo brings them again; a rollback of a failed call puts
+/// them back too (`PlasticState`); a reset returns them to the frozen shape's.
+#[test]
+fn flowed_hinge_rest_angles_are_kept_by_snapshots_undo_and_rollback() {
+    use softsculpt::delta::{Delta, StateScope};
+    let mut m = Material { rigidity: 0.5, yield_strain: 0.02, flow_rate: 5.0, ..bare() };
+    m.set_nrt(5.0);
+    let mut body = sphere_body(2, 1.0, m);
+    let frozen = body.hinge_rest_angles().to_vec();
+    swirl(&mut body, 2.0);
+    let mut w = alone(body, WorldSettings { dt: 1e-4, ..still() });
+    w.step_n(2000).unwrap();
+    let before = w.clone();
+    w.step_n(2000).unwrap();
+    assert_ne!(w.bodies[0].hinge_rest_angles(), before.bodies[0].hinge_rest_angles(), "the steps should have flowed the hinges");
+    let mut restored = World::restore(&w.snapshot()).unwrap();
+    assert_eq!(restored.bodies[0].hinge_rest_angles(), w.bodies[0].hinge_rest_angles());
+    let after = w.clone();
+    w.step_n(500).unwrap();
+    restored.step_n(500).unwrap();
+    assert_eq!(w.bodies[0].positions(), restored.bodies[0].positions());
+    assert_eq!(w.bodies[0].hinge_rest_angles(), restored.bodies[0].hinge_rest_angles());
+
+    let mut u = after.clone();
+    let undo = Delta::between(&before, &u, StateScope::All);
+    let redo = undo.apply(&mut u).unwrap();
+    assert_eq!(u.bodies[0].hinge_rest_angles(), before.bodies[0].hinge_rest_angles());
+    redo.apply(&mut u).unwrap();
+    assert_eq!(u.bodies[0].hinge_rest_angles(), after.bodies[0].hinge_rest_angles());
+
+    // A call that fails (k = 1e6 at this dt blows up) is rolled back whole.
+    let mut r = after.clone();
+    r.set_param(0, "stiffness", softsculpt::params::Value::Number(1e6)).unwrap();
+    let mark = r.bodies[0].hinge_rest_angles().to_vec();
+    assert!(r.step_n(1000).is_err());
+    assert_eq!(r.bodies[0].hinge_rest_angles(), &mark[..]);
+
+    let mut reset = after.clone();
+    reset.bodies[0].reset();
+    assert_eq!(reset.bodies[0].hinge_rest_angles(), &frozen[..]);
 }

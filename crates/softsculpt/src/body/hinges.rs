@@ -234,6 +234,38 @@ impl Hinges {
         }
     }
 
+    /// Stage "plastic" of the hinges (`plastic.rs`, "Bending"): where a hinge is bent from its
+    /// rest angle by more than its yield angle θ_y = κ_y Ā / |e| (κ_y the yield curvature in
+    /// 1/m; Ā / |e| at the shape `x`: the two faces' area over the edge, so that θ_y is the angle
+    /// a surface of curvature κ_y makes at this hinge, as in the module documentation's
+    /// cylinder, θ = κ Ā / |ē|), its rest angle moves the fraction `a` of the way to the angle
+    /// that leaves exactly θ_y: with r = θ − θ̄,
+    ///   r' = r − a (r − θ_y sign r),     θ̄' = θ − r'.
+    /// A hinge with a crushed face (in its fade, [`bend`]) or none (no angle) does not flow: a
+    /// crushed fold is no shape to keep. Returns the bending energy released at `x`,
+    /// Σ ½ D w (r² − r'²) (J, ≥ 0: |r'| < |r|), D in J.
+    pub(crate) fn flow(&mut self, d: f64, kappa_y: f64, a: f64, x: &[f64]) -> f64 {
+        let mut released = 0.0;
+        for (h, hv) in self.v.iter().enumerate() {
+            let w = self.weight[h];
+            let Some((theta, _, u)) = angle_gradient_heights(x, hv) else { continue };
+            if w == 0.0 || fade_of(u, self.thin[h]).is_some() {
+                continue;
+            }
+            // Ā / |e| = ½ (|n₁| + |n₂|) / |e| = ½ (u₁ + u₂) |e|  (u = |n| / |e|²).
+            let le = norm(sub(get(x, hv[1] as usize), get(x, hv[0] as usize)));
+            let theta_y = kappa_y * 0.5 * (u[0] + u[1]) * le;
+            let r = excess(theta, self.rest[h]);
+            if !(r.abs() > theta_y) {
+                continue;
+            }
+            let r2 = r - a * (r - theta_y.copysign(r));
+            released += 0.5 * d * w * (r * r - r2 * r2);
+            self.rest[h] = excess(theta - r2, 0.0);
+        }
+        released
+    }
+
     /// Bending energy Σ ½ D w r² (J) at `x` (r = θ − θ̄, faded at a crushed face: [`bend`]),
     /// D in J.
     pub fn energy(&self, b: f64, x: &[f64]) -> f64 {
@@ -345,6 +377,41 @@ mod tests {
         healthy.add_forces(1.0, 0.01, &x, &v, &mut f);
         assert_eq!(f, vec![0.0; 12], "a hinge without area now pushes nothing");
         assert_eq!(healthy.energy(1.0, &x), 0.0);
+    }
+
+    /// The hinges' plastic flow (`Hinges::flow`): a hinge bent within its yield angle keeps its
+    /// rest angle bit for bit; one bent beyond it moves its rest angle the fraction `a` of the
+    /// way to the angle that leaves exactly the yield angle (a = 1: exactly there), on either
+    /// side, and releases ½ D w (r² − r'²). θ_y = κ_y Ā / |e| is computed from the hinge's own
+    /// shape here to check the formula; tolerances: a few ulps of angles of order 1 rad (1e-14)
+    /// and of energies of order 1 J (1e-13).
+    #[test]
+    fn a_hinge_bent_past_its_yield_angle_flows_toward_it() {
+        let x = hinge_x();
+        let hv = [0u32, 1, 2, 3];
+        let (theta, _) = angle_and_gradient(&x, &hv).unwrap();
+        let (e, n1, n2) = {
+            let [xi, xj, xk, xl] = hv.map(|v| get(&x, v as usize));
+            let e = sub(xj, xi);
+            (norm(e), norm(cross(e, sub(xk, xi))), norm(cross(sub(xl, xi), e)))
+        };
+        let kappa_y = 0.4;
+        let theta_y = kappa_y * 0.5 * (n1 + n2) / e;
+        let (d, w) = (2.0, 1.7);
+        for (bend, a) in [(0.3, 0.25), (-0.5, 0.25), (0.9, 1.0), (0.5 * theta_y, 1.0)] {
+            let mut hn = Hinges { v: vec![hv], rest: vec![theta - bend], weight: vec![w], thin: vec![[0.0; 2]] };
+            let released = hn.flow(d, kappa_y, a, &x);
+            let r2 = excess(theta, hn.rest[0]);
+            if bend.abs() <= theta_y {
+                assert_eq!(hn.rest[0], theta - bend, "within the yield angle nothing flows");
+                assert_eq!(released, 0.0);
+                continue;
+            }
+            let want = bend - a * (bend - theta_y.copysign(bend));
+            assert!((r2 - want).abs() < 1e-14, "bend {bend}, a {a}: r' = {r2}, want {want}");
+            assert!((released - 0.5 * d * w * (bend * bend - want * want)).abs() < 1e-13, "released {released} J");
+            assert!(released > 0.0);
+        }
     }
 
     /// A hinge frozen from `hinge_x` (each face's height over the edge about 0.9 of the edge),

@@ -293,6 +293,11 @@ impl SoftBody {
     pub fn bending_rest_lengths(&self) -> &[f64] {
         &self.model.bending.rest
     }
+    /// The hinges' rest angles θ̄ (rad), one per interior edge (`hinges.rs`): the frozen shape's,
+    /// unless the plastic stage moved them (`plastic.rs`, "Bending").
+    pub fn hinge_rest_angles(&self) -> &[f64] {
+        &self.model.hinges.rest
+    }
     /// Rest lengths (m), one per spring.
     pub fn rest_lengths(&self) -> &[f64] {
         &self.model.springs.rest

@@ -54,6 +54,8 @@ impl SoftBody {
         self.state.x.copy_from_slice(&self.frozen.x);
         self.model.springs.rest.copy_from_slice(&self.frozen.rest);
         self.model.bending.rest.copy_from_slice(&self.frozen.bending_rest);
+        // The hinges' rest angles too (a plastic body's flowed: `plastic.rs`, "Bending").
+        self.hinges_to_frozen();
         self.model.gas = self.frozen.gas;
         self.model.prestress.copy_from_slice(&self.frozen.prestress);
         self.update_external();

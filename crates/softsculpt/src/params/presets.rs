@@ -39,15 +39,26 @@
 //!   modeler's rooted mushroom, a 15 cm dent (cosine, 35 cm radius) let go kept 12.6 cm after
 //!   12 s (a new-user trial: "keeps the dent", like clay); with D = 0.02 J, 0.1 mm. At 0.05 J
 //!   (the modeler's own) the subdivided octopus's first second did not converge (the tests below).
-//! - `jelly`: a softer skin (k 60 N/m) held round by 20 J of gas, little damping (c 0.3 1/s,
+//! - `jelly`: a softer skin (k 60 N/m) held round by 20 J of gas, little damping (c 0.5 1/s,
 //!   cs 0.05), with light hinges (D = 0.01 J): wobbles a while after a push and springs back,
-//!   from a deep dent too. Without hinges it kept a press's dent as the hinge-less balloon did
+//!   from a deep dent too. Why c 0.5: at 0.3 1/s the rooted mushroom's cap, let go after the
+//!   default grab (8 cm), still swayed 1 cm 5 s later (`examples/clay.rs`); at 0.5, 4 mm — within
+//!   the 5 mm every elastic preset must spring back to in 5 s (`tests/presets.rs`) — and it still
+//!   sways for seconds (the motion's e-folding time 2 s). Without hinges it kept a press's dent as the hinge-less balloon did
 //!   (14.1 cm of 15 on the rooted mushroom 5 s after release); with D = 0.01 J, 0.8 mm
 //!   (`examples/dent.rs`; the cap still sways a few cm, as a jelly does). D = 0.02 J (the
 //!   balloon's) springs back as well but made the subdivided octopus ~10× slower to step than
 //!   the balloon (a frame of 175 s, split; `examples/preset_frames.rs`); at 0.01 J it costs
 //!   what the balloon does (34 s against 29 s for its first 20 frames).
-//! - `clay`: a firm skin (k 300 N/m) on 20 J of gas, heavily damped (c 4 1/s, cs 0.5), plastic:
+//! - `clay`: a firm skin (k 300 N/m) on 20 J of gas, heavily damped (c 4 1/s, cs 0.5), with
+//!   hinges (D = 0.05 J) whose rest angles flow past the yield as the rest lengths do (a 3.9 cm
+//!   plate yielding at a curvature of 0.51 1/m past its rest shape's, `body/plastic.rs`,
+//!   "Bending"): a press or a pull keeps its shape and then stays (measured with
+//!   `examples/clay.rs`, the modeler's default press and grab: kept 82 % and 87 % on the rooted
+//!   mushroom, 83 % of the press on the sphere, 99 % of the pull on the octopus, unchanged from
+//!   5 s to 10 s after release; without hinges the mushroom's dent snapped 23 % deeper after
+//!   release and the octopus's pull crept back 4 % from 5 s to 10 s; the subdivided octopus's
+//!   first second costs 3× the CPU time it did without hinges). Plastic:
 //!   strain beyond 1 % flows into the rest lengths at 5 1/s (the excess halves every 0.14 s), so
 //!   a hard press leaves a dent (measured on the modeler's sphere on the ground: a 10 N press for
 //!   0.5 s, 52 cm deep, leaves 7.5 cm — measured before P_ref followed only the gas's share of
@@ -108,8 +119,11 @@ const fn material(k: f64, cs: f64, d: f64, c: f64, nrt: f64, yield_strain: f64, 
 }
 
 const BALLOON_VALUES: [(&str, Value); 8] = material(100.0, 0.1, 0.02, 0.5, 30.0, 0.0, 0.0);
-const JELLY_VALUES: [(&str, Value); 8] = material(60.0, 0.05, 0.01, 0.3, 20.0, 0.0, 0.0);
-const CLAY_VALUES: [(&str, Value); 8] = material(300.0, 0.5, 0.0, 4.0, 20.0, 0.01, 5.0);
+const JELLY_VALUES: [(&str, Value); 8] = material(60.0, 0.05, 0.01, 0.5, 20.0, 0.0, 0.0);
+/// The clay preset's flexural rigidity D (J): hinges whose rest angles flow past the yield
+/// (module documentation, `clay`).
+pub const CLAY_RIGIDITY: f64 = 0.05;
+const CLAY_VALUES: [(&str, Value); 8] = material(300.0, 0.5, CLAY_RIGIDITY, 4.0, 20.0, 0.01, 5.0);
 const CLOTH_VALUES: [(&str, Value); 8] = material(400.0, 0.2, 0.0, 1.0, 0.0, 0.0, 0.0);
 const RUBBER_VALUES: [(&str, Value); 8] = material(2000.0, 0.5, 0.1, 1.0, 30.0, 0.0, 0.0);
 
@@ -117,7 +131,7 @@ pub const BALLOON: Preset = Preset { name: "balloon", help: "material: a soft sk
 pub const JELLY: Preset = Preset { name: "jelly", help: "material: a softer skin held round by 20 J of gas, little damping; wobbles and springs back", values: &JELLY_VALUES };
 pub const CLAY: Preset = Preset {
     name: "clay",
-    help: "material: a firm, damped skin on 20 J of gas; strain beyond 1 % flows at 5 1/s, so a hard press leaves a dent",
+    help: "material: a firm, damped skin on 20 J of gas; strain and bending beyond 1 % flow at 5 1/s, so a press or a pull keeps its shape",
     values: &CLAY_VALUES,
 };
 pub const CLOTH: Preset = Preset { name: "cloth", help: "material: no gas (open meshes), a stiff damped weave; drapes", values: &CLOTH_VALUES };

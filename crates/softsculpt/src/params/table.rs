@@ -107,7 +107,7 @@ pub const YIELD: Param = Param {
     unit: "",
     default: Value::Number(0.0),
     range: NON_NEGATIVE,
-    help: "plasticity: yield strain; where a spring's strain (l/L - 1, stretched or compressed) exceeds it, its rest length flows (at `flow`) toward the length at which the strain is the yield strain; 0 = any strain flows",
+    help: "plasticity: yield strain; where a spring's strain (l/L - 1, stretched or compressed) exceeds it, its rest length flows (at `flow`) toward the length at which the strain is the yield strain, and where a hinge bends past the yield angle of the plate its `stiffness` and `rigidity` make (docs/model.md, bending plasticity), its rest angle flows likewise; 0 = any strain flows",
 };
 pub const FLOW: Param = Param {
     id: "flow",

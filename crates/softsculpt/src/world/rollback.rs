@@ -131,7 +131,7 @@ impl Backup {
             self.x[k].len() == n && self.v[k].len() == n && (self.warm[k].0.is_empty() || self.warm[k].0.len() == n)
         };
         let plastic = |b: &SoftBody, p: &Option<crate::body::PlasticState>| match p {
-            Some(p) => b.material.is_plastic() && p.len() == b.model.springs.rest.len() + b.model.bending.rest.len(),
+            Some(p) => b.material.is_plastic() && p.len() == b.model.springs.rest.len() + b.model.bending.rest.len() + b.model.hinges.rest.len(),
             None => !b.material.is_plastic(),
         };
         self.x.len() == bodies.len() && self.plastic.len() == bodies.len() && bodies.iter().enumerate().all(|(k, b)| sized(b, k)) && bodies.iter().zip(&self.plastic).all(|(b, p)| plastic(b, p))
