@@ -12,7 +12,7 @@
 //! `{"name": …, "ui": {…}}` as the file had them. On error (kind `project`, the core's message)
 //! the world is untouched. Like `ss_clear`, it forgets an open scene.
 
-use crate::world::with_world;
+use crate::handle::with_world;
 use crate::{bytes, set_result, status, Fail};
 use softsculpt::delta::{Delta, DeltaError, StateScope};
 

@@ -2,7 +2,8 @@
 //! the animation file of a recording: delegations to `softsculpt::mesh` and
 //! `softsculpt::params::similarity`.
 
-use crate::world::{add, mesh_fail, param_fail, with_world};
+use crate::handle::with_world;
+use crate::world::{add, mesh_fail, param_fail};
 use crate::{bytes, index, set_result, status, text, Fail};
 use softsculpt::mesh::{self, animation, pieces, MeshFormat};
 use serde_json::json;

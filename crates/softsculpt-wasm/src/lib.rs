@@ -3,8 +3,8 @@
 //! here; nothing panics on bad input.
 //!
 //! # Conventions
-//! - **Handles**: a world handle is an integer ≥ 1 (`ss_world_new`, `ss_workload`). Bodies are
-//!   indices 0, 1, … into the world's bodies.
+//! - **Handles**: a world handle is an integer ≥ 1 (`ss_world_new`, `ss_workload`; the table:
+//!   `handle.rs`). Bodies are indices 0, 1, … into the world's bodies.
 //! - **Status and index**: every fallible call returns `i32`: 0 (ok) or an index ≥ 0, and −1 on
 //!   failure. Calls returning a pointer return 0 on failure.
 //! - **Errors** (`ss_error_ptr`/`ss_error_len`): after a failure, UTF-8 JSON
@@ -19,8 +19,8 @@
 //! - **Memory**: `ss_alloc(len)`/`ss_dealloc(ptr, len)` for buffers the page fills (file bytes,
 //!   names, JSON values). Any call may grow wasm memory (the `ArrayBuffer` is then replaced):
 //!   re-make typed-array views after every call.
-//! - **Views** (`views.rs`): `ss_body_views(w, b)` returns a pointer to a u32 layout table of
-//!   body b's arrays in wasm memory (the engine's own f64 arrays, and arrays the binding keeps
+//! - **Views** (`views.rs`; its calls in `world.rs`): `ss_body_views(w, b)` returns a pointer
+//!   to a u32 layout table of body b's arrays in wasm memory (the engine's own f64 arrays, and arrays the binding keeps
 //!   for the page: f32 render positions, u32 springs, u8 pins, f64 staging). Its pointers stay
 //!   valid until a call that replaces bodies (`ss_add_*`, `ss_clear`, `ss_subdivide`,
 //!   `ss_restore`, `ss_open_scene`, `ss_apply_delta`, `ss_open_project_v1`): ask again after
@@ -77,6 +77,7 @@
 //! | `ss_apply_delta(w, ptr, len)` | apply a delta; result: its inverse's bytes |
 //! | `ss_open_project_v1(w, ptr, len)` | a version-1 project file of the modeler becomes the world; result `{name, ui}` |
 
+mod handle;
 mod history;
 mod import;
 mod scene;

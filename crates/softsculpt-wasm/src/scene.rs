@@ -2,7 +2,7 @@
 //!
 //! Mesh files a scene names are given first with `ss_scene_file` (by name; a path in the scene
 //! matches by its last component too); `ss_open_scene` uses, then forgets them. The handle keeps
-//! the open scene's body names, length and parsed file ([`SceneInfo`]) so that `ss_save_scene`
+//! the open scene's body names, length and parsed file ([`SceneInfo`], `handle.rs`) so that `ss_save_scene`
 //! writes the scene's obstacles and events back (`softsculpt::scene::save`). They stay until
 //! `ss_clear`, the next `ss_open_scene`, or `ss_open_project_v1`; `ss_restore` and
 //! `ss_apply_delta` keep them (a page that undoes across a scene's opening re-opens the scene
@@ -15,25 +15,15 @@
 //! world coordinates), `{"kind":"capsule","a":[…],"b":[…],"radius":r}`,
 //! `{"kind":"mesh","positions":[x0,y0,z0,…],"indices":[i0,i1,i2,…]}`.
 
-use crate::world::with_world;
+use crate::handle::{with_world, SceneInfo};
 use crate::{bytes, set_result, status, text, Fail};
 use serde_json::json;
 use softsculpt::params;
-use softsculpt::scene::{self, SceneError, SceneRun, SceneSpec};
+use softsculpt::scene::{self, SceneError, SceneRun};
 use softsculpt::world::{Obstacle, Shape};
 use softsculpt::SoftBody;
 use std::cell::RefCell;
 use std::collections::HashMap;
-
-/// What a world handle keeps of the scene it opened.
-pub struct SceneInfo {
-    /// The file as parsed: its obstacles and events are written back on save.
-    pub spec: SceneSpec,
-    /// Body names, in body order.
-    pub names: Vec<String>,
-    /// Length of the run (s).
-    pub duration: f64,
-}
 
 thread_local! {
     static FILES: RefCell<HashMap<String, Vec<u8>>> = RefCell::new(HashMap::new());

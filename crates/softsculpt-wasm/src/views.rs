@@ -1,5 +1,5 @@
-//! Bulk data as typed-array views over wasm memory. `ss_body_views(w, b)` returns a pointer to
-//! body b's layout table: [`LAYOUT_LEN`] u32,
+//! Bulk data as typed-array views over wasm memory. `ss_body_views(w, b)` (`world.rs`) returns a
+//! pointer to body b's layout table: [`LAYOUT_LEN`] u32,
 //!
 //! | slot | what | type, length |
 //! |---|---|---|
@@ -22,8 +22,6 @@
 //! valid until a call replaces bodies (see the crate documentation); typed arrays over them must
 //! be re-made after any call, since any call may grow memory.
 
-use crate::status;
-use crate::world::with_world;
 use softsculpt::World;
 
 /// Length of the layout table (u32).
@@ -92,7 +90,7 @@ impl BodyViews {
     }
 
     /// The layout table of body `i` (pointers as they are now).
-    fn layout(&mut self, world: &World, i: usize) -> *const u32 {
+    pub fn layout(&mut self, world: &World, i: usize) -> *const u32 {
         let b = &world.bodies[i];
         let p = |ptr: *const u8| ptr as usize as u32;
         self.layout = [
@@ -115,74 +113,5 @@ impl BodyViews {
             p(self.stats.as_ptr().cast()),
         ];
         self.layout.as_ptr()
-    }
-}
-
-/// Refresh every body's render positions, pins and stats.
-#[no_mangle]
-pub extern "C" fn ss_sync(w: u32) -> i32 {
-    status(|| {
-        with_world(w, |h| {
-            for (i, v) in h.views.iter_mut().enumerate() {
-                v.sync(&h.world, i);
-            }
-            Ok(())
-        })
-    })
-}
-
-/// Number of bodies, or −1 for a bad handle.
-#[no_mangle]
-pub extern "C" fn ss_body_count(w: u32) -> i32 {
-    crate::index(|| with_world(w, |h| Ok(h.world.bodies.len())))
-}
-
-/// Newton iterations of body `b`'s last step (0 after an explicit one), or −1 (error set).
-#[no_mangle]
-pub extern "C" fn ss_body_newton_iterations(w: u32, b: u32) -> i32 {
-    crate::index(|| {
-        with_world(w, |h| {
-            Ok(h.world.bodies[h.body(b)?].solver_iterations().newton as usize)
-        })
-    })
-}
-
-/// The relative residual ‖r‖/‖r_0‖ body `b`'s last implicit step was accepted at when its
-/// deadline stopped it short of the tolerance (the anytime step); 0 for a step that converged
-/// (or an explicit one); −1 (error set).
-#[no_mangle]
-pub extern "C" fn ss_body_accuracy(w: u32, b: u32) -> f64 {
-    match with_world(w, |h| {
-        let it = h.world.bodies[h.body(b)?].solver_iterations();
-        Ok(if it.early { it.residual } else { 0.0 })
-    }) {
-        Ok(r) => r,
-        Err(e) => {
-            crate::fail(e);
-            -1.0
-        }
-    }
-}
-
-/// What of the hinges body `b`'s last step let go of to finish (`Relaxed`: 0 nothing, 1 the
-/// crushed faces' hinges, 2 every hinge), or −1 (error set).
-#[no_mangle]
-pub extern "C" fn ss_body_relaxed(w: u32, b: u32) -> i32 {
-    crate::index(|| with_world(w, |h| Ok(h.world.bodies[h.body(b)?].solver_iterations().relaxed.level() as usize)))
-}
-
-/// Body `b`'s layout table (see the module documentation), or 0 (error set).
-#[no_mangle]
-pub extern "C" fn ss_body_views(w: u32, b: u32) -> *const u32 {
-    let r = with_world(w, |h| {
-        let i = h.body(b)?;
-        Ok(h.views[i].layout(&h.world, i))
-    });
-    match r {
-        Ok(p) => p,
-        Err(e) => {
-            crate::fail(e);
-            std::ptr::null()
-        }
     }
 }

@@ -1,106 +1,16 @@
-//! The table of world handles, and the calls on a world and its bodies. Each call checks its
-//! arguments, delegates to the core, and turns the core's error into a [`Fail`].
-//! Single-threaded (wasm32 without threads).
+//! The calls on a world and its bodies (the world found by its handle: `handle.rs`). Each call
+//! checks its arguments, delegates to the core, and turns the core's error into a [`Fail`].
 
-use crate::scene::SceneInfo;
+use crate::handle::{with_body, with_world};
 use crate::views::BodyViews;
-use crate::{bytes, index, set_result, status, text, Fail, Res};
+use crate::{bytes, fail, index, set_result, status, text, Fail, Res};
 use softsculpt::body::{BodyError, FreezeOptions};
 use softsculpt::mesh::{self, builtin, LoadedMesh, ObjData, TriMesh};
 use softsculpt::params::{self, ParamError, Scope, Value};
 use softsculpt::snapshot::SnapshotError;
 use softsculpt::{
-    world::{Budget, Interrupt}, Material, MeshError, SimError, SoftBody, StepError, Target, World, WorldSettings,
+    world::{Budget, Interrupt}, Material, MeshError, SimError, SoftBody, StepError, Target, World,
 };
-use std::cell::RefCell;
-
-/// A world and what the binding keeps beside it.
-pub struct Handle {
-    pub world: World,
-    /// One per body, in body order (`views.rs`).
-    pub views: Vec<BodyViews>,
-    /// The world as `ss_mark` saw it (`ss_delta` compares with it).
-    pub mark: Option<World>,
-    /// The open scene's names, file and length, for `ss_save_scene` (`scene.rs`).
-    pub scene: Option<SceneInfo>,
-}
-
-impl Handle {
-    fn new(world: World) -> Self {
-        let mut h = Handle {
-            world,
-            views: Vec::new(),
-            mark: None,
-            scene: None,
-        };
-        h.rebuild_views();
-        h
-    }
-    /// New views for every body (after bodies were replaced).
-    pub fn rebuild_views(&mut self) {
-        self.views = (0..self.world.bodies.len())
-            .map(|i| BodyViews::new(&self.world, i))
-            .collect();
-    }
-    /// Body `b`'s index, checked.
-    pub fn body(&self, b: u32) -> Res<usize> {
-        let n = self.world.bodies.len();
-        if (b as usize) < n {
-            Ok(b as usize)
-        } else {
-            Err(Fail::usage(format!(
-                "there is no body {b} (the world has {n})"
-            )))
-        }
-    }
-    fn add(&mut self, body: SoftBody) -> usize {
-        let i = self.world.add_body(body);
-        self.views.push(BodyViews::new(&self.world, i));
-        i
-    }
-}
-
-thread_local! {
-    static WORLDS: RefCell<Vec<Option<Handle>>> = const { RefCell::new(Vec::new()) };
-    /// The page's one pool (`ss_use_threads`), shared by every world: single until then.
-    static THREADS: RefCell<softsculpt::par::Threads> = RefCell::new(softsculpt::par::Threads::single());
-}
-
-fn insert(world: World) -> usize {
-    WORLDS.with(|t| {
-        let mut t = t.borrow_mut();
-        t.push(Some(Handle::new(world)));
-        t.len()
-    })
-}
-
-/// Run `f` on the world of handle `w`.
-pub fn with_world<R>(w: u32, f: impl FnOnce(&mut Handle) -> Res<R>) -> Res<R> {
-    WORLDS.with(|t| {
-        let mut t = t.borrow_mut();
-        match (w as usize)
-            .checked_sub(1)
-            .and_then(|i| t.get_mut(i))
-            .and_then(Option::as_mut)
-        {
-            Some(h) => {
-                // Every world steps on the page's pool, also one a call replaced (a restore, a
-                // scene, an undo): a clone of the pool is one reference count.
-                THREADS.with(|p| h.world.share_threads(&p.borrow()));
-                f(h)
-            }
-            None => Err(Fail::usage(format!("there is no world with handle {w}"))),
-        }
-    })
-}
-
-/// Run `f` on body `b` of world `w` (its index checked).
-pub fn with_body<R>(w: u32, b: u32, f: impl FnOnce(&mut Handle, usize) -> Res<R>) -> Res<R> {
-    with_world(w, |h| {
-        let i = h.body(b)?;
-        f(h, i)
-    })
-}
 
 // ----- the core's errors as `Fail` --------------------------------------------------------------
 
@@ -189,92 +99,6 @@ pub fn snapshot_fail(e: SnapshotError) -> Fail {
 }
 
 // ----- the world ----------------------------------------------------------------------------------
-
-/// An empty world with the parameter table's defaults.
-#[no_mangle]
-pub extern "C" fn ss_world_new() -> i32 {
-    index(|| Ok(insert(World::new(Vec::new(), WorldSettings::default()))))
-}
-
-#[no_mangle]
-pub extern "C" fn ss_world_free(w: u32) {
-    WORLDS.with(|t| {
-        if let Some(slot) = (w as usize)
-            .checked_sub(1)
-            .and_then(|i| t.borrow_mut().get_mut(i).map(Option::take))
-        {
-            drop(slot);
-        }
-    });
-}
-
-/// Step every world on `n` threads: the caller and n − 1 of the helper threads the page started
-/// (`ss_thread_serve`; 0: all of them). Returns the count in use; −1 (error) when the build has
-/// no threads (n > 1 without atomics) or too few helpers serve. 1 goes back to one thread.
-#[no_mangle]
-pub extern "C" fn ss_use_threads(n: u32) -> i32 {
-    index(|| {
-        if n > 1 && softsculpt::par::max_threads() < n as usize {
-            return Err(Fail::usage(format!(
-                "{n} threads asked for; this build runs {} (the threaded build needs the page cross-origin isolated)",
-                softsculpt::par::max_threads()
-            )));
-        }
-        // The old pool is dropped first, so its helpers serve the new one.
-        THREADS.with(|p| *p.borrow_mut() = softsculpt::par::Threads::single());
-        WORLDS.with(|t| t.borrow_mut().iter_mut().flatten().for_each(|h| h.world.share_threads(&softsculpt::par::Threads::single())));
-        let pool = softsculpt::par::Threads::new(n as usize).map_err(Fail::usage)?;
-        let count = pool.count();
-        THREADS.with(|p| *p.borrow_mut() = pool);
-        Ok(count)
-    })
-}
-
-/// A helper thread's life (a Web Worker on the same module and shared memory, its stack and
-/// thread-local block set up: `web/src/engine/threads.ts`): serve the pool's passes; never
-/// returns. Threaded builds only; elsewhere it returns at once.
-#[no_mangle]
-pub extern "C" fn ss_thread_serve() {
-    #[cfg(all(target_arch = "wasm32", target_feature = "atomics"))]
-    softsculpt::par::serve();
-}
-
-/// Passes a helper thread took part in so far (`softsculpt::par::passes_helped`), as f64.
-#[no_mangle]
-pub extern "C" fn ss_thread_passes() -> f64 {
-    softsculpt::par::passes_helped() as f64
-}
-
-/// The address of the flag a helper's JavaScript sets (`Atomics.store`, u32) when its
-/// `ss_thread_serve` traps, so a pass waiting for it fails instead of waiting forever
-/// (`softsculpt::par::host`). 0 in builds without threads.
-#[no_mangle]
-pub extern "C" fn ss_thread_trapped_flag() -> usize {
-    #[cfg(all(target_arch = "wasm32", target_feature = "atomics"))]
-    return softsculpt::par::trapped_flag() as usize;
-    #[cfg(not(all(target_arch = "wasm32", target_feature = "atomics")))]
-    0
-}
-
-/// Threads the worlds step on (1 until `ss_use_threads`).
-#[no_mangle]
-pub extern "C" fn ss_threads() -> u32 {
-    THREADS.with(|p| p.borrow().count() as u32)
-}
-
-/// The standard benchmark workload at an icosphere level (see `softsculpt::workload`).
-#[no_mangle]
-pub extern "C" fn ss_workload(level: u32) -> i32 {
-    index(|| {
-        if level > 8 {
-            return Err(Fail::usage(format!(
-                "level {level} is too large (at most 8)"
-            )));
-        }
-        Ok(insert(softsculpt::workload::world(level)))
-    })
-}
-
 pub(crate) fn add(w: u32, mesh: &TriMesh, mass: f64, warnings: &[String]) -> Res<usize> {
     with_world(w, |h| {
         let body = SoftBody::new(mesh, mass, Material::default()).map_err(body_fail)?;
@@ -493,6 +317,77 @@ pub unsafe extern "C" fn ss_stable_dt(w: u32, name: *const u8, len: usize) -> f6
         Err(e) => {
             crate::fail(e);
             -1.0
+        }
+    }
+}
+
+// ----- views (`views.rs`) -------------------------------------------------------------------------
+
+/// Refresh every body's render positions, pins and stats.
+#[no_mangle]
+pub extern "C" fn ss_sync(w: u32) -> i32 {
+    status(|| {
+        with_world(w, |h| {
+            for (i, v) in h.views.iter_mut().enumerate() {
+                v.sync(&h.world, i);
+            }
+            Ok(())
+        })
+    })
+}
+
+/// Number of bodies, or −1 for a bad handle.
+#[no_mangle]
+pub extern "C" fn ss_body_count(w: u32) -> i32 {
+    index(|| with_world(w, |h| Ok(h.world.bodies.len())))
+}
+
+/// Newton iterations of body `b`'s last step (0 after an explicit one), or −1 (error set).
+#[no_mangle]
+pub extern "C" fn ss_body_newton_iterations(w: u32, b: u32) -> i32 {
+    index(|| {
+        with_world(w, |h| {
+            Ok(h.world.bodies[h.body(b)?].solver_iterations().newton as usize)
+        })
+    })
+}
+
+/// The relative residual ‖r‖/‖r_0‖ body `b`'s last implicit step was accepted at when its
+/// deadline stopped it short of the tolerance (the anytime step); 0 for a step that converged
+/// (or an explicit one); −1 (error set).
+#[no_mangle]
+pub extern "C" fn ss_body_accuracy(w: u32, b: u32) -> f64 {
+    match with_world(w, |h| {
+        let it = h.world.bodies[h.body(b)?].solver_iterations();
+        Ok(if it.early { it.residual } else { 0.0 })
+    }) {
+        Ok(r) => r,
+        Err(e) => {
+            fail(e);
+            -1.0
+        }
+    }
+}
+
+/// What of the hinges body `b`'s last step let go of to finish (`Relaxed`: 0 nothing, 1 the
+/// crushed faces' hinges, 2 every hinge), or −1 (error set).
+#[no_mangle]
+pub extern "C" fn ss_body_relaxed(w: u32, b: u32) -> i32 {
+    index(|| with_world(w, |h| Ok(h.world.bodies[h.body(b)?].solver_iterations().relaxed.level() as usize)))
+}
+
+/// Body `b`'s layout table (see the module documentation), or 0 (error set).
+#[no_mangle]
+pub extern "C" fn ss_body_views(w: u32, b: u32) -> *const u32 {
+    let r = with_world(w, |h| {
+        let i = h.body(b)?;
+        Ok(h.views[i].layout(&h.world, i))
+    });
+    match r {
+        Ok(p) => p,
+        Err(e) => {
+            fail(e);
+            std::ptr::null()
         }
     }
 }

@@ -3,15 +3,40 @@
 // pieces), and the answer builds the model — at the file's own size, turned upright, standing on
 // the ground, each piece a body, an open surface (cloth-like) without gas — as one undo step.
 
-import { World } from '../engine/world';
+import { World, type DeltaScope } from '../engine/world';
 import { FRAME_DT } from '../engine/models';
-import { headerText, needsAnswer, place, question, sizeFactor, type ImportAnswer, type ImportQuestion, type Up } from '../io/import';
+import { headerText, needsAnswer, place, question, sizeFactor, type ImportAnswer, type ImportFrame, type ImportQuestion, type Up } from '../io/import';
 import { trial, verdict, worst } from './trial';
-import type { MessageKind } from '../protocol';
-import type { Document } from './document';
+import type { MessageKind, Settings, Stats, UiState } from '../protocol';
+import type { Imported } from './explain';
 
 /** Brush radius (m) for the reference-size model (the mushroom); scaled with the model. */
 const BRUSH_RADIUS = 0.35;
+
+/**
+ * What the importer needs of the document it builds the model in (worker/document.ts's
+ * `Document` is one, and owns the importer): declared here, below the document, so that the
+ * importer does not import it (issue #39, no circles).
+ */
+export interface ImportTarget {
+  /** An empty world's snapshot (the trial's scratch world, `trial.ts`). */
+  readonly emptyWorld: Uint8Array;
+  readonly world: World;
+  readonly settings: Pick<Settings, 'opened' | 'frame'>;
+  ui: UiState;
+  /** The model is an import: what a stop soon after it names (explain.ts). */
+  imported: Imported | undefined;
+  /** Run `op` as one operation (one undo step when `undoable`); false if it failed. */
+  edit(label: string, undoable: boolean, op: () => void, scope?: DeltaScope, failText?: (why: string) => string): boolean;
+  /** A fresh world: no bodies, no scene, no obstacles, the table's defaults. */
+  fresh(): void;
+  /** A model built in the world (an import): its name, the settings from the world's dt, its file's frame. */
+  adopt(model: string, frame: ImportFrame): void;
+  remesh(): void;
+  stats(): Pick<Stats, 'time'>;
+  /** Tell the page new tool state (the brush radius fitted to an imported model). */
+  hooksUi(ui: Partial<UiState>): void;
+}
 
 export interface ImporterHooks {
   message(text: string, kind?: MessageKind): void;
@@ -27,7 +52,7 @@ export class Importer {
   /** The files imported lately, with their answers, by the load they made (`settings.opened`; undo may bring an earlier one back): to turn one to another up axis. */
   private made = new Map<number, { p: Pending; a: ImportAnswer }>();
 
-  constructor(private readonly doc: Document, private readonly hooks: ImporterHooks) {}
+  constructor(private readonly doc: ImportTarget, private readonly hooks: ImporterHooks) {}
 
   /** The file waiting for the page's answer, if any. */
   get waiting(): ImportQuestion | null { return this.pending?.question ?? null; }

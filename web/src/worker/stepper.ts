@@ -7,7 +7,26 @@
 // `Document.takeAccuracy`), refused ones are split, explicit steps run while the budget lasts.
 // If the steps do not fit in the budget the simulation runs in slow motion and says so.
 
-import type { Document } from './document';
+import type { Advance } from '../engine/world';
+import type { Settings } from '../protocol';
+
+/**
+ * What the stepper needs of the document it steps (worker/document.ts's `Document` is one):
+ * declared here, below the document, so that the stepper does not import it (issue #39, no
+ * circles: the document imports the importer, which imports the trial, which imports this file).
+ */
+export interface Stepped {
+  readonly settings: Pick<Settings, 'playing' | 'realTime' | 'dt' | 'substeps'>;
+  /** The model steps implicitly (its steps' solves get the solve budget). */
+  readonly implicit: boolean;
+  /** What the last `advance` did (null if it failed or was interrupted). */
+  readonly lastAdvance: Pick<Advance, 'simulated'> | null;
+  /** The stroke acts for `dt` simulated seconds (before the steps of a tick). */
+  updateStroke(dt: number): void;
+  /** `n` steps of `dt` under a wall-clock budget of `seconds` (0: every step to the tolerance);
+   *  false if a step failed or a waiting command interrupted one. */
+  advance(dt: number, n: number, seconds?: number): boolean;
+}
 
 /**
  * Wall-clock ms a tick's implicit solves may take before each step is accepted at its first
@@ -39,7 +58,7 @@ export class Stepper {
   constructor(private readonly now: () => number, private readonly budgetMs = 30, private readonly solveBudgetMs = SOLVE_BUDGET_MS) {}
 
   /** One tick; returns whether it stepped. */
-  tick(doc: Document): boolean {
+  tick(doc: Stepped): boolean {
     const now = this.now();
     const elapsed = this.last ? Math.min(0.1, (now - this.last) / 1000) : 1 / 60;
     this.last = now;
@@ -72,7 +91,7 @@ export class Stepper {
    * tolerance, all of them); returns how many steps of `dt` they covered (0 if a step failed or
    * a command interrupted it).
    */
-  run(doc: Document, dt: number, n: number, budgetMs = Infinity): number {
+  run(doc: Stepped, dt: number, n: number, budgetMs = Infinity): number {
     if (n <= 0) return 0;
     const t0 = this.now();
     const ok = doc.advance(dt, n, Number.isFinite(budgetMs) ? budgetMs / 1000 : 0);

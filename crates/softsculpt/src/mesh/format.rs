@@ -1,6 +1,7 @@
-//! Mesh file formats: which one a file is (by extension, else by its first bytes), reading any of
-//! them into the same [`LoadedMesh`] (one weld, check, orientation and piece count for all), and
-//! writing a simulated shape back in any of them. Bytes in, bytes out: the caller reads files.
+//! Mesh file formats: which one a file is (by extension, else by its first bytes), its up axis,
+//! and what reading and writing keep. What every format's reader and writer shares lives here,
+//! below them (`obj`, `ply`, `stl`, `gltf`); reading any format into a mesh and writing one back
+//! is [`file`](super::file), above them.
 //!
 //! | format | read | written as | positions |
 //! |---|---|---|---|
@@ -10,8 +11,7 @@
 //! | glTF | JSON with embedded (data-URI) buffers | — | f32 |
 //! | GLB  | binary glTF | GLB, one mesh, no transform | f32 |
 
-use super::{obj, LoadedMesh, ObjData};
-use crate::error::MeshError;
+use super::obj::ObjData;
 
 /// A mesh file format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -61,7 +61,7 @@ impl MeshFormat {
         Self::from_extension(ext)
     }
 
-    /// Whether [`LoadedMesh::write`] can write it.
+    /// Whether [`LoadedMesh::write`](super::LoadedMesh::write) can write it.
     pub fn writable(self) -> bool {
         self != MeshFormat::Gltf
     }
@@ -75,7 +75,7 @@ impl MeshFormat {
         if bytes.starts_with(b"glTF") {
             return Some(MeshFormat::Glb);
         }
-        if super::stl::binary_size_matches(bytes) || bytes.starts_with(b"solid ") || bytes.starts_with(b"solid\n") {
+        if stl_binary_size_matches(bytes) || bytes.starts_with(b"solid ") || bytes.starts_with(b"solid\n") {
             return Some(MeshFormat::Stl);
         }
         let first = bytes.iter().find(|b| !b.is_ascii_whitespace());
@@ -84,6 +84,22 @@ impl MeshFormat {
         }
         None
     }
+}
+
+/// A binary STL: an 84-byte header (80 free bytes, then the u32 triangle count), 50 bytes per
+/// triangle. Its size is its signature (STL has no magic number); `stl.rs` reads and writes it.
+pub(crate) const STL_HEADER: usize = 84;
+pub(crate) const STL_TRIANGLE: usize = 50;
+
+/// The triangle count of a binary STL header, if the file is long enough to have one.
+pub(crate) fn stl_triangle_count(bytes: &[u8]) -> Option<u64> {
+    let c = bytes.get(80..84)?;
+    Some(u32::from_le_bytes([c[0], c[1], c[2], c[3]]) as u64)
+}
+
+/// A binary STL's size is exactly 84 + 50 × its triangle count.
+pub fn stl_binary_size_matches(bytes: &[u8]) -> bool {
+    stl_triangle_count(bytes).is_some_and(|n| n > 0 && bytes.len() as u64 == STL_HEADER as u64 + STL_TRIANGLE as u64 * n)
 }
 
 /// The up axis of a file: what its format says (glTF: Y-up by specification) or what the user
@@ -113,42 +129,6 @@ impl UpAxis {
     }
 }
 
-/// Read mesh bytes of the given format (or, without one, the format [`MeshFormat::sniff`]
-/// finds) and prepare them: weld, drop degenerate faces, orient, count pieces.
-pub fn load(bytes: &[u8], format: Option<MeshFormat>) -> Result<LoadedMesh, MeshError> {
-    let format = match format.or_else(|| MeshFormat::sniff(bytes)) {
-        Some(f) => f,
-        None => {
-            return Err(MeshError::Invalid(format!(
-                "cannot tell the file's format: it is none of {READ_EXTENSIONS} by its first bytes"
-            )))
-        }
-    };
-    let data = match format {
-        MeshFormat::Obj => obj::parse(bytes)?,
-        MeshFormat::Ply => super::ply::parse(bytes)?,
-        MeshFormat::Stl => super::stl::parse(bytes)?,
-        MeshFormat::Gltf | MeshFormat::Glb => super::gltf::parse(bytes, format)?,
-    };
-    check_finite(&data, format)?;
-    let mut loaded = super::prepare(data)?;
-    loaded.report.format = Some(format);
-    if matches!(format, MeshFormat::Gltf | MeshFormat::Glb) {
-        loaded.report.up_axis = UpAxis::Y;
-    }
-    Ok(loaded)
-}
-
-fn check_finite(data: &ObjData, format: MeshFormat) -> Result<(), MeshError> {
-    if let Some(i) = data.positions.iter().position(|x| !x.is_finite()) {
-        return Err(MeshError::Format {
-            format: format.name(),
-            message: format!("vertex {} has a coordinate that is not finite (NaN or infinity)", i / 3 + 1),
-        });
-    }
-    Ok(())
-}
-
 /// Rotate Z-up coordinates to Y-up: (x, y, z) → (x, z, −y), a proper rotation (−90° about X),
 /// so windings stay outward and lengths, volumes and units are unchanged.
 pub fn z_up_to_y_up(positions: &mut [f64]) {
@@ -159,9 +139,9 @@ pub fn z_up_to_y_up(positions: &mut [f64]) {
     }
 }
 
-/// How [`LoadedMesh::write_with`] writes: in which frame, and whether OBJ and PLY polygons are
-/// split into triangles (some readers, trimesh among them, refuse a PLY mixing quads and
-/// triangles). The default: Y-up, the source's polygons.
+/// How [`LoadedMesh::write_with`](super::LoadedMesh::write_with) writes: in which frame, and
+/// whether OBJ and PLY polygons are split into triangles (some readers, trimesh among them,
+/// refuse a PLY mixing quads and triangles). The default: Y-up, the source's polygons.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct WriteOptions {
     pub up: UpAxis,
@@ -174,73 +154,6 @@ pub fn y_up_to_z_up(positions: &mut [f64]) {
         let (y, z) = (p[1], p[2]);
         p[1] = -z;
         p[2] = y;
-    }
-}
-
-impl LoadedMesh {
-    /// Declare the file's up axis. `Z` rotates the mesh (and its source) to Y-up; `Y` keeps it.
-    /// Returns a warning when this contradicts what the format says (glTF is Y-up).
-    pub fn set_up_axis(&mut self, up: UpAxis) -> Option<String> {
-        let gltf = matches!(self.report.format, Some(MeshFormat::Gltf | MeshFormat::Glb));
-        if up == UpAxis::Z {
-            z_up_to_y_up(&mut self.mesh.positions);
-            z_up_to_y_up(&mut self.source.positions);
-        }
-        self.report.up_axis = up;
-        self.report.up_rotated = up == UpAxis::Z;
-        (gltf && up == UpAxis::Z)
-            .then(|| "glTF files are Y-up by specification; rotated from Z-up anyway, as asked".to_string())
-    }
-
-    /// The source's positions with every used vertex replaced by its simulated position.
-    fn source_positions(&self, positions: &[f64]) -> Vec<f64> {
-        let mut out = self.source.positions.clone();
-        for (s, &m) in self.source_to_mesh.iter().enumerate() {
-            if m != u32::MAX {
-                out[3 * s..3 * s + 3].copy_from_slice(&positions[3 * m as usize..3 * m as usize + 3]);
-            }
-        }
-        out
-    }
-
-    /// The shape `positions` (the simulated vertices, flat `xyz…`) as a file of `format`, in the
-    /// source's vertex order and polygons (triangulated as fans where the format needs
-    /// triangles). glTF text is not written: use GLB.
-    pub fn write(&self, format: MeshFormat, positions: &[f64], header: &str) -> Result<Vec<u8>, MeshError> {
-        self.write_with(format, positions, header, WriteOptions::default())
-    }
-
-    /// [`LoadedMesh::write`] with `options`: the frame (Z turns the Y-up positions to Z-up,
-    /// [`y_up_to_z_up`], the inverse of what reading with `Z` did, so a file read Z-up is written
-    /// back Z-up) and whether OBJ and PLY get the source's polygons or triangles (fans).
-    pub fn write_with(&self, format: MeshFormat, positions: &[f64], header: &str, options: WriteOptions) -> Result<Vec<u8>, MeshError> {
-        let mut out = self.source_positions(positions);
-        if options.up == UpAxis::Z {
-            y_up_to_z_up(&mut out);
-        }
-        let fans;
-        let polygons = if options.triangulate {
-            let tris = fan_triangles(&self.source);
-            fans = ObjData { positions: Vec::new(), arities: vec![3; tris.len()], indices: tris.into_iter().flatten().collect() };
-            &fans
-        } else {
-            &self.source
-        };
-        Ok(match format {
-            MeshFormat::Obj => obj::write(&out, polygons, header),
-            MeshFormat::Ply => super::ply::write(&out, polygons, header),
-            MeshFormat::Stl => super::stl::write(&out, &self.source, header),
-            MeshFormat::Glb => super::gltf::write_glb(&out, &self.source, header),
-            MeshFormat::Gltf => {
-                return Err(MeshError::Invalid(format!("cannot write .gltf text; write {WRITE_EXTENSIONS}")));
-            }
-        })
-    }
-
-    /// OBJ text in the source's vertex order and polygons, with positions taken from `positions`
-    /// (the simulated vertices, flat `xyz…`). Unused source vertices keep their position.
-    pub fn write_obj(&self, positions: &[f64], header: &str) -> Vec<u8> {
-        obj::write(&self.source_positions(positions), &self.source, header)
     }
 }
 

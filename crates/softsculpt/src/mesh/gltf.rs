@@ -5,7 +5,8 @@
 //! node's transform, and joins every triangle primitive into one source mesh in document order.
 //! glTF is Y-up and in metres by specification.
 
-use super::{format::MeshFormat, ObjData};
+use super::format::{fan_triangles, MeshFormat};
+use super::ObjData;
 use crate::error::MeshError;
 use ::gltf::accessor::{DataType, Dimensions};
 use ::gltf::mesh::Mode;
@@ -213,7 +214,7 @@ pub fn parse(bytes: &[u8], format: MeshFormat) -> Result<ObjData, MeshError> {
 /// A static GLB: the positions (f32) in order and the polygons as triangle fans (u32 indices).
 pub fn write_glb(positions: &[f64], polygons: &ObjData, header: &str) -> Vec<u8> {
     use serde_json::json;
-    let tris = super::format::fan_triangles(polygons);
+    let tris = fan_triangles(polygons);
     let nv = positions.len() / 3;
     let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
     let mut bin = Vec::with_capacity(positions.len() * 4 + tris.len() * 12);

@@ -2,6 +2,7 @@
 //! triangles with f32 corners: reading merges corners with identical coordinates (`stl_io`),
 //! then the usual weld; writing loses the vertex indexing and rounds positions to f32.
 
+use super::format::{fan_triangles, stl_binary_size_matches, stl_triangle_count, STL_HEADER, STL_TRIANGLE};
 use super::ObjData;
 use crate::error::MeshError;
 
@@ -9,32 +10,17 @@ fn err(message: impl Into<String>) -> MeshError {
     MeshError::Format { format: "STL", message: message.into() }
 }
 
-/// Header, triangle count, 50 bytes per triangle.
-const BINARY_HEADER: usize = 84;
-const BINARY_TRIANGLE: usize = 50;
-
-/// The triangle count of a binary STL header, if the file is long enough to have one.
-fn binary_count(bytes: &[u8]) -> Option<u64> {
-    let c = bytes.get(80..84)?;
-    Some(u32::from_le_bytes([c[0], c[1], c[2], c[3]]) as u64)
-}
-
-/// A binary STL's size is exactly 84 + 50 × its triangle count.
-pub fn binary_size_matches(bytes: &[u8]) -> bool {
-    binary_count(bytes).is_some_and(|n| n > 0 && bytes.len() as u64 == BINARY_HEADER as u64 + BINARY_TRIANGLE as u64 * n)
-}
-
 /// Parse STL bytes. A file is binary when its size matches its triangle count (even if its
 /// header starts with `solid`, as some exporters write); otherwise it must be text.
 pub fn parse(bytes: &[u8]) -> Result<ObjData, MeshError> {
-    let binary = binary_size_matches(bytes);
+    let binary = stl_binary_size_matches(bytes);
     let text = !binary && (bytes.starts_with(b"solid ") || bytes.starts_with(b"solid\n") || bytes.starts_with(b"solid\r"));
     if !binary && !text {
-        return Err(err(match binary_count(bytes) {
+        return Err(err(match stl_triangle_count(bytes) {
             None => format!("{} bytes is too short for a binary STL (84-byte header) and it is not text starting with 'solid'", bytes.len()),
             Some(n) => format!(
                 "not text starting with 'solid', and as binary STL the header's {n} triangles need {} bytes, but the file has {} (truncated or not STL)",
-                BINARY_HEADER as u64 + BINARY_TRIANGLE as u64 * n,
+                STL_HEADER as u64 + STL_TRIANGLE as u64 * n,
                 bytes.len()
             ),
         }));
@@ -76,12 +62,12 @@ pub fn parse(bytes: &[u8]) -> Result<ObjData, MeshError> {
 /// Binary STL of the polygons (fans), corners rounded to f32, normals from the rounded corners.
 /// The 80-byte header holds the first line of `header` (never starting with `solid`).
 pub fn write(positions: &[f64], polygons: &ObjData, header: &str) -> Vec<u8> {
-    let tris = super::format::fan_triangles(polygons);
+    let tris = fan_triangles(polygons);
     let corner = |i: u32| -> [f32; 3] {
         let p = &positions[3 * i as usize..3 * i as usize + 3];
         [p[0] as f32, p[1] as f32, p[2] as f32]
     };
-    let mut out = Vec::with_capacity(BINARY_HEADER + BINARY_TRIANGLE * tris.len());
+    let mut out = Vec::with_capacity(STL_HEADER + STL_TRIANGLE * tris.len());
     let mut head = [b' '; 80];
     let first = header.lines().next().unwrap_or("");
     for (h, b) in head.iter_mut().zip(first.bytes().filter(|b| b.is_ascii() && !b.is_ascii_control())) {
