@@ -430,6 +430,28 @@ pub fn write(w: &World) -> Vec<u8> {
     frame(VERSION, &postcard::to_stdvec(&payload_v7(w)).unwrap_or_default())
 }
 
+/// The bytes version `version` (1 to [`VERSION`]) of the format holds of `w`, or `None` for
+/// another number: what an older SoftSculpt would have written of the state it knew (a newer
+/// version's additions left out, an implicit world's version-1 part written as `Symplectic`).
+/// For the stored snapshots of every older version that `tests/snapshot.rs` keeps opening
+/// (`tests/fixtures/snapshots/`).
+pub fn write_version(w: &World, version: u32) -> Option<Vec<u8>> {
+    let bytes = match version {
+        V1 => postcard::to_stdvec(&payload(w)),
+        V2 => {
+            let v3 = payload_v3(w);
+            postcard::to_stdvec(&WorldV2 { base: v3.base, ext: v3.ext })
+        }
+        V3 => postcard::to_stdvec(&payload_v3(w)),
+        V4 => postcard::to_stdvec(&payload_v4(w)),
+        V5 => postcard::to_stdvec(&payload_v5(w)),
+        V6 => postcard::to_stdvec(&payload_v6(w)),
+        VERSION => postcard::to_stdvec(&payload_v7(w)),
+        _ => return None,
+    };
+    Some(frame(version, &bytes.unwrap_or_default()))
+}
+
 /// The version-1 part of `w`'s snapshot (also what `crate::delta` compares).
 pub(crate) fn payload(w: &World) -> WorldV1 {
     WorldV1 {
