@@ -76,10 +76,59 @@ impl Clone for Scratch {
     }
 }
 
+/// Zones where a body can touch another, per body: boxes (lo, hi) (`World::contact_zones`).
+type Zones = Vec<Vec<(V3, V3)>>;
+
+/// A vertex's deepest contact with a face: body `ob`, face `f`, the closest point's barycentric
+/// weights `w`, the face's unit normal `n` (to the side the vertex is kept on) and the signed
+/// distance `s` along it (m).
+struct FaceContact {
+    ob: usize,
+    f: usize,
+    w: [f64; 3],
+    n: V3,
+    s: f64,
+}
+
 impl World {
+    /// The stage's steps: triangles' bounds, where bodies can touch, the broad phase's hash,
+    /// then each vertex in a zone against its candidate faces, then edge against edge.
     pub(super) fn collide(&mut self) {
-        // Every triangle's centroid and radius (about the centroid); the largest radius sets
-        // the reach of the queries.
+        let reach = self.gather_triangles();
+        let radius = reach + self.settings.contact.thickness;
+        if !(radius.is_finite() && radius > 0.0) {
+            return;
+        }
+        self.cx.reach_now = reach;
+        self.clear_near();
+        let zones = self.contact_zones(radius);
+        if !self.hash_triangles_in(&zones, radius) {
+            return;
+        }
+        for bi in 0..self.bodies.len() {
+            let zones = &zones[bi];
+            if zones.is_empty() {
+                continue;
+            }
+            for vi in 0..self.bodies[bi].vertex_count() {
+                let p = get(self.bodies[bi].positions(), vi);
+                if !in_zones(zones, p, 0.0) {
+                    continue;
+                }
+                if let Some(c) = self.deepest_contact(bi, vi, p, radius, reach) {
+                    self.cx.near[bi][vi] = true;
+                    self.respond_to(bi, vi, c);
+                }
+            }
+        }
+        if self.settings.contact.edge_contact {
+            self.collide_edges(&zones);
+        }
+    }
+
+    /// Every triangle's centroid and radius (about the centroid) into the scratch; returns the
+    /// largest radius, which sets the reach of the queries.
+    fn gather_triangles(&mut self) -> f64 {
         self.cx.centroids.clear();
         self.cx.owners.clear();
         self.cx.radii.clear();
@@ -96,22 +145,23 @@ impl World {
                 self.cx.owners.push((bi as u32, f as u32));
             }
         }
-        let radius = reach + self.settings.contact.thickness;
-        if !(radius.is_finite() && radius > 0.0) {
-            return;
-        }
-        let max_depth = reach;
-        self.cx.reach_now = reach;
+        reach
+    }
+
+    /// No vertex near another body's surface yet this step (one flag per body and vertex).
+    fn clear_near(&mut self) {
         self.cx.near.resize(self.bodies.len(), Vec::new());
         for (n, b) in self.cx.near.iter_mut().zip(&self.bodies) {
             n.clear();
             n.resize(b.vertex_count(), false);
         }
+    }
 
-        // Where each body can touch another: the overlaps of its bounding box with the others'
-        // (both grown by the query radius). Only vertices and faces inside these zones take
-        // part — most of a body, most of the time, does not. A self-colliding body can touch
-        // itself anywhere.
+    /// Where each body can touch another: the overlaps of its bounding box with the others'
+    /// (both grown by the query radius). Only vertices and faces inside these zones take
+    /// part — most of a body, most of the time, does not. A self-colliding body can touch
+    /// itself anywhere.
+    fn contact_zones(&self, radius: f64) -> Zones {
         let boxes: Vec<(V3, V3)> = self
             .bodies
             .iter()
@@ -120,7 +170,7 @@ impl World {
                 (sub(lo, [radius; 3]), add(hi, [radius; 3]))
             })
             .collect();
-        let zones: Vec<Vec<(V3, V3)>> = (0..self.bodies.len())
+        (0..self.bodies.len())
             .map(|bi| {
                 if self.bodies[bi].material.self_collision {
                     return vec![boxes[bi]];
@@ -133,10 +183,12 @@ impl World {
                     .filter(|(lo, hi)| (0..3).all(|d| lo[d] <= hi[d]))
                     .collect()
             })
-            .collect();
+            .collect()
+    }
 
-        // Broad phase over the centroids of the triangles in the zones (the others dropped in
-        // place).
+    /// Broad phase over the centroids of the triangles in the zones (the others dropped in
+    /// place), hashed at twice the query radius; false if no triangle is in a zone.
+    fn hash_triangles_in(&mut self, zones: &Zones, radius: f64) -> bool {
         let mut kept = 0;
         for k in 0..self.cx.owners.len() {
             let (g, r) = (get(&self.cx.centroids, k), self.cx.radii[k]);
@@ -151,92 +203,88 @@ impl World {
         self.cx.radii.truncate(kept);
         self.cx.centroids.truncate(3 * kept);
         if self.cx.owners.is_empty() {
-            return;
+            return false;
         }
         self.cx.hash.set_spacing(2.0 * radius);
         self.cx.hash.build(&self.cx.centroids);
+        true
+    }
 
-        for bi in 0..self.bodies.len() {
-            let zones = &zones[bi];
-            if zones.is_empty() {
+    /// Narrow phase of vertex `vi` of body `bi` (at p) against the hashed faces within
+    /// `radius`: the deepest contact with a face decides this vertex's response. Marks the
+    /// vertex near another body's surface on the way. `reach` is the largest triangle radius,
+    /// also the deepest a crossing is still caught (max_depth).
+    fn deepest_contact(&mut self, bi: usize, vi: usize, p: V3, radius: f64, reach: f64) -> Option<FaceContact> {
+        let max_depth = reach;
+        let h = self.settings.contact.thickness;
+        self.cx.hash.query(p, radius, &mut self.cx.candidates);
+        let mut best: Option<FaceContact> = None;
+        for &c in &self.cx.candidates {
+            let (ob, f) = self.cx.owners[c as usize];
+            let ob = ob as usize;
+            let g = get(&self.cx.centroids, c as usize);
+            // A vertex within the thickness of the triangle is within its radius plus the
+            // thickness of its centroid; so is one that crossed it less deeply than the
+            // distance from its crossing point to the rim (a crossing within one step).
+            let r = self.cx.radii[c as usize] + h;
+            let d = sub(p, g);
+            let d2 = dot(d, d);
+            // Near another body's surface (within a triangle radius more): its edges
+            // take part in the edge–edge test.
+            if ob != bi && d2 <= (r + reach) * (r + reach) {
+                self.cx.near[bi][vi] = true;
+            }
+            if d2 > r * r {
                 continue;
             }
-            for vi in 0..self.bodies[bi].vertex_count() {
-                let p = get(self.bodies[bi].positions(), vi);
-                if !in_zones(zones, p, 0.0) {
+            let other = &self.bodies[ob];
+            let t = other.triangles()[f as usize];
+            if ob == bi && (!other.material.self_collision || t.contains(&(vi as u32))) {
+                continue;
+            }
+            let Some((w, mut n, mut s)) = narrow(p, other.positions(), t, h, h.max(max_depth)) else {
+                continue;
+            };
+            if ob == bi {
+                // Only faces away from the vertex on the surface (the checks cost two
+                // more closest points, so they come after the cheap ones). Inside a
+                // closed body its own skin is met from behind: the side the vertex was
+                // on at the start of the step is the side to keep it on.
+                if !far_at_rest(other, vi, t, self_reach(self.settings.integrator, h)) {
                     continue;
                 }
-                self.cx.hash.query(p, radius, &mut self.cx.candidates);
-                // The deepest contact with another body's face decides this vertex's response.
-                let mut best: Option<(usize, usize, [f64; 3], V3, f64)> = None;
-                for &c in &self.cx.candidates {
-                    let (ob, f) = self.cx.owners[c as usize];
-                    let ob = ob as usize;
-                    let g = get(&self.cx.centroids, c as usize);
-                    // A vertex within the thickness of the triangle is within its radius plus the
-                    // thickness of its centroid; so is one that crossed it less deeply than the
-                    // distance from its crossing point to the rim (a crossing within one step).
-                    let r = self.cx.radii[c as usize] + self.settings.contact.thickness;
-                    let d = sub(p, g);
-                    let d2 = dot(d, d);
-                    // Near another body's surface (within a triangle radius more): its edges
-                    // take part in the edge–edge test.
-                    if ob != bi && d2 <= (r + reach) * (r + reach) {
-                        self.cx.near[bi][vi] = true;
-                    }
-                    if d2 > r * r {
-                        continue;
-                    }
-                    let other = &self.bodies[ob];
-                    let t = other.triangles()[f as usize];
-                    if ob == bi && (!other.material.self_collision || t.contains(&(vi as u32))) {
-                        continue;
-                    }
-                    let Some((w, mut n, mut s)) = narrow(p, other.positions(), t, self.settings.contact.thickness, self.settings.contact.thickness.max(max_depth)) else {
-                        continue;
-                    };
-                    if ob == bi {
-                        // Only faces away from the vertex on the surface (the checks cost two
-                        // more closest points, so they come after the cheap ones). Inside a
-                        // closed body its own skin is met from behind: the side the vertex was
-                        // on at the start of the step is the side to keep it on.
-                        if !far_at_rest(other, vi, t, self_reach(self.settings.integrator, self.settings.contact.thickness)) {
-                            continue;
-                        }
-                        let side = self_side(&self.prev[bi], vi, t);
-                        n = scale(n, side);
-                        s *= side;
-                    }
-                    if s < self.settings.contact.thickness && s > -max_depth && best.as_ref().is_none_or(|bst| s < bst.4) {
-                        best = Some((ob, f as usize, w, n, s));
-                    }
-                }
-                if let Some((ob, f, w, n, s)) = best {
-                    self.cx.near[bi][vi] = true;
-                    // Velocities respond within the thickness; positions only where a vertex
-                    // went behind the face (moving them further would inject energy).
-                    // Within one body a steady load (its weight, a press) would otherwise close
-                    // the gap to nothing and leave the two skins coplanar, one step from
-                    // crossing: self-contacts of explicit bodies are pushed halfway back to the
-                    // thickness each step. Implicit bodies hold their self-contacts in the
-                    // solve (penalty springs, `body/selfcontact.rs`), so here only a vertex that
-                    // still went behind the face is put back (to a thousandth of the thickness
-                    // in front, so that it has a side next step, as `edges.rs` does) and its
-                    // approach stopped: a resting contact is left alone.
-                    let h = self.settings.contact.thickness;
-                    if ob == bi && self.settings.integrator == Integrator::Implicit {
-                        if s < 0.0 {
-                            self.respond(bi, vi, ob, f, w, n, CLEARANCE * h - s);
-                        }
-                    } else {
-                        let depth = if ob == bi { 0.5 * (h - s) } else { (-s).max(0.0) };
-                        self.respond(bi, vi, ob, f, w, n, depth);
-                    }
-                }
+                let side = self_side(&self.prev[bi], vi, t);
+                n = scale(n, side);
+                s *= side;
+            }
+            if s < h && s > -max_depth && best.as_ref().is_none_or(|bst| s < bst.s) {
+                best = Some(FaceContact { ob, f: f as usize, w, n, s });
             }
         }
-        if self.settings.contact.edge_contact {
-            self.collide_edges(&zones);
+        best
+    }
+
+    /// The response to vertex `vi` of body `bi` in contact `c`.
+    ///
+    /// Velocities respond within the thickness; positions only where a vertex went behind the
+    /// face (moving them further would inject energy). Within one body a steady load (its
+    /// weight, a press) would otherwise close the gap to nothing and leave the two skins
+    /// coplanar, one step from crossing: self-contacts of explicit bodies are pushed halfway
+    /// back to the thickness each step. Implicit bodies hold their self-contacts in the solve
+    /// (penalty springs, `body/selfcontact.rs`), so here only a vertex that still went behind
+    /// the face is put back (to a thousandth of the thickness in front, so that it has a side
+    /// next step, as `edges.rs` does) and its approach stopped: a resting contact is left
+    /// alone.
+    fn respond_to(&mut self, bi: usize, vi: usize, c: FaceContact) {
+        let FaceContact { ob, f, w, n, s } = c;
+        let h = self.settings.contact.thickness;
+        if ob == bi && self.settings.integrator == Integrator::Implicit {
+            if s < 0.0 {
+                self.respond(bi, vi, ob, f, w, n, CLEARANCE * h - s);
+            }
+        } else {
+            let depth = if ob == bi { 0.5 * (h - s) } else { (-s).max(0.0) };
+            self.respond(bi, vi, ob, f, w, n, depth);
         }
     }
 
