@@ -5,22 +5,11 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { browserSuite, shot, dist, inspect, openModeler, settle, topVertex, vertex } from './harness.mjs';
+import { browserSuite, shot, dist, inspect, openModeler, settle, simulate, topVertex, vertex } from './harness.mjs';
 
 const suite = browserSuite();
 
 const stats = (page) => inspect(page, () => window.softsculpt.stats());
-
-/** Wait until `s` more simulated seconds have passed. */
-async function simulate(page, s) {
-  const t0 = (await stats(page)).time;
-  try {
-    await page.waitForFunction(([t, d]) => window.softsculpt.stats().time > t + d, [t0, s], { timeout: 90000 });
-  } catch (e) {
-    const state = await inspect(page, () => ({ time: window.softsculpt.stats().time, playing: window.softsculpt.playing(), message: window.softsculpt.lastMessage() }));
-    throw new Error(`${s} s of simulation from t = ${t0} s did not pass: ${JSON.stringify(state)}`);
-  }
-}
 
 /** Largest |Δ| over the coordinates (m). */
 const moved = (a, b) => a.reduce((m, v, k) => Math.max(m, Math.abs(v - b[k])), 0);

@@ -78,6 +78,18 @@ export async function openModeler(browser, url, context) {
 
 export const inspect = (page, expr, arg) => page.evaluate(expr, arg);
 
+/** Wait until `s` more simulated seconds have passed (the page's clock, not the wall's); on a
+ * timeout, say where the simulation stood. */
+export async function simulate(page, s, timeout = 90000) {
+  const t0 = await inspect(page, () => window.softsculpt.stats().time);
+  try {
+    await page.waitForFunction(([t, d]) => window.softsculpt.stats().time > t + d, [t0, s], { timeout });
+  } catch (e) {
+    const state = await inspect(page, () => ({ time: window.softsculpt.stats().time, playing: window.softsculpt.playing(), message: window.softsculpt.lastMessage() }));
+    throw new Error(`${s} s of simulation from t = ${t0} s did not pass: ${JSON.stringify(state)}`);
+  }
+}
+
 /** Wait until the body is (nearly) still. */
 export async function settle(page, speed = 0.02, timeout = 20000) {
   await page.waitForFunction((s) => window.softsculpt.stats().maxSpeed < s, speed, { timeout, polling: 100 });

@@ -54,6 +54,7 @@
 //! | `ss_body_count(w)`, `ss_body_views(w, b) -> ptr` | bodies; body b's layout table (`views.rs`) |
 //! | `ss_param_table()` | result: the parameter table JSON (`softsculpt::params::table_json`) |
 //! | `ss_move_ground(w, height)` | `World::move_ground`: the ground to `height` m, carrying the bodies standing on it; result `{"moved"}` |
+//! | `ss_let_overlapping_be(w)` | `World::let_overlapping_bodies_be`: contacts off between the bodies that overlap or touch now, until they part (an import's pieces); result `{"pairs"}` |
 //! | `ss_remesh(w, b, edge, under_load)` | `World::remesh`: isotropic remeshing to `edge` m (shorter if the shape needs it, or refused), masses and pins carried; result `{"dropped_events", "edge", "requested", "crease_deg", "tries", "distance", "volume_change"}` |
 //! | `ss_quality(w, b)` | `World::quality`: result JSON (smallest angle, share below 25°, shortest and mean edge, spread, poor) |
 //! | `ss_material_presets()` | result: the material presets' names and help (`softsculpt::params::material_presets_json`) |

@@ -485,6 +485,19 @@ pub extern "C" fn ss_move_ground(w: u32, height: f64) -> i32 {
     })
 }
 
+/// `World::let_overlapping_bodies_be`: contacts off between the bodies that overlap or touch
+/// now, until they part (an import's pieces); result `{"pairs": [[a, b], …]}`.
+#[no_mangle]
+pub extern "C" fn ss_let_overlapping_be(w: u32) -> i32 {
+    status(|| {
+        with_world(w, |h| {
+            let pairs = h.world.let_overlapping_bodies_be();
+            set_result(serde_json::json!({ "pairs": pairs }).to_string().into_bytes());
+            Ok(())
+        })
+    })
+}
+
 // ----- operations on a body --------------------------------------------------------------------
 
 /// Rest shape := current shape; `under_load` = 1 keeps carrying the weight, `keep_tension` = 1

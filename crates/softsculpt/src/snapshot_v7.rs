@@ -1,8 +1,10 @@
 //! Snapshot format version 7 (`crate::snapshot` holds the header, versions 1 and 2 and the
 //! policy; `crate::snapshot_v3` to `crate::snapshot_v6` versions 3 to 6): the version-6 payload
-//! followed by [`ExtensionV7`], each body's hinge rest angles where the plastic stage moved them
-//! off the frozen shape's (`body/plastic.rs`, "Bending"). Versions 1 to 6 read with the rest
-//! angles of the frozen shape, as they were written (before version 7 nothing moved them).
+//! followed by [`ExtensionV7`]: each body's hinge rest angles where the plastic stage moved them
+//! off the frozen shape's (`body/plastic.rs`, "Bending"), and the pairs of bodies whose contacts
+//! are off until they part (`world/overlaps.rs`). Versions 1 to 6 read with the rest angles of
+//! the frozen shape, as they were written (before version 7 nothing moved them), and no such
+//! pairs.
 //!
 //! Undo deltas (`crate::delta`, format 6) keep it with the rest lengths: what a plastic step
 //! changed, undo puts back.
@@ -18,12 +20,14 @@ pub struct WorldV7 {
     pub ext7: ExtensionV7,
 }
 
-/// What version 7 added: per body, in body order, its hinge rest angles (rad, one per hinge in
-/// `topology::hinges` order), or an empty list where they are the frozen shape's (every body:
-/// an empty `bodies`).
+/// What version 7 added.
 #[derive(Clone, Default, Serialize, Deserialize)]
 pub struct ExtensionV7 {
+    /// Per body, in body order, its hinge rest angles (rad, one per hinge in `topology::hinges`
+    /// order), or an empty list where they are the frozen shape's (every body: an empty list).
     pub bodies: Vec<Vec<f64>>,
+    /// Pairs of bodies `[a, b]`, a < b, ascending, whose contacts are off until they part.
+    pub overlaps: Vec<[u32; 2]>,
 }
 
 /// The version-7 additions of `w`: the rest angles of each body whose angles differ (bit for
@@ -43,7 +47,7 @@ pub(crate) fn extension7(w: &World) -> ExtensionV7 {
             }
         })
         .collect();
-    ExtensionV7 { bodies: if bodies.iter().all(Vec::is_empty) { Vec::new() } else { bodies } }
+    ExtensionV7 { bodies: if bodies.iter().all(Vec::is_empty) { Vec::new() } else { bodies }, overlaps: w.overlaps.clone() }
 }
 
 /// The whole version-7 payload of `w`.
@@ -61,6 +65,11 @@ pub(crate) fn world_from_v7(v7: WorldV7) -> Result<World, String> {
 /// Apply the version-7 additions to a world read from the version-6 part (an empty list: every
 /// body's rest angles are its frozen shape's, as versions 1 to 6 read).
 pub(crate) fn apply_extension7(w: &mut World, ext: &ExtensionV7) -> Result<(), String> {
+    let n = w.bodies.len() as u32;
+    if ext.overlaps.iter().any(|&[a, b]| a >= b || b >= n) || ext.overlaps.windows(2).any(|p| p[0] >= p[1]) {
+        return Err(format!("overlapping bodies must be ascending pairs [a, b] with a < b < {n}"));
+    }
+    w.overlaps.clone_from(&ext.overlaps);
     if ext.bodies.is_empty() {
         return Ok(());
     }
@@ -96,10 +105,12 @@ mod tests {
         let mut m = Material::default();
         m.set_nrt(5.0);
         m.rigidity = 0.05;
-        let mut w = World::single(SoftBody::new(&icosphere(2, 1.0), 1.0, m).unwrap(), WorldSettings::default());
+        let body = SoftBody::new(&icosphere(2, 1.0), 1.0, m).unwrap();
+        let mut w = World::new(vec![body.clone(), body.clone(), body], WorldSettings::default());
         for (h, t) in w.bodies[0].model.hinges.rest.iter_mut().enumerate() {
             *t += 1e-3 * (h as f64).sin();
         }
+        w.overlaps = vec![[0, 2], [1, 2]];
         w
     }
 
@@ -113,6 +124,7 @@ mod tests {
         assert_eq!(bytes[5..9], VERSION.to_le_bytes());
         let back = read(&bytes).unwrap();
         assert_eq!(back.bodies[0].model.hinges.rest, w.bodies[0].model.hinges.rest);
+        assert_eq!(back.overlaps, w.overlaps);
         assert_eq!(back.snapshot(), bytes);
         let v6 = postcard::to_stdvec(&payload_v6(&w)).unwrap();
         let v7 = postcard::to_stdvec(&payload_v7(&w)).unwrap();
@@ -122,10 +134,11 @@ mod tests {
         frozen.rest_to(&w.bodies[0].frozen.x);
         assert_eq!(old.bodies[0].model.hinges.rest, frozen.rest);
         assert!(payload_v7(&old).ext7.bodies.is_empty(), "the frozen shape's angles are not written");
+        assert!(old.overlaps.is_empty());
     }
 
     /// Rest angles of the wrong count, not finite or beyond ±π are refused as corrupted, naming
-    /// the body.
+    /// the body; so are pairs of overlapping bodies out of order or out of range.
     #[test]
     fn bad_hinge_rest_angles_are_refused() {
         let w = world();
@@ -136,6 +149,12 @@ mod tests {
             spoil(&mut p.ext7.bodies[0]);
             let e = read(&frame(VERSION, &postcard::to_stdvec(&p).unwrap())).map(|_| ()).expect_err("refused").to_string();
             assert!(e.starts_with("the snapshot is corrupted: body 0: ") && e.contains(says), "{e}");
+        }
+        for pairs in [vec![[2, 1]], vec![[0, 3]], vec![[1, 2], [0, 2]], vec![[0, 0]]] {
+            let mut p = payload_v7(&w);
+            p.ext7.overlaps = pairs;
+            let e = read(&frame(VERSION, &postcard::to_stdvec(&p).unwrap())).map(|_| ()).expect_err("refused").to_string();
+            assert!(e.contains("ascending pairs"), "{e}");
         }
     }
 }

@@ -46,6 +46,7 @@ export interface RawEngine {
   ss_reset(w: number, b: number): number;
   ss_subdivide(w: number, b: number): number;
   ss_move_ground(w: number, height: number): number;
+  ss_let_overlapping_be(w: number): number;
   ss_remesh(w: number, b: number, edge: number, underLoad: number): number;
   ss_quality(w: number, b: number): number;
   ss_scale_rest(w: number, b: number): number;

@@ -367,6 +367,11 @@ export class World {
     this.call((w) => raw().ss_move_ground(w, height));
     return (JSON.parse(resultText()) as { moved: number }).moved;
   }
+  /** Contacts off between the bodies that overlap or touch now, until they part (an import's pieces); returns those pairs. */
+  letOverlappingBe(): [number, number][] {
+    this.call((w) => raw().ss_let_overlapping_be(w));
+    return (JSON.parse(resultText()) as { pairs: [number, number][] }).pairs;
+  }
   /** Replace body `b` by its isotropic remeshing to `edge` m (frozen, under load if asked); returns the dropped pending events. */
   remesh(b: number, edge: number, underLoad: boolean): number {
     return this.remeshReporting(b, edge, underLoad).dropped_events;

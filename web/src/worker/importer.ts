@@ -148,6 +148,9 @@ export class Importer {
         w.freeze(b, true, false);
       }
     });
+    // Pieces that overlap or touch where they join take no contact with each other until they
+    // part (`world/overlaps.rs`): pushed apart, urdf_000's five pieces flew off and jittered.
+    if (chosen.length > 1) w.letOverlappingBe();
     return { chosen, gasless, size, frame };
   }
 

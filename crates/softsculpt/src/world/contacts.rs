@@ -82,8 +82,8 @@ type Zones = Vec<Vec<(V3, V3)>>;
 /// A vertex's deepest contact with a face: body `ob`, face `f`, the closest point's barycentric
 /// weights `w`, the face's unit normal `n` (to the side the vertex is kept on) and the signed
 /// distance `s` along it (m).
-struct FaceContact {
-    ob: usize,
+pub(super) struct FaceContact {
+    pub ob: usize,
     f: usize,
     w: [f64; 3],
     n: V3,
@@ -128,7 +128,7 @@ impl World {
 
     /// Every triangle's centroid and radius (about the centroid) into the scratch; returns the
     /// largest radius, which sets the reach of the queries.
-    fn gather_triangles(&mut self) -> f64 {
+    pub(super) fn gather_triangles(&mut self) -> f64 {
         self.cx.centroids.clear();
         self.cx.owners.clear();
         self.cx.radii.clear();
@@ -149,7 +149,7 @@ impl World {
     }
 
     /// No vertex near another body's surface yet this step (one flag per body and vertex).
-    fn clear_near(&mut self) {
+    pub(super) fn clear_near(&mut self) {
         self.cx.near.resize(self.bodies.len(), Vec::new());
         for (n, b) in self.cx.near.iter_mut().zip(&self.bodies) {
             n.clear();
@@ -161,7 +161,9 @@ impl World {
     /// (both grown by the query radius). Only vertices and faces inside these zones take
     /// part — most of a body, most of the time, does not. A self-colliding body can touch
     /// itself anywhere.
-    fn contact_zones(&self, radius: f64) -> Zones {
+    /// Pairs of bodies whose contacts are off (`overlaps.rs`) touch nowhere; those whose boxes
+    /// have parted are dropped from that set here.
+    pub(super) fn contact_zones(&mut self, radius: f64) -> Zones {
         let boxes: Vec<(V3, V3)> = self
             .bodies
             .iter()
@@ -170,6 +172,9 @@ impl World {
                 (sub(lo, [radius; 3]), add(hi, [radius; 3]))
             })
             .collect();
+        if !self.overlaps.is_empty() {
+            self.part_overlaps(&boxes);
+        }
         (0..self.bodies.len())
             .map(|bi| {
                 if self.bodies[bi].material.self_collision {
@@ -178,7 +183,7 @@ impl World {
                 boxes
                     .iter()
                     .enumerate()
-                    .filter(|&(ob, _)| ob != bi)
+                    .filter(|&(ob, _)| ob != bi && !self.overlooked(bi, ob))
                     .map(|(_, other)| (max3(boxes[bi].0, other.0), min3(boxes[bi].1, other.1)))
                     .filter(|(lo, hi)| (0..3).all(|d| lo[d] <= hi[d]))
                     .collect()
@@ -188,7 +193,7 @@ impl World {
 
     /// Broad phase over the centroids of the triangles in the zones (the others dropped in
     /// place), hashed at twice the query radius; false if no triangle is in a zone.
-    fn hash_triangles_in(&mut self, zones: &Zones, radius: f64) -> bool {
+    pub(super) fn hash_triangles_in(&mut self, zones: &Zones, radius: f64) -> bool {
         let mut kept = 0;
         for k in 0..self.cx.owners.len() {
             let (g, r) = (get(&self.cx.centroids, k), self.cx.radii[k]);
@@ -214,7 +219,7 @@ impl World {
     /// `radius`: the deepest contact with a face decides this vertex's response. Marks the
     /// vertex near another body's surface on the way. `reach` is the largest triangle radius,
     /// also the deepest a crossing is still caught (max_depth).
-    fn deepest_contact(&mut self, bi: usize, vi: usize, p: V3, radius: f64, reach: f64) -> Option<FaceContact> {
+    pub(super) fn deepest_contact(&mut self, bi: usize, vi: usize, p: V3, radius: f64, reach: f64) -> Option<FaceContact> {
         let max_depth = reach;
         let h = self.settings.contact.thickness;
         self.cx.hash.query(p, radius, &mut self.cx.candidates);
@@ -222,6 +227,9 @@ impl World {
         for &c in &self.cx.candidates {
             let (ob, f) = self.cx.owners[c as usize];
             let ob = ob as usize;
+            if ob != bi && self.overlooked(bi, ob) {
+                continue;
+            }
             let g = get(&self.cx.centroids, c as usize);
             // A vertex within the thickness of the triangle is within its radius plus the
             // thickness of its centroid; so is one that crossed it less deeply than the

@@ -64,7 +64,7 @@ impl World {
             for &c in &found {
                 let (ob, f) = self.cx.edge_owner[c as usize];
                 // Each pair once; within one body only if it collides with itself.
-                if (ob, f) <= (bi, e) || (ob == bi && !self.bodies[bi as usize].material.self_collision) {
+                if (ob, f) <= (bi, e) || (ob == bi && !self.bodies[bi as usize].material.self_collision) || (ob != bi && self.overlooked(bi as usize, ob as usize)) {
                     continue;
                 }
                 self.edge_pair(bi as usize, e as usize, ob as usize, f as usize);

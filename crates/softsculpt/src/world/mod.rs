@@ -34,6 +34,7 @@ mod contacts;
 mod edges;
 mod events;
 mod freeze;
+mod overlaps;
 pub mod ground;
 mod params;
 mod rewind;
@@ -80,6 +81,9 @@ pub struct World {
     /// Threads the bodies' passes run on (results do not depend on their number beyond rounding:
     /// `par.rs`).
     pub(crate) threads: crate::par::Threads,
+    /// Pairs of bodies that started overlapping: no contact between them until they part
+    /// (`overlaps.rs`).
+    pub(crate) overlaps: overlaps::Overlaps,
 }
 
 /// A step that failed: when (the time at the step's start, s, and the step's number), the scene
@@ -124,6 +128,7 @@ impl World {
             backup: rollback::Backup::default(),
             rewind: rewind::Rewind::default(),
             threads: crate::par::Threads::single(),
+            overlaps: Vec::new(),
         }
     }
 

@@ -33,6 +33,8 @@ pub const HEALTHY: f64 = 0.5;
 #[derive(Debug)]
 struct Point {
     clock: Clock,
+    /// The pairs of bodies with contacts off then (`overlaps.rs`): they part as the bodies move.
+    overlaps: super::overlaps::Overlaps,
     volumes: Vec<f64>,
     state: Backup,
     bytes: usize,
@@ -124,7 +126,7 @@ impl World {
         let mut state = Backup::default();
         state.save(&self.bodies);
         let bytes = state.bytes();
-        self.rewind.points.push(Point { clock: self.clock, volumes, state, bytes });
+        self.rewind.points.push(Point { clock: self.clock, overlaps: self.overlaps.clone(), volumes, state, bytes });
         self.rewind.since = 0.0;
         if let (Some(now), Some(t0)) = (now, t0) {
             self.rewind.cost = now() - t0;
@@ -159,6 +161,7 @@ impl World {
         let p = &r.points[k];
         p.state.restore(&mut self.bodies);
         self.clock = p.clock;
+        self.overlaps.clone_from(&p.overlaps);
         r.since = 0.0;
         Some(self.clock.time())
     }

@@ -62,7 +62,7 @@ impl World {
     pub fn step_n(&mut self, n: u64) -> Result<(), StepError> {
         let mut backup = std::mem::take(&mut self.backup);
         backup.save(&self.bodies);
-        let clock = self.clock;
+        let (clock, overlaps) = (self.clock, self.overlaps.clone());
         let mut full: Option<Full> = None;
         let mut result = Ok(());
         for _ in 0..n {
@@ -80,6 +80,7 @@ impl World {
         }
         if let Err(mut e) = result {
             self.roll_back(full, &backup, clock);
+            self.overlaps = overlaps;
             e.rolled_back_to = Some(self.clock.time());
             self.backup = backup;
             return Err(e);
