@@ -134,4 +134,19 @@ describe('the gas energy plot', () => {
     p.push(0, [2.5, 12, 0, 1.7, 3]);
     expect(gas.values).toEqual([0]);
   });
+
+  it('draws every series and its value from a single point (plots restarted while paused, e.g. after a rewind)', () => {
+    const texts: string[] = [];
+    let lines = 0;
+    const ctx = new Proxy({}, {
+      get: (_t, k) => k === 'fillText' ? (t: string) => texts.push(t) : k === 'lineTo' ? () => lines++ : () => {},
+      set: () => true,
+    });
+    const p = new Plots({ getContext: () => ctx, width: 200, height: 150 } as unknown as HTMLCanvasElement);
+    p.push(1.25, [2.45, 12, 0, 1.7, 3]); // the only point after the rewind
+    p.draw();
+    expect(texts.length).toBe(p.series.length);
+    expect(texts[0]).toMatch(/2\.45/);
+    expect(lines).toBe(p.series.length); // a level line each
+  });
 });

@@ -98,13 +98,16 @@ export class Plots {
     this.series.forEach((s, r) => {
       const y0 = r * rh;
       const vals = s.values;
-      if (vals.length < 2) return;
+      if (vals.length === 0) return;
       const [lo, hi] = this.range(s);
       const top = y0 + LABEL_PX, span = rh - LABEL_PX - 3;
       ctx.strokeStyle = s.color;
       ctx.beginPath();
-      vals.forEach((v, i) => {
-        const x = (i / (vals.length - 1)) * (w - 4) + 2;
+      // One value (the plots just restarted: a new model, or a rewind while paused): a level
+      // line across, with its value, not an empty plot.
+      const shownVals = vals.length === 1 ? [vals[0], vals[0]] : vals;
+      shownVals.forEach((v, i) => {
+        const x = (i / (shownVals.length - 1)) * (w - 4) + 2;
         const y = top + span - ((v - lo) / (hi - lo)) * span;
         if (i === 0) ctx.moveTo(x, y); else ctx.lineTo(x, y);
       });
