@@ -42,7 +42,7 @@ describe('the HUD pace', () => {
 describe('the worker’s fraction of real time (stepper.ts)', () => {
   // A fake clock and a document whose step takes `costMs` of it: the fraction shown is
   // simulated seconds over wall seconds, from one tick's end to the next's.
-  const run = (costMs: number, ticks: number) => {
+  const run = (costMs: number, ticks: number, waitMs: number | ((i: number) => number) = 2) => {
     let t = 1000;
     const dt = 1 / 60;
     const doc: { lastAdvance: null | { simulated: number } } & Record<string, unknown> = {
@@ -62,7 +62,7 @@ describe('the worker’s fraction of real time (stepper.ts)', () => {
     const stepper = new Stepper(() => t);
     const fractions: number[] = [];
     for (let i = 0; i < ticks; i++) {
-      t += 2; // the worker's wait between ticks
+      t += typeof waitMs === 'number' ? waitMs : waitMs(i); // the worker's wait between ticks
       stepper.tick(doc as unknown as Document);
       fractions.push(stepper.slowMotion ? stepper.realTimeFraction : NaN);
     }
@@ -76,9 +76,28 @@ describe('the worker’s fraction of real time (stepper.ts)', () => {
   });
 
   it('steps of 50 ms at 1/60 s read as a third of real time', () => {
-    const f = run(50, 20).slice(5);
+    const f = run(50, 60).slice(25);
     // The solve budget (12 ms) lets one 50 ms step run per tick: 16.7 ms simulated in 52 ms.
     for (const x of f) expect(x).toBeCloseTo((1000 / 60) / 52, 6);
+  });
+
+  it('ticks 150 ms apart simulate 0.1 s each: two thirds of real time, not "real time"', () => {
+    // Cheap steps, but the worker comes back only every 150 ms (busy drawing or answering):
+    // each tick simulates its most, 0.1 s (6 steps), so the clock runs ahead. Before, every
+    // tick did the steps it wanted and the HUD said "real time".
+    const f = run(0.1, 30, 150).slice(10);
+    for (const x of f) expect(x).toBeCloseTo(0.1 / 0.1506, 3);
+  });
+
+  it('a slow tick among quick ones reads as the average over the last second, not that tick alone', () => {
+    // Cheap steps; every other tick comes 150 ms after the last (slow: 0.1 s simulated), the
+    // others 2 ms after. Over a second the clock gives ~152 ms per pair of ticks and the
+    // simulation 0.1 s + what the quick tick catches up (~0): about 0.66 — the slow tick alone
+    // would read the same here, but never more than the average allows.
+    const f = run(0.1, 40, (i) => (i % 2 ? 150 : 2)).slice(8).filter((x) => !Number.isNaN(x));
+    expect(f.length).toBeGreaterThan(5);
+    for (const x of f) expect(x).toBeGreaterThan(0.6);
+    for (const x of f) expect(x).toBeLessThan(0.72);
   });
 
   it('steps that fit the clock are not slow motion', () => {

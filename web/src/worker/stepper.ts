@@ -50,6 +50,12 @@ export class Stepper {
   realTimeFraction = 1;
   /** When the last tick ended (ms), 0 before the first. */
   private lastEnd = 0;
+  /**
+   * The last ticks' wall-clock and simulated seconds, about a second of wall time: the fraction
+   * shown is their ratio, so one quick tick among slow ones does not swing it (the HUD read
+   * 66–94 % while the clock measured 0.52).
+   */
+  private recent: { wall: number; sim: number }[] = [];
 
   /**
    * `budgetMs`: the wall-clock budget of a tick's explicit steps; `solveBudgetMs`: of its
@@ -60,7 +66,10 @@ export class Stepper {
   /** One tick; returns whether it stepped. */
   tick(doc: Stepped): boolean {
     const now = this.now();
-    const elapsed = this.last ? Math.min(0.1, (now - this.last) / 1000) : 1 / 60;
+    // At most 0.1 s of clock is simulated per tick: a longer gap (the worker busy elsewhere, a
+    // frame that took long to draw) is time the simulation fell behind, slow motion too.
+    const gap = this.last ? (now - this.last) / 1000 : 1 / 60;
+    const elapsed = Math.min(0.1, gap);
     this.last = now;
     const s = doc.settings;
     if (!s.playing) {
@@ -68,6 +77,7 @@ export class Stepper {
       this.slowMotion = false;
       this.carry = 0;
       this.lastEnd = 0;
+      this.recent = [];
       return false;
     }
     const want = s.realTime ? elapsed / s.dt + this.carry : s.substeps;
@@ -77,13 +87,27 @@ export class Stepper {
     this.carry = s.realTime ? want - n : 0;
     doc.updateStroke(s.dt * n);
     const done = this.run(doc, s.dt, n, doc.implicit ? this.solveBudgetMs : this.budgetMs);
-    this.slowMotion = done < n;
+    this.slowMotion = done < n || (s.realTime && gap > 0.1);
     if (this.slowMotion) this.carry = 0;
     const end = this.now();
+    // The first tick after a start or a pause has no tick before it: its own span only, kept
+    // out of the window.
+    const first = !this.lastEnd;
     const wall = (end - (this.lastEnd || now)) / 1000;
     this.lastEnd = end;
-    this.realTimeFraction = this.slowMotion && wall > 0 ? Math.min(1, (done * s.dt) / wall) : 1;
+    const fraction = first ? (wall > 0 ? Math.min(1, (done * s.dt) / wall) : 1) : this.fraction(wall, done * s.dt);
+    this.realTimeFraction = this.slowMotion ? fraction : 1;
     return done > 0;
+  }
+
+  /** Simulated over wall seconds over the last second or so of ticks, this one included (≤ 1). */
+  private fraction(wall: number, sim: number): number {
+    const r = this.recent;
+    r.push({ wall, sim });
+    let total = r.reduce((a, x) => a + x.wall, 0);
+    while (r.length > 1 && total - r[0].wall >= 1) total -= r.shift()!.wall;
+    const simulated = r.reduce((a, x) => a + x.sim, 0);
+    return total > 0 ? Math.min(1, simulated / total) : 1;
   }
 
   /**
