@@ -1,8 +1,10 @@
 # SoftSculpt: `make run` (the modeler) and `make test` (every test) work on a fresh machine.
 SHELL := /bin/bash
 CARGO ?= cargo
-BIN := target/release/softsculpt
-WASM := target/wasm32-unknown-unknown/release/softsculpt_wasm.wasm
+# Cargo's output directory: CARGO_TARGET_DIR when set (a worktree's own), else target/.
+TARGET := $(or $(CARGO_TARGET_DIR),target)
+BIN := $(TARGET)/release/softsculpt
+WASM := $(TARGET)/wasm32-unknown-unknown/release/softsculpt_wasm.wasm
 
 .PHONY: run test bench setup build wasm wasm-threads web demo
 

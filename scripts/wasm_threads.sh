@@ -15,8 +15,10 @@ flags=(-C target-feature=+atomics,+bulk-memory,+mutable-globals,+simd128
   -C link-arg=--shared-memory -C link-arg=--max-memory=4294967296 -C link-arg=--import-memory
   -C link-arg=--export=__wasm_init_tls -C link-arg=--export=__tls_size -C link-arg=--export=__tls_align
   -C link-arg=--export=__tls_base -C link-arg=--export=__stack_pointer)
+# Its own directory beside the other builds' (other flags): under CARGO_TARGET_DIR when set.
+out="${CARGO_TARGET_DIR:-target}/wasm-threads"
 RUSTFLAGS="${flags[*]}" cargo +nightly build -Z build-std=std,panic_abort --target wasm32-unknown-unknown \
-  -p softsculpt-wasm --release --target-dir target/wasm-threads
+  -p softsculpt-wasm --release --target-dir "$out"
 mkdir -p web/public
-cp target/wasm-threads/wasm32-unknown-unknown/release/softsculpt_wasm.wasm web/public/softsculpt-threads.wasm
+cp "$out/wasm32-unknown-unknown/release/softsculpt_wasm.wasm" web/public/softsculpt-threads.wasm
 ls -l web/public/softsculpt-threads.wasm
