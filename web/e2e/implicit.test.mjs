@@ -7,7 +7,7 @@ import assert from 'node:assert/strict';
 import { mkdtempSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { browserSuite, shot, dist, drag, inspect, openModeler, settle, topVertex, vertex } from './harness.mjs';
+import { browserSuite, shot, dist, drag, inspect, openModeler, settle, simulate, topVertex, vertex } from './harness.mjs';
 import { writeIcosphere } from './icosphere.mjs';
 
 const suite = browserSuite();
@@ -18,7 +18,8 @@ async function load(page, name) {
     await page.locator('.lil-controller', { hasText: 'built-in' }).locator('select').selectOption(name);
     await page.waitForFunction((n) => window.softsculpt.settings().model === n && !window.softsculpt.busy(), name, { timeout: 60000 });
   }
-  await page.waitForTimeout(500);
+  // Half a second of simulation first: a model just loaded is still (it has not started falling).
+  await simulate(page, 0.5);
   await settle(page, 0.05, 30000);
 }
 
@@ -55,9 +56,11 @@ const upperFront = (page) => inspect(page, () => {
 /**
  * Hold the grab on vertex `i`'s screen point, 3 px towards the body's centre of mass on screen
  * (a top vertex sits on the outline, where the press can miss the surface and turn the camera
- * instead), and drag by (dx, dy) px; returns the cursor.
+ * instead), and drag by (dx, dy) px, then hold it there `holdS` seconds of simulated time (a loaded
+ * machine or a fine mesh runs below real time: the wall clock would give the body less time to
+ * follow the cursor); returns the cursor.
  */
-async function grabAndHold(page, i, dx, dy, holdMs, minSimS = 0) {
+async function grabAndHold(page, i, dx, dy, holdS) {
   const from = await inspect(page, (j) => {
     const s = window.softsculpt, v = s.screenOf(j), c = s.screenOfPoint(s.stats().centerOfMass);
     const l = Math.hypot(c.x - v.x, c.y - v.y) || 1;
@@ -68,13 +71,9 @@ async function grabAndHold(page, i, dx, dy, holdMs, minSimS = 0) {
   await page.mouse.down();
   for (let k = 1; k <= 15; k++) {
     await page.mouse.move(from.x + (dx * k) / 15, from.y + (dy * k) / 15);
-    await page.waitForTimeout(30);
+    await page.waitForTimeout(30); // paces the drag's moves, as a hand does
   }
-  const t0 = await inspect(page, () => window.softsculpt.stats().time);
-  await page.waitForTimeout(holdMs);
-  // And at least `minSimS` simulated seconds: below real time (a loaded machine, a fine mesh)
-  // the wall-clock hold alone gives the body less time to follow the cursor.
-  if (minSimS > 0) await page.waitForFunction(([t, d]) => window.softsculpt.stats().time >= t + d, [t0, minSimS], { timeout: 60000 });
+  await simulate(page, holdS, 120000);
   return to;
 }
 
@@ -92,7 +91,7 @@ for (const model of ['mushroom', 'sphere', 'octopus', 'bunny']) {
     await load(page, model);
     const top = await topVertex(page);
     // Up and to the right, 120 px in all (about 0.4 m here), held 2 s to let it come to rest.
-    const cursor = await grabAndHold(page, top.index, 70, -100, 2000);
+    const cursor = await grabAndHold(page, top.index, 70, -100, 2);
     const at = await inspect(page, (j) => window.softsculpt.screenOf(j), top.index);
     await shot(page, `20-grab-${model}`);
     await page.mouse.up();
@@ -107,10 +106,10 @@ for (const model of ['mushroom', 'sphere', 'octopus', 'bunny']) {
     await setStrength(page, 'pull ω', 3000);
     await settle(page, 0.05, 30000);
     const again = await topVertex(page);
-    await grabAndHold(page, again.index, -200, -150, 1000);
+    await grabAndHold(page, again.index, -200, -150, 1);
     await shot(page, `21-grab-strongest-${model}`);
     await page.mouse.up();
-    await page.waitForTimeout(300);
+    await simulate(page, 0.3); // the release taken (held, it can be slower than the threshold)
     await settle(page, 0.05, 30000);
     const x = await inspect(page, () => window.softsculpt.positions());
     assert.ok(x.every(Number.isFinite), 'positions finite');
@@ -128,13 +127,13 @@ test('the press dents the mushroom cap, which comes back upright after release',
   await page.keyboard.press('p');
   await page.mouse.move(top.screen.x, top.screen.y);
   await page.mouse.down();
-  await page.waitForTimeout(2500); // the default press held 2.5 s (what toppled it before)
+  await simulate(page, 2.5); // the default press held 2.5 s of simulation (what toppled it before)
   const pressed = await vertex(page, top.index);
   await shot(page, '22-press-mushroom');
   await page.mouse.up();
   // Default depth 0.15 m at the centre: the cap's top goes down by more than 5 cm.
   assert.ok(top.position[1] - pressed[1] > 0.05, `the top went down by ${top.position[1] - pressed[1]} m while pressed`);
-  await page.waitForTimeout(300);
+  await simulate(page, 0.3);
   await settle(page, 0.02, 30000);
   // Released and settled: upright again. The cap centre within 5 cm of where it was and the
   // centre of mass within 3 cm (the stem foot is pinned; toppling moves both by ~1 m).
@@ -154,8 +153,7 @@ test('subdivide keeps dt at 1/60 s and the mushroom keeps its height', async () 
   await page.waitForFunction(() => window.softsculpt.vertexCount() > 362 && !window.softsculpt.busy(), null, { timeout: 60000 });
   // (Loop subdivision itself moves the surface a little: 1.832 -> 1.830 m for the mushroom.)
   assert.ok(Math.abs((await inspect(page, () => window.softsculpt.settings().dt)) - 1 / 60) < 1e-12, 'dt stays 1/60 s');
-  const t0 = (await inspect(page, () => window.softsculpt.stats())).time;
-  await page.waitForFunction((t) => window.softsculpt.stats().time > t + 2, t0, { timeout: 60000 });
+  await simulate(page, 2, 60000);
   const h1 = await height(page);
   await shot(page, '24-subdivided');
   // Within 3 % (5 cm of 1.8 m): the finer mesh has the same material, so the same shape.
@@ -185,16 +183,16 @@ test('an imported 10,242-vertex sphere rests where it stands; a grab keeps its p
   const v0 = (await inspect(page, () => window.softsculpt.stats())).volume;
   const h0 = await extent(page);
   const top = await upperFront(page);
-  // Held 2.5 s and at least 1.5 simulated seconds (CI once measured 8.1 px after 2.5 s of wall
-  // clock on a loaded machine, where this page runs below real time; 2.3–5.1 px here at real time).
-  const cursor = await grabAndHold(page, top, 40, -60, 2500, 1.5);
+  // Held 2.5 s of simulated time (2.3–5.1 px at real time; held 2.5 s of wall clock instead, CI
+  // once measured 8.1 px on a loaded machine, where this page runs below real time).
+  const cursor = await grabAndHold(page, top, 40, -60, 2.5);
   const at = await inspect(page, (j) => window.softsculpt.screenOf(j), top);
   await shot(page, '25-grab-imported-10242');
   await page.mouse.up();
   // As for the built-ins above: the target spring holds the grabbed vertex within 8 px.
   const off = Math.hypot(at.x - cursor.x, at.y - cursor.y);
   assert.ok(off < 8, `the grabbed point is ${off.toFixed(1)} px from the cursor`);
-  await page.waitForTimeout(300);
+  await simulate(page, 0.3);
   await settle(page, 0.005, 150000);
   // Released and settled: the shape holds (it may have rolled: the grab pulled sideways). The gas
   // (nRT fixed) and the springs set the volume at rest: within 1 % of before the grab (measured
@@ -220,7 +218,8 @@ test('stiff rubber at 10,242 vertices: a lift keeps moving towards the cursor, f
   const { page, errors } = await importedSphere();
   await settle(page, 0.005, 150000);
   await page.locator('.lil-controller', { hasText: 'material' }).locator('select').selectOption({ label: 'stiff rubber' });
-  await page.waitForTimeout(500);
+  await page.waitForFunction(() => /material: stiff rubber/.test(window.softsculpt.lastMessage()), null, { timeout: 60000 });
+  await simulate(page, 0.1, 150000); // frames of the new material (a settle on the old one's would pass at once)
   await settle(page, 0.005, 150000);
   const top = await topVertex(page);
   const from = { x: top.screen.x, y: top.screen.y + 3 }, to = { x: top.screen.x, y: top.screen.y + 3 - 160 };
@@ -293,8 +292,7 @@ test('the mushroom subdivided twice (5,762 vertices) follows a mouse grab within
   await drag(page, from, to, 25);
   // Held for 1 s of simulated time (the grab's pull, ω = 600/s, reaches the cursor in ~10 ms;
   // the cap's inertia and the gas take a few tenths): the grabbed vertex under the cursor.
-  const t0 = await inspect(page, () => window.softsculpt.stats().time);
-  await page.waitForFunction((t) => window.softsculpt.stats().time > t + 1, t0, { timeout: 120000, polling: 100 });
+  await simulate(page, 1, 120000);
   const seen = await inspect(page, (i) => window.softsculpt.screenOf(i), top.index);
   const gap = Math.hypot(seen.x - to.x, seen.y - to.y);
   await shot(page, 'implicit-5762-grab-held');
@@ -302,8 +300,7 @@ test('the mushroom subdivided twice (5,762 vertices) follows a mouse grab within
   assert.ok(gap < 10, `the grabbed vertex is ${gap.toFixed(1)} px from the cursor`);
   // Let go: the cap springs back towards its rest within 2 s of simulated time (a third of the
   // pull's 0.6 m on screen at most left).
-  const t1 = await inspect(page, () => window.softsculpt.stats().time);
-  await page.waitForFunction((t) => window.softsculpt.stats().time > t + 2, t1, { timeout: 120000, polling: 100 });
+  await simulate(page, 2, 120000);
   const after = await inspect(page, (i) => window.softsculpt.screenOf(i), top.index);
   assert.ok(Math.hypot(after.x - from.x, after.y - from.y) < Math.hypot(to.x - from.x, to.y - from.y) / 3, `back to ${after.x.toFixed(0)}, ${after.y.toFixed(0)} from ${from.x.toFixed(0)}, ${from.y.toFixed(0)}`);
   assert.deepEqual(errors, []);

@@ -11,7 +11,7 @@ import assert from 'node:assert/strict';
 import { writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { browserSuite, dist, inspect, openModeler, settle, shot, topVertex } from './harness.mjs';
+import { browserSuite, dist, inspect, openModeler, settle, shot, simulate, topVertex } from './harness.mjs';
 import { icosphere } from './icosphere.mjs';
 
 const suite = browserSuite();
@@ -19,10 +19,22 @@ const suite = browserSuite();
 const control = (page, name) => page.locator('.lil-controller', { hasText: name });
 const modelList = (page) => control(page, 'built-in').locator('select');
 const materialShown = (page) => control(page, 'material').locator('select').evaluate((s) => (s.selectedIndex < 0 ? '' : s.options[s.selectedIndex].text));
+/**
+ * Wait (up to `timeout` ms) until `cond(arg)` holds in the page, then return: the assertion that
+ * follows says what is there if it never did. For what the page shows without simulating (the
+ * panel, the overlay, the brush ring), where there is no simulated time to wait for.
+ */
+const until = (page, cond, arg, timeout = 30000) => page.waitForFunction(cond, arg, { timeout, polling: 50 }).catch(() => {});
+/** Wait until the material list shows an entry matching `pattern` (a RegExp source). */
+const untilMaterial = (page, pattern) => until(page, (p) => {
+  const s = [...document.querySelectorAll('.lil-controller')].find((c) => c.textContent.includes('material') && c.querySelector('select'))?.querySelector('select');
+  return !!s && s.selectedIndex >= 0 && new RegExp(p).test(s.options[s.selectedIndex].text);
+}, pattern);
 async function load(page, name) {
   await modelList(page).selectOption(name);
   await page.waitForFunction((n) => window.softsculpt.settings().model === n && !window.softsculpt.busy(), name, { timeout: 60000 });
-  await page.waitForTimeout(500);
+  // Half a second of simulation first: a model just loaded is still (it has not started falling).
+  await simulate(page, 0.5);
   await settle(page, 0.05, 30000);
 }
 /** Open folder `title` of the panel (closed ones are rarely used). */
@@ -62,23 +74,23 @@ test('the material list names the material: the modeler\'s on a fresh model, a c
   assert.match(await materialShown(page), /modeler/, 'a fresh model: the modeler\'s own material');
   await control(page, 'material').locator('select').selectOption('clay');
   await page.waitForFunction(() => /material: clay/.test(window.softsculpt.lastMessage()));
-  await page.waitForTimeout(300);
+  await untilMaterial(page, '^clay$');
   assert.equal(await materialShown(page), 'clay');
   // An edit of a material parameter departs from the preset.
   await openFolder(page, 'Simulation');
   await typeNumber(page, 'stiffness k', 250);
   await page.waitForFunction(() => window.softsculpt.param('stiffness') === 250);
-  await page.waitForTimeout(300);
+  await untilMaterial(page, '^custom');
   assert.match(await materialShown(page), /^custom/);
   await shot(page, 'leftovers-01-material-custom');
   // Undo the edit: clay again; undo the preset: the modeler's again.
   await page.keyboard.press('Control+z');
   await page.waitForFunction(() => window.softsculpt.param('stiffness') === 300);
-  await page.waitForTimeout(300);
+  await untilMaterial(page, '^clay$');
   assert.equal(await materialShown(page), 'clay');
   await page.keyboard.press('Control+z');
   await page.waitForFunction(() => window.softsculpt.param('stiffness') === 100);
-  await page.waitForTimeout(300);
+  await untilMaterial(page, 'modeler');
   assert.match(await materialShown(page), /modeler/);
   // Another model: the modeler's material by name (the list forgets "clay").
   await control(page, 'material').locator('select').selectOption('jelly');
@@ -130,7 +142,7 @@ test('W at its default leans the mushroom visibly and keeps a light sketched bal
   for (const p of pts.slice(1)) await page.mouse.move(p.x, p.y, { steps: 3 });
   await page.mouse.up();
   await page.waitForFunction(() => /sketched a balloon/.test(window.softsculpt.lastMessage()), null, { timeout: 60000 });
-  await page.waitForTimeout(500);
+  await simulate(page, 0.5); // a new body is still at first (it has not started falling)
   await settle(page, 0.05, 30000);
   const mass = await inspect(page, () => window.softsculpt.masses().reduce((a, b) => a + b, 0));
   await page.keyboard.press('g');
@@ -142,7 +154,7 @@ test('W at its default leans the mushroom visibly and keeps a light sketched bal
   await page.mouse.up();
   const speed = Math.hypot(...(await inspect(page, () => window.softsculpt.param('wind'))));
   for (let t = 0; t < 8; t++) {
-    await page.waitForTimeout(500);
+    await simulate(page, 0.5); // half a second of simulated time in the wind
     if (!(await inView(page))) await shot(page, 'leftovers-03-wind-balloon');
     assert.ok(await inView(page), `the ${mass.toPrecision(2)} kg balloon is in view ${(t + 1) / 2} s after W at ${speed} m/s`);
   }
@@ -173,10 +185,10 @@ test('a short stroke of the default mass brush does not topple the mushroom, and
   const simTime = () => inspect(page, () => window.softsculpt.stats().time);
   const t0 = await simTime();
   await page.mouse.down();
-  for (let k = 0; (await simTime()) < t0 + 3; k++) { await page.mouse.move(rim.screen.x - 15 - 4 * (k % 10), rim.screen.y + 5 - 6 * (k % 10)); await page.waitForTimeout(50); }
+  for (let k = 0; (await simTime()) < t0 + 3; k++) { await page.mouse.move(rim.screen.x - 15 - 4 * (k % 10), rim.screen.y + 5 - 6 * (k % 10)); await page.waitForTimeout(50); } // 50 ms between the scrub's moves, as a hand does
   await page.mouse.up();
   assert.equal(await inspect(page, () => window.softsculpt.overlay()), true, 'the mass overlay shows while the mass tool is active');
-  await page.waitForTimeout(4000);
+  await simulate(page, 4); // four seconds of simulation to topple, if it does
   const after = await inspect(page, (i) => window.softsculpt.positions().slice(3 * i, 3 * i + 3), top.index);
   const masses = await inspect(page, () => window.softsculpt.masses());
   await shot(page, 'leftovers-04-mass-stroke');
@@ -186,13 +198,13 @@ test('a short stroke of the default mass brush does not topple the mushroom, and
     `top ${top.position.map((v) => v.toFixed(2))} → ${after.map((v) => v.toFixed(2))}; heaviest vertex ${Math.max(...masses) / Math.min(...masses)}× the lightest`);
   // Another tool (by key, or in the panel's list): the overlay goes; back to mass, it shows.
   await page.keyboard.press('g');
-  await page.waitForTimeout(200);
+  await until(page, () => window.softsculpt.overlay() === false);
   assert.equal(await inspect(page, () => window.softsculpt.overlay()), false, 'no overlay after leaving the mass tool');
   await page.keyboard.press('m');
-  await page.waitForTimeout(200);
+  await until(page, () => window.softsculpt.overlay() === true);
   assert.equal(await inspect(page, () => window.softsculpt.overlay()), true);
   await control(page, 'tool').first().locator('select').selectOption({ label: 'Press (P)' });
-  await page.waitForTimeout(200);
+  await until(page, () => window.softsculpt.overlay() === false);
   assert.equal(await inspect(page, () => window.softsculpt.overlay()), false, 'no overlay after choosing another tool in the panel');
   assert.deepEqual(errors, []);
   await page.context().close();
@@ -201,7 +213,7 @@ test('a short stroke of the default mass brush does not topple the mushroom, and
 test('the gas energy plot starts at 0 J on a fresh model', async () => {
   const { page, errors } = await openModeler(suite.browser, suite.server.url);
   await settle(page, 0.05, 30000);
-  await page.waitForTimeout(1000);
+  await simulate(page, 1); // a second at rest on the plot
   const gas = await inspect(page, () => window.softsculpt.plots().find((s) => /^gas/.test(s.label)));
   // A resting body: its gas energy is constant, and the plot's reference is the model as shown
   // (the core's −nRT ln(V/V0) counts from the rest mesh before the gas inflated it: −5.9 J).
@@ -212,7 +224,7 @@ test('the gas energy plot starts at 0 J on a fresh model', async () => {
   await page.keyboard.press('p');
   await page.mouse.move(top.screen.x, top.screen.y + 25);
   await page.mouse.down();
-  await page.waitForTimeout(1000);
+  await simulate(page, 1); // pressed for a second of simulation
   const pressed = await inspect(page, () => window.softsculpt.plots().find((s) => /^gas/.test(s.label)).values.at(-1));
   await page.mouse.up();
   assert.ok(pressed > 0, `a press stores energy in the gas: ${pressed} J`);
@@ -226,9 +238,11 @@ test('the strength slider stays below the radius whatever the tool', async () =>
     .locator('.lil-controller .lil-name').allTextContents();
   const first = await names();
   assert.match(first[2], /pull/, first.join(' | '));
+  const tools = { p: 'press', i: 'inflate', m: 'mass', n: 'pin', g: 'grab' };
   for (const key of ['p', 'i', 'm', 'n', 'g']) {
     await page.keyboard.press(key);
-    await page.waitForTimeout(100);
+    // The panel's Tool folder is rebuilt as the tool changes (panel.ts: the same call).
+    await page.waitForFunction((t) => window.softsculpt.tool() === t, tools[key]);
     const now = await names();
     assert.match(now[1], /brush radius/, now.join(' | '));
     if (key !== 'n') assert.doesNotMatch(now[2], /mirror/, `tool ${key}: ${now.join(' | ')}`);
@@ -248,7 +262,7 @@ test('the Gas panel\'s P and V show the same frame as the HUD while the body mov
   for (let i = 0; i < 12; i++) await page.keyboard.press('}');
   await page.mouse.move(top.screen.x, top.screen.y + 40);
   await page.mouse.down();
-  await page.waitForTimeout(300);
+  await simulate(page, 0.3); // the inflation under way
   // Read both in the same animation frames (after the page has drawn the frame).
   const samples = await page.evaluate(() => new Promise((done) => {
     const out = [];
@@ -297,7 +311,8 @@ test('a stroke with no vertex under the brush adds no undo step and says how to 
     await page.mouse.down();
     await page.mouse.move(gap.x + 30, gap.y - 30, { steps: 5 });
     await page.mouse.up();
-    await page.waitForTimeout(300);
+    // Frames simulated after the stroke: an undo step it had added would have come with them.
+    await simulate(page, 0.3);
     assert.deepEqual(await inspect(page, () => window.softsculpt.history()), before, `tool ${key}: no undo step`);
     assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /no vertex under the brush.*\]/, `tool ${key}`);
   }
@@ -344,8 +359,8 @@ test('the brush\'s ranges follow the model\'s size: a 5 cm ball gets a brush and
   await page.locator('input[data-picker=import]').setInputFiles(file);
   await page.waitForSelector('.import-dialog', { timeout: 15000 });
   await page.keyboard.press('Enter');
-  await page.waitForFunction(() => window.softsculpt.settings().model === 'ball-5cm.obj', null, { timeout: 30000 });
-  await page.waitForTimeout(1500);
+  await page.waitForFunction(() => window.softsculpt.settings().model === 'ball-5cm.obj' && !window.softsculpt.busy(), null, { timeout: 30000 });
+  await simulate(page, 1.5);
   const small = await slider('brush radius');
   // Before: 0.02–2 m in 0.01 m steps whatever the model; a 5 cm ball had 5 steps of radius.
   assert.ok(small.max <= 0.25 && small.max >= 0.05, `radius range ${small.min}–${small.max} m for a 5 cm ball`);
@@ -362,7 +377,7 @@ test('the brush\'s ranges follow the model\'s size: a 5 cm ball gets a brush and
   // The ring on the ball: the brush covers part of it, not all.
   const top = await topVertex(page);
   await page.mouse.move(top.screen.x, top.screen.y + 20);
-  await page.waitForTimeout(300);
+  await until(page, () => window.softsculpt.ring() !== null);
   const ring = await inspect(page, () => window.softsculpt.ring());
   assert.ok(ring && ring.radius < 0.05, JSON.stringify(ring));
   await shot(page, 'leftovers-05-small-ball-brush');

@@ -6,14 +6,55 @@ import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { browserSuite, shot, drag, dist, inspect, openModeler, settle, topVertex, vertex } from './harness.mjs';
+import { browserSuite, shot, drag, dist, inspect, openModeler, settle, simulate, topVertex, vertex } from './harness.mjs';
 
 const suite = browserSuite();
+
+/**
+ * Wait (up to `timeout` ms) until `cond(arg)` holds in the page, then return: the assertion that
+ * follows says what is there if it never did. For outcomes the page shows without simulating
+ * (the camera, a message, the panel), where there is no simulated time to wait for.
+ */
+const until = (page, cond, arg, timeout = 30000) => page.waitForFunction(cond, arg, { timeout, polling: 50 }).catch(() => {});
+
+/**
+ * Wait until the page has kept what a reload brings back: the worker's autosave (IndexedDB,
+ * src/storage.ts) holding `undo` undo steps, and the camera as it is now (localStorage,
+ * 'softsculpt.camera'). Returns whether both came within `timeout` ms.
+ */
+const autosaved = (page, undo, timeout = 30000) => page.evaluate(async ({ undo, timeout }) => {
+  const record = () => new Promise((resolve) => {
+    // As the page opens it (storage.ts): version 1, the store made if the database is new.
+    const r = indexedDB.open('softsculpt', 1);
+    r.onupgradeneeded = () => r.result.createObjectStore('projects');
+    r.onerror = () => resolve(null);
+    r.onsuccess = () => {
+      const db = r.result, store = db.transaction('projects', 'readonly').objectStore('projects');
+      const pointer = store.get('autosave-current');
+      pointer.onerror = () => { db.close(); resolve(null); };
+      pointer.onsuccess = () => {
+        if (!pointer.result) { db.close(); resolve(null); return; }
+        const slot = store.get(pointer.result);
+        slot.onsuccess = () => { db.close(); resolve(slot.result ?? null); };
+        slot.onerror = () => { db.close(); resolve(null); };
+      };
+    };
+  });
+  const t0 = performance.now();
+  for (;;) {
+    const rec = await record();
+    const kept = JSON.parse(localStorage.getItem('softsculpt.camera') ?? 'null')?.position;
+    const here = window.softsculpt.camera();
+    if (rec?.history?.undo?.length === undo && kept && Math.hypot(kept[0] - here[0], kept[1] - here[1], kept[2] - here[2]) < 1e-9) return true;
+    if (performance.now() - t0 > timeout) return false;
+    await new Promise((r) => setTimeout(r, 100));
+  }
+}, { undo, timeout });
 
 
 test('the default model renders: the mushroom on the ground, pixels not uniform', async () => {
   const { page, errors } = await openModeler(suite.browser, suite.server.url);
-  await page.waitForTimeout(500);
+  await simulate(page, 0.5);
   assert.equal(await inspect(page, () => window.softsculpt.vertexCount()), 362);
   const colours = await inspect(page, () => window.softsculpt.pixels());
   assert.ok(colours > 50, `only ${colours} distinct colours`);
@@ -30,7 +71,7 @@ test('a drag on empty space turns the view', async () => {
   const before = await inspect(page, () => window.softsculpt.camera());
   await drag(page, { x: 150, y: 300 }, { x: 400, y: 350 });
   await page.mouse.up();
-  await page.waitForTimeout(300);
+  await until(page, (b) => { const c = window.softsculpt.camera(); return Math.hypot(c[0] - b[0], c[1] - b[1], c[2] - b[2]) > 0.2; }, before);
   const afterCam = await inspect(page, () => window.softsculpt.camera());
   assert.ok(dist(before, afterCam) > 0.2, `camera moved ${dist(before, afterCam)}`);
   await shot(page, '02-turned-view');
@@ -42,14 +83,15 @@ test('a grab drag deforms the body, the camera stays, and it springs back', asyn
   await settle(page);
   const top = await topVertex(page);
   const cam = await inspect(page, () => window.softsculpt.camera());
-  await drag(page, top.screen, { x: top.screen.x, y: top.screen.y - 90 }, 20, 800);
+  await drag(page, top.screen, { x: top.screen.x, y: top.screen.y - 90 }, 20);
+  await simulate(page, 0.8); // held 0.8 s of simulation
   const pulled = await vertex(page, top.index);
   await shot(page, '03-grab-pulled');
   assert.ok(dist(pulled, top.position) > 0.06, `pulled ${dist(pulled, top.position)} m`);
   assert.deepEqual(await inspect(page, () => window.softsculpt.camera()), cam, 'the camera does not move while a tool drags');
   await page.mouse.up();
   // Held still by the grab, it can be slower than the threshold: let the release take effect first.
-  await page.waitForTimeout(300);
+  await simulate(page, 0.3);
   await settle(page, 0.01, 45000);
   const back = await vertex(page, top.index);
   assert.ok(dist(back, top.position) < 0.05, `came back to within ${dist(back, top.position)} m`);
@@ -60,8 +102,9 @@ test('freeze keeps the shape: no creep afterwards', async () => {
   const { page } = await openModeler(suite.browser, suite.server.url);
   await settle(page, 0.005);
   await page.keyboard.press('f');
+  await until(page, () => /frozen/.test(window.softsculpt.lastMessage()));
   const x0 = await inspect(page, () => window.softsculpt.positions());
-  await page.waitForTimeout(1500);
+  await simulate(page, 1.5);
   const x1 = await inspect(page, () => window.softsculpt.positions());
   const creep = Math.max(...x0.map((v, k) => Math.abs(v - x1[k])));
   assert.ok(creep < 2e-3, `moved ${creep} m after freezing`);
@@ -76,14 +119,18 @@ test('the inflate brush grows the volume, and undo restores it', async () => {
   await page.keyboard.press('i');
   assert.equal(await inspect(page, () => window.softsculpt.tool()), 'inflate');
   const top = await topVertex(page);
-  await drag(page, top.screen, { x: top.screen.x + 5, y: top.screen.y + 5 }, 5, 1500);
+  // Held 1.5 s of simulation (the brush grows the rest lengths at its rate per simulated second),
+  // then 1.5 s more for the body to follow.
+  await drag(page, top.screen, { x: top.screen.x + 5, y: top.screen.y + 5 }, 5);
+  await simulate(page, 1.5);
   await page.mouse.up();
-  await page.waitForTimeout(1500);
+  await simulate(page, 1.5);
   const v1 = (await inspect(page, () => window.softsculpt.stats())).volume;
   await shot(page, '04-inflated');
   assert.ok(v1 > v0 * 1.02, `volume ${v0} -> ${v1}`);
   await page.keyboard.press('Control+z');
-  await page.waitForTimeout(1500);
+  await until(page, () => /undid inflate/.test(window.softsculpt.lastMessage()));
+  await simulate(page, 1.5);
   const v2 = (await inspect(page, () => window.softsculpt.stats())).volume;
   assert.ok(Math.abs(v2 - v0) < 0.01 * v0, `after undo ${v2} vs ${v0}`);
   assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /undid inflate/);
@@ -97,6 +144,8 @@ test('pinned vertices stay fixed under a grab drag', async () => {
   await page.keyboard.press('n');
   await drag(page, top.screen, top.screen, 2, 100);
   await page.mouse.up();
+  // The pins come back with the next frame from the simulation.
+  await until(page, () => window.softsculpt.pinned().filter(Boolean).length >= 3);
   const pinned = (await inspect(page, () => window.softsculpt.pinned())).flatMap((p, i) => (p ? [i] : []));
   assert.ok(pinned.length >= 3, `${pinned.length} pinned`);
   await shot(page, '05-pinned-overlay');
@@ -109,7 +158,8 @@ test('pinned vertices stay fixed under a grab drag', async () => {
     return { index: best, screen: window.softsculpt.screenOf(best) };
   });
   const start = await vertex(page, side.index);
-  await drag(page, side.screen, { x: side.screen.x + 200, y: side.screen.y + 60 }, 20, 800);
+  await drag(page, side.screen, { x: side.screen.x + 200, y: side.screen.y + 60 }, 20);
+  await simulate(page, 0.8); // held 0.8 s of simulation
   const moved = await vertex(page, side.index);
   const after = await Promise.all(pinned.map((i) => vertex(page, i)));
   await page.mouse.up();
@@ -123,7 +173,8 @@ test('press pushes the cap in, the mass brush paints heavier, W blows wind from 
   await settle(page);
   const top = await topVertex(page);
   await page.keyboard.press('p');
-  await drag(page, top.screen, top.screen, 2, 1200);
+  await drag(page, top.screen, top.screen, 2);
+  await simulate(page, 1.2); // held 1.2 s of simulation
   const pressed = await vertex(page, top.index);
   await shot(page, '10-press');
   await page.mouse.up();
@@ -133,7 +184,8 @@ test('press pushes the cap in, the mass brush paints heavier, W blows wind from 
   await page.keyboard.press('m');
   const m0 = await inspect(page, () => window.softsculpt.masses());
   const again = await topVertex(page);
-  await drag(page, again.screen, again.screen, 2, 800);
+  await drag(page, again.screen, again.screen, 2);
+  await simulate(page, 0.8); // painted for 0.8 s of simulation (the brush's rate is per simulated second)
   await page.mouse.up();
   const m1 = await inspect(page, () => window.softsculpt.masses());
   // The brush paints the surface under the cursor: the vertex that gained most is there, or
@@ -170,7 +222,7 @@ test('press pushes the cap in, the mass brush paints heavier, W blows wind from 
   // From calm, W blows at the speed whose drag is a fifth of the body's weight (tools/wind.ts;
   // the fixed 5 m/s before bent the 1 kg mushroom over): about 1.4 m/s here.
   assert.ok(Math.hypot(...w) > 0.3 && Math.hypot(...w) < 5, `wind ${w}`);
-  await page.waitForTimeout(1500);
+  await simulate(page, 1.5);
   const c1 = (await inspect(page, () => window.softsculpt.stats())).centerOfMass;
   const along = (c1[0] - c0[0]) * w[0] + (c1[2] - c0[2]) * w[2];
   assert.ok(along > 0, `the body leans downwind (${along})`);
@@ -198,7 +250,7 @@ test('importing an OBJ changes the model; garbage shows the error and keeps the 
   await page.waitForFunction(() => window.softsculpt.vertexCount() === 8);
   assert.equal(await page.locator('.import-dialog').count(), 0);
   assert.equal(await inspect(page, () => window.softsculpt.faceCount()), 12);
-  await page.waitForTimeout(800);
+  await simulate(page, 0.8);
   await shot(page, '07-imported-cube');
   await page.context().close();
 });
@@ -226,8 +278,9 @@ test('reload restores the autosaved project', async () => {
   const top = await topVertex(page);
   await drag(page, top.screen, top.screen, 2, 50);
   await page.mouse.up();
+  await until(page, (p0) => window.softsculpt.pinned().filter(Boolean).length > p0, pins0);
   await page.keyboard.press('u'); // subdivide: a different mesh that must come back
-  await page.waitForTimeout(800);
+  await page.waitForFunction(() => window.softsculpt.vertexCount() > 362 && !window.softsculpt.busy(), null, { timeout: 60000 });
   const n = await inspect(page, () => window.softsculpt.vertexCount());
   const pins = (await inspect(page, () => window.softsculpt.pinned())).filter(Boolean).length;
   assert.ok(n > 362 && pins > 0);
@@ -237,7 +290,8 @@ test('reload restores the autosaved project', async () => {
   await page.mouse.move(230, 480, { steps: 6 });
   await page.mouse.up();
   const camera = await inspect(page, () => window.softsculpt.camera());
-  await page.waitForTimeout(1500); // the autosave's debounce
+  // The autosave is written a moment after the last change (its debounce), the camera when it settles.
+  assert.ok(await autosaved(page, 2), 'the autosave holds the two undo steps and the camera');
   await page.reload();
   await page.waitForFunction(() => window.softsculpt?.ready === true);
   assert.equal(await inspect(page, () => window.softsculpt.vertexCount()), n);
