@@ -1,8 +1,8 @@
 //! From a parsed scene to a world: load and place meshes, set materials, resolve regions and
 //! events, and check what the file format alone cannot, naming the line of the table at fault.
 
-use super::events::{check_keys, Action, Event};
-use super::spec::{BodySpec, ObstacleSpec, RegionSpec, RotateSpec, SceneSpec};
+use super::events::Event;
+use super::spec::{BodySpec, GroundSpec, ObstacleSpec, RegionSpec, RotateSpec, SceneSpec, WorldSpec};
 use super::{line_of, SceneError};
 use crate::body::{GasReference, Material, SoftBody, VolumeMode, DEFAULT_TEMPERATURE};
 use crate::geometry::rotate;
@@ -32,34 +32,34 @@ pub struct Built {
 
 /// A table of the scene being checked: its text from byte `from` on (its header), its 1-based
 /// line, and its path (`body[0]`) for errors.
-struct Ctx<'a> {
+pub(super) struct Ctx<'a> {
     text: &'a str,
     from: usize,
-    line: usize,
+    pub(super) line: usize,
     table: String,
 }
 
 impl<'a> Ctx<'a> {
-    fn new(text: &'a str, from: usize, table: String) -> Self {
+    pub(super) fn new(text: &'a str, from: usize, table: String) -> Self {
         Ctx { text, from, line: line_of(text, from), table }
     }
     /// An error about `key` of this table, at the line that sets the key if the table's text
     /// has it (else at the table's header: a value a preset or a default gave).
-    fn err(&self, key: &str, message: impl Into<String>) -> SceneError {
+    pub(super) fn err(&self, key: &str, message: impl Into<String>) -> SceneError {
         let line = key_line(self.text, self.from, &self.table, key).unwrap_or(self.line);
         let key = if key.is_empty() { self.table.clone() } else { format!("{}.{key}", self.table) };
         SceneError { line: Some(line), key: Some(key), message: message.into() }
     }
-    fn finite(&self, key: &str, v: f64) -> Result<f64, SceneError> {
+    pub(super) fn finite(&self, key: &str, v: f64) -> Result<f64, SceneError> {
         if v.is_finite() { Ok(v) } else { Err(self.err(key, format!("must be a finite number, got {v}"))) }
     }
-    fn positive(&self, key: &str, v: f64) -> Result<f64, SceneError> {
+    pub(super) fn positive(&self, key: &str, v: f64) -> Result<f64, SceneError> {
         if v.is_finite() && v > 0.0 { Ok(v) } else { Err(self.err(key, format!("must be greater than 0, got {v}"))) }
     }
-    fn non_negative(&self, key: &str, v: f64) -> Result<f64, SceneError> {
+    pub(super) fn non_negative(&self, key: &str, v: f64) -> Result<f64, SceneError> {
         if v.is_finite() && v >= 0.0 { Ok(v) } else { Err(self.err(key, format!("must be 0 or more, got {v}"))) }
     }
-    fn vec(&self, key: &str, v: [f64; 3]) -> Result<V3, SceneError> {
+    pub(super) fn vec(&self, key: &str, v: [f64; 3]) -> Result<V3, SceneError> {
         if v.iter().all(|x| x.is_finite()) { Ok(v) } else { Err(self.err(key, format!("must be finite, got {v:?}"))) }
     }
 }
@@ -98,10 +98,52 @@ fn key_line(text: &str, from: usize, table: &str, key: &str) -> Option<usize> {
     None
 }
 
-/// Build every body, obstacle and event of `spec` (parsed from `text`).
+/// Build every body, obstacle and event of `spec` (parsed from `text`): the world's settings
+/// (with the obstacles), then the bodies, then the events that act on them, each checked as
+/// it is read (the first error stops the build).
 pub fn build(spec: &SceneSpec, text: &str, resolve: Resolver) -> Result<Built, SceneError> {
+    let settings = world_settings(spec, text, resolve)?;
+    let bodies = built_bodies(spec, text, settings.ground, resolve)?;
+    let events = super::events::resolve(spec, text, &bodies)?;
+    Ok(Built { bodies, events, settings, duration: spec.world.duration })
+}
+
+/// `[world]` checked, then the obstacles, into the world's settings.
+fn world_settings(spec: &SceneSpec, text: &str, resolve: Resolver) -> Result<WorldSettings, SceneError> {
     let w = &spec.world;
     let cx = Ctx::new(text, text.find("[world]").unwrap_or(0), "world".into());
+    let integrator = check_world(&cx, w)?;
+    let ground = match &w.ground {
+        Some(g) => Some(check_ground(&cx, g)?),
+        None => None,
+    };
+
+    let mut obstacles = Vec::new();
+    for (k, o) in spec.obstacles.iter().enumerate() {
+        let cx = Ctx::new(text, o.span().start, format!("obstacle[{k}]"));
+        obstacles.push(obstacle(&cx, o.get_ref(), resolve)?);
+    }
+
+    Ok(WorldSettings {
+        gravity: w.gravity,
+        wind: w.wind,
+        wind_drag: w.wind_drag,
+        ground,
+        obstacles,
+        integrator,
+        dt: w.dt,
+        tolerance: w.tolerance,
+        newton_iterations: w.newton_iterations,
+        give_up: None,
+        relax: false,
+        deadline: None,
+        interrupt: None,
+        contact: ContactSettings { thickness: w.contact_thickness, friction: w.contact_friction, ..ContactSettings::default() },
+    })
+}
+
+/// The `[world]` table's numbers checked, and its integrator.
+fn check_world(cx: &Ctx, w: &WorldSpec) -> Result<Integrator, SceneError> {
     cx.positive("dt", w.dt)?;
     cx.positive("duration", w.duration)?;
     if w.duration / w.dt > 1e9 {
@@ -118,41 +160,22 @@ pub fn build(spec: &SceneSpec, text: &str, resolve: Resolver) -> Result<Built, S
     cx.non_negative("wind_drag", w.wind_drag)?;
     cx.non_negative("contact_thickness", w.contact_thickness)?;
     cx.non_negative("contact_friction", w.contact_friction)?;
-    let ground = match &w.ground {
-        Some(g) => {
-            cx.finite("ground.height", g.height)?;
-            cx.non_negative("ground.friction", g.friction)?;
-            if !(0.0..=1.0).contains(&g.restitution) {
-                return Err(cx.err("ground.restitution", format!("must be between 0 and 1, got {}", g.restitution)));
-            }
-            Some(Ground { height: g.height, friction: g.friction, restitution: g.restitution })
-        }
-        None => None,
-    };
+    Ok(integrator)
+}
 
-    let mut obstacles = Vec::new();
-    for (k, o) in spec.obstacles.iter().enumerate() {
-        let cx = Ctx::new(text, o.span().start, format!("obstacle[{k}]"));
-        obstacles.push(obstacle(&cx, o.get_ref(), resolve)?);
+/// `[world.ground]` checked.
+fn check_ground(cx: &Ctx, g: &GroundSpec) -> Result<Ground, SceneError> {
+    cx.finite("ground.height", g.height)?;
+    cx.non_negative("ground.friction", g.friction)?;
+    if !(0.0..=1.0).contains(&g.restitution) {
+        return Err(cx.err("ground.restitution", format!("must be between 0 and 1, got {}", g.restitution)));
     }
+    Ok(Ground { height: g.height, friction: g.friction, restitution: g.restitution })
+}
 
-    let settings = WorldSettings {
-        gravity: w.gravity,
-        wind: w.wind,
-        wind_drag: w.wind_drag,
-        ground,
-        obstacles,
-        integrator,
-        dt: w.dt,
-        tolerance: w.tolerance,
-        newton_iterations: w.newton_iterations,
-        give_up: None,
-        relax: false,
-        deadline: None,
-        interrupt: None,
-        contact: ContactSettings { thickness: w.contact_thickness, friction: w.contact_friction, ..ContactSettings::default() },
-    };
-
+/// Every `[[body]]`, with its preset (if any) under the keys it gives itself; names unique,
+/// at least one body.
+fn built_bodies(spec: &SceneSpec, text: &str, ground: Option<Ground>, resolve: Resolver) -> Result<Vec<BuiltBody>, SceneError> {
     let mut bodies: Vec<BuiltBody> = Vec::new();
     // The keys each body gives itself (a preset fills the others); the text parsed already.
     let tables = text.parse::<toml::Table>().ok();
@@ -171,91 +194,7 @@ pub fn build(spec: &SceneSpec, text: &str, resolve: Resolver) -> Result<Built, S
     if bodies.is_empty() {
         return Err(SceneError { line: None, key: Some("body".into()), message: "the scene has no [[body]]".into() });
     }
-
-    let mut events = Vec::new();
-    let mut last = 0.0;
-    for (k, e) in spec.events.iter().enumerate() {
-        let cx = Ctx::new(text, e.span().start, format!("event[{k}]"));
-        let e = e.get_ref();
-        if !(e.time.is_finite() && e.time >= 0.0) {
-            return Err(cx.err("time", format!("must be 0 or more, got {}", e.time)));
-        }
-        if e.time < last {
-            return Err(cx.err("time", format!("events must be in time order: {} s comes after an event at {last} s", e.time)));
-        }
-        last = e.time;
-        check_keys(e).map_err(|m| cx.err("action", m))?;
-        let targets: Vec<usize> = match &e.body {
-            Some(name) => vec![bodies
-                .iter()
-                .position(|b| &b.name == name)
-                .ok_or_else(|| cx.err("body", format!("no body is named '{name}'")))?],
-            None => (0..bodies.len()).collect(),
-        };
-        let until = match e.duration {
-            Some(d) => e.time + cx.positive("duration", d)?,
-            None => f64::INFINITY,
-        };
-        for bi in targets {
-            let b = &bodies[bi];
-            let region = |cx: &Ctx| -> Result<Vec<usize>, SceneError> {
-                match &e.region {
-                    Some(r) => select_in(cx, "region", r, &b.body, &b.mesh),
-                    None => Ok((0..b.body.vertex_count()).collect()),
-                }
-            };
-            let action = match e.action.as_str() {
-                "freeze" => Action::Freeze { under_load: e.under_load.unwrap_or(w.gravity != 0.0), keep_tension: e.keep_tension.unwrap_or(false) },
-                "reset" => Action::Reset,
-                "set_gas" => {
-                    if let Some(a) = e.amount {
-                        cx.non_negative("amount", a)?;
-                    }
-                    if let Some(t) = e.temperature {
-                        cx.positive("temperature", t)?;
-                    }
-                    if let Some(n) = e.nrt {
-                        cx.non_negative("nrt", n)?;
-                    }
-                    if (e.amount.unwrap_or(0.0) > 0.0 || e.nrt.unwrap_or(0.0) > 0.0) && !b.body.is_closed() {
-                        return Err(cx.err("amount", format!("body '{}' is open: gas needs a closed surface", b.name)));
-                    }
-                    Action::SetGas { amount: e.amount, temperature: e.temperature, nrt: e.nrt }
-                }
-                "set_wind" => Action::SetWind(cx.vec("wind", e.wind.unwrap_or_default())?),
-                "force" => {
-                    let vertices = region(&cx)?;
-                    let f = cx.vec("force", e.force.unwrap_or_default())?;
-                    Action::Force { per_vertex: scale(f, 1.0 / vertices.len() as f64), vertices, until }
-                }
-                "pressure" => {
-                    let p = cx.finite("pressure", e.pressure.unwrap_or(0.0))?;
-                    let sel = vertex_mask(b.body.vertex_count(), &region(&cx)?);
-                    let faces: Vec<usize> = (0..b.body.face_count())
-                        .filter(|&f| b.body.triangles()[f].iter().all(|&v| sel[v as usize]))
-                        .collect();
-                    if faces.is_empty() {
-                        return Err(cx.err("region", "selects no whole face (a face needs all three vertices inside)"));
-                    }
-                    Action::Pressure { faces, pressure: p, until }
-                }
-                "pin" => Action::Pin(region(&cx)?),
-                "unpin" => Action::Unpin(region(&cx)?),
-                "inflate" => {
-                    let f = cx.positive("factor", e.factor.unwrap_or(1.0))?;
-                    let mut factors = vec![1.0; b.body.vertex_count()];
-                    for v in region(&cx)? {
-                        factors[v] = f;
-                    }
-                    Action::Inflate(factors)
-                }
-                "set_mass" => Action::SetMass { vertices: region(&cx)?, mass: cx.positive("mass", e.mass.unwrap_or(0.0))? },
-                other => unreachable!("check_keys accepted unknown action {other}"),
-            };
-            events.push(Event { time: e.time, body: bi, action, line: cx.line });
-        }
-    }
-    Ok(Built { bodies, events, settings, duration: w.duration })
+    Ok(bodies)
 }
 
 fn body(cx: &Ctx, b: &BodySpec, ground: Option<Ground>, index: usize, resolve: Resolver) -> Result<BuiltBody, SceneError> {
@@ -449,17 +388,9 @@ fn rotation(cx: &Ctx, key: &str, r: &RotateSpec) -> Result<impl Fn(V3) -> V3, Sc
     Ok(move |v: V3| rotate(v, k, s, c))
 }
 
-fn vertex_mask(n: usize, vertices: &[usize]) -> Vec<bool> {
-    let mut m = vec![false; n];
-    for &v in vertices {
-        m[v] = true;
-    }
-    m
-}
-
 /// The body's vertices in region `r` (positions at the start; `vertices` are indices into the
 /// source file's vertex list, as a user sees them).
-fn select_in(cx: &Ctx, key: &str, r: &RegionSpec, body: &SoftBody, mesh: &LoadedMesh) -> Result<Vec<usize>, SceneError> {
+pub(super) fn select_in(cx: &Ctx, key: &str, r: &RegionSpec, body: &SoftBody, mesh: &LoadedMesh) -> Result<Vec<usize>, SceneError> {
     let forms = [r.center.is_some() || r.radius.is_some(), r.min.is_some() || r.max.is_some(), r.vertices.is_some(), r.all.is_some()];
     if forms.iter().filter(|&&f| f).count() != 1 {
         return Err(cx.err(key, "a region is exactly one of: `center` + `radius`, `min` + `max`, `vertices`, `all = true`"));

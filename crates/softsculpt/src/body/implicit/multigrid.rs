@@ -338,6 +338,187 @@ pub(crate) struct Multigrid {
     t: Vec<f64>,
 }
 
+/// A fine vertex is an unknown of the system (a pinned one is not).
+fn free(m: &Model, i: usize) -> bool {
+    m.inv_mass[i] != 0.0
+}
+
+/// The ground's held vertices have no y unknown (`ground.rs`): the cycle's fine level is
+/// F A F (F zeroes their y rows and columns), and so are the coarse ones.
+fn held(sys: &System, i: usize) -> bool {
+    sys.ground.active() && sys.ground.held[i]
+}
+
+impl Level {
+    /// Level 1: centres, offsets, then the springs' CSR entries row by row.
+    fn add_springs(&mut self, sys: &System, m: &Model, x: &[f64]) {
+        let Level { s, a, c: centre, off, .. } = self;
+        centres(s, |i| [x[3 * i], x[3 * i + 1], x[3 * i + 2]], centre, off);
+        a.fill([0.0; 36]);
+        for c in 0..s.n {
+            let dpos = s.start[c] as usize;
+            for &i in &s.member[s.mstart[c] as usize..s.mstart[c + 1] as usize] {
+                let i = i as usize;
+                if !free(m, i) {
+                    continue;
+                }
+                spring_row(sys, m, s, off, a, i, dpos);
+            }
+        }
+    }
+
+    /// The hinges' rank-one blocks c ∇θ ∇θᵀ (`system.rs`): with w_q = P_qᵀ ∇_q θ = (g_q, r_q × g_q)
+    /// (g_q's y zeroed where the ground holds the vertex; a pinned vertex is no unknown),
+    /// Pᵀ (c ∇θ ∇θᵀ) P = c W Wᵀ with W_I = Σ_{q ∈ I} w_q summed per node first: block
+    /// (I, J) gets c W_I W_Jᵀ, (J, I) its transpose (a hinge spans 1–4 nodes, ~2 on average:
+    /// k(k + 1)/2 outer products for k nodes instead of the 16 vertex pairs'). Every pair of a hinge's vertices
+    /// is an edge or its bending pair, so the level's sparsity has the block already.
+    /// Without them the coarse levels did not see bending: at 10,242 vertices with the
+    /// modeler's D = 0.05 J the conjugate gradient took 6× the iterations (BENCHMARKS.md).
+    fn add_hinges(&mut self, sys: &System, m: &Model, hpos: &[HingeNodes]) {
+        for (h, hn) in hpos.iter().enumerate() {
+            let c = sys.hc[h];
+            if c == 0.0 {
+                continue;
+            }
+            let w = hinge_node_weights(sys, m, &self.off, h, hn, c.sqrt());
+            add_hinge_outer(&mut self.a, hn, &w);
+        }
+    }
+
+    /// Every node's diagonal block inverted (a pseudo-inverse without the modes it cannot feel,
+    /// [`BLOCK_PIVOT`]), and the matrix in single precision for the sweeps.
+    fn invert_diagonal(&mut self) {
+        let mut f = [0.0; 36];
+        let mut drop = [false; 6];
+        let mut col = [0.0; 6];
+        for (af, a) in self.af.iter_mut().zip(&self.a) {
+            for q in 0..36 {
+                af[q] = a[q] as f32;
+            }
+        }
+        for c in 0..self.s.n {
+            f.copy_from_slice(&self.a[self.s.start[c] as usize]);
+            cholesky(&mut f, 6, &mut drop, BLOCK_PIVOT);
+            for q in 0..6 {
+                let mut e = [0.0; 6];
+                e[q] = 1.0;
+                cholesky_solve(&f, 6, &drop, &e, &mut col);
+                for p in 0..6 {
+                    self.dinv[c][6 * p + q] = col[p];
+                }
+            }
+        }
+    }
+}
+
+/// Row i of level 1 (`s`, offsets `off`, blocks `a`; i's node's diagonal block at `dpos`):
+/// each spring block B of i (edges, and bending pairs if on) into the coupling with the
+/// other end's node, and the diagonal P_iᵀ (dg I + Σ B) P_i, the 3×3 sum first.
+fn spring_row(sys: &System, m: &Model, s: &Shape, off: &[[f64; 3]], a: &mut [Blk], i: usize, dpos: usize) {
+    let ri = off[i];
+    // Row i's diagonal: P_iᵀ (dg I + Σ B) P_i, the 3×3 sum first.
+    let dg = sys.diag[i];
+    let mut sum = [[dg, 0.0, 0.0], [0.0, dg, 0.0], [0.0, 0.0, dg]];
+    let kinds = [(&sys.edges, &sys.ecoef, &s.pos[0]), (&sys.bends, &sys.bcoef, &s.pos[1])];
+    for (rows, coef, pos) in kinds.into_iter().take(if sys.bending { 2 } else { 1 }) {
+        for k in rows.start[i] as usize..rows.start[i + 1] as usize {
+            let j = rows.other[k] as usize;
+            let [ca, cb, dx, dy, dz] = coef[k];
+            let d = [dx, dy, dz];
+            let bl = spring_block(ca, cb, &d);
+            for p in 0..3 {
+                for q in 0..3 {
+                    sum[p][q] += bl[p][q];
+                }
+            }
+            if free(m, j) {
+                let rj = off[j];
+                let blk = &mut a[pos[k] as usize];
+                if held(sys, i) || held(sys, j) {
+                    add_general(blk, -1.0, &without_y(bl, held(sys, i), held(sys, j)), &ri, &rj);
+                } else {
+                    add_spring(blk, -1.0, ca, cb, &d, &ri, &rj);
+                }
+            }
+        }
+    }
+    let sum = without_y(sum, held(sys, i), held(sys, i));
+    add_sandwich(&mut a[dpos], &sum, &ri);
+}
+
+/// Hinge h's W_I = Σ_{q ∈ I} w_q per node (slot) of `hn`, w_q = (g_q, r_q × g_q) scaled by
+/// √c (`cs`), so that the outer products carry c.
+fn hinge_node_weights(sys: &System, m: &Model, off: &[[f64; 3]], h: usize, hn: &HingeNodes, cs: f64) -> [[f64; 6]; 4] {
+    let (g, hv) = (&sys.hg[h], &m.hinges.v[h]);
+    let mut w = [[0.0; 6]; 4];
+    for q in 0..4 {
+        let v = hv[q] as usize;
+        if !free(m, v) {
+            continue; // a pinned vertex is no unknown: w_q = 0
+        }
+        let gq = [cs * g[3 * q], if held(sys, v) { 0.0 } else { cs * g[3 * q + 1] }, cs * g[3 * q + 2]];
+        let rg = cross(&off[v], &gq);
+        let wn = &mut w[hn.slot[q] as usize];
+        for (e, x) in wn.iter_mut().zip([gq[0], gq[1], gq[2], rg[0], rg[1], rg[2]]) {
+            *e += x;
+        }
+    }
+    w
+}
+
+/// Block (I, J) += W_I W_Jᵀ and (J, I) its transpose, for each pair of the hinge's nodes.
+fn add_hinge_outer(blocks: &mut [Blk], hn: &HingeNodes, w: &[[f64; 6]; 4]) {
+    let k = hn.nodes as usize;
+    for a in 0..k {
+        for b in a..k {
+            let (ab, ba) = (hn.at[4 * a + b], hn.at[4 * b + a]);
+            if ab == super::aggregate::NONE {
+                continue;
+            }
+            let (wa, wb) = (&w[a], &w[b]);
+            let mut o = [0.0; 36];
+            for p in 0..6 {
+                for t in 0..6 {
+                    o[6 * p + t] = wa[p] * wb[t];
+                }
+            }
+            let blk = &mut blocks[ab as usize];
+            for q in 0..36 {
+                blk[q] += o[q];
+            }
+            if a != b {
+                let blk = &mut blocks[ba as usize];
+                for p in 0..6 {
+                    for t in 0..6 {
+                        blk[6 * t + p] += o[6 * p + t];
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Level l + 1 from level l, A_{l+1} = Pᵀ A_l P block by block, from level 1 (`first`) down.
+fn galerkin(first: &Level, rest: &mut [Level]) {
+    let mut above = first;
+    for lv in rest.iter_mut() {
+        let s = &lv.s;
+        centres(s, |u| above.c[u], &mut lv.c, &mut lv.off);
+        lv.a.fill([0.0; 36]);
+        for c in 0..s.n {
+            for &u in &s.member[s.mstart[c] as usize..s.mstart[c + 1] as usize] {
+                let ru = lv.off[u as usize];
+                for e in above.s.start[u as usize] as usize..above.s.start[u as usize + 1] as usize {
+                    let rw = lv.off[above.s.col[e] as usize];
+                    add_galerkin(&mut lv.a[s.pos[0][e] as usize], &above.a[e], &ru, &rw);
+                }
+            }
+        }
+        above = lv;
+    }
+}
+
 impl Multigrid {
     /// The hierarchy of a body of n vertices, used when n ≥ `from` (else block Jacobi alone).
     pub fn new(sys: &System, n: usize, from: usize) -> Self {
@@ -364,12 +545,13 @@ impl Multigrid {
     }
 
     /// Coarse matrices from the system's current coefficients (after `System::eval`) and the
-    /// positions `x` (flat xyz) they were taken at.
+    /// positions `x` (flat xyz) they were taken at: level 1 from the fine springs and hinges,
+    /// each level below by the Galerkin product, then every node's diagonal inverse and the
+    /// coarsest level's dense factor.
     pub fn assemble(&mut self, sys: &System, m: &Model, x: &[f64]) {
         if !self.cycles(sys, m.mass.len()) {
             return;
         }
-        let free = |i: usize| m.inv_mass[i] != 0.0;
         if sys.hinged && self.hpos.len() != m.hinges.v.len() {
             if let Some(first) = self.levels.first() {
                 self.hpos = hinge_blocks(&first.s, m);
@@ -377,148 +559,13 @@ impl Multigrid {
         }
         let Multigrid { levels, hpos, .. } = self;
         let Some((first, rest)) = levels.split_first_mut() else { return };
-        // The ground's held vertices have no y unknown (`ground.rs`): the cycle's fine level is
-        // F A F (F zeroes their y rows and columns), and so are the coarse ones.
-        let held = |i: usize| sys.ground.active() && sys.ground.held[i];
-        // Level 1: centres, offsets, then the springs' CSR entries row by row.
-        let s = &first.s;
-        centres(s, |i| [x[3 * i], x[3 * i + 1], x[3 * i + 2]], &mut first.c, &mut first.off);
-        first.a.fill([0.0; 36]);
-        for c in 0..s.n {
-            let dpos = s.start[c] as usize;
-            for &i in &s.member[s.mstart[c] as usize..s.mstart[c + 1] as usize] {
-                let i = i as usize;
-                if !free(i) {
-                    continue;
-                }
-                let ri = first.off[i];
-                // Row i's diagonal: P_iᵀ (dg I + Σ B) P_i, the 3×3 sum first.
-                let dg = sys.diag[i];
-                let mut sum = [[dg, 0.0, 0.0], [0.0, dg, 0.0], [0.0, 0.0, dg]];
-                let kinds = [(&sys.edges, &sys.ecoef, &s.pos[0]), (&sys.bends, &sys.bcoef, &s.pos[1])];
-                for (rows, coef, pos) in kinds.into_iter().take(if sys.bending { 2 } else { 1 }) {
-                    for k in rows.start[i] as usize..rows.start[i + 1] as usize {
-                        let j = rows.other[k] as usize;
-                        let [a, b, dx, dy, dz] = coef[k];
-                        let d = [dx, dy, dz];
-                        let bl = spring_block(a, b, &d);
-                        for p in 0..3 {
-                            for q in 0..3 {
-                                sum[p][q] += bl[p][q];
-                            }
-                        }
-                        if free(j) {
-                            let rj = first.off[j];
-                            let blk = &mut first.a[pos[k] as usize];
-                            if held(i) || held(j) {
-                                add_general(blk, -1.0, &without_y(bl, held(i), held(j)), &ri, &rj);
-                            } else {
-                                add_spring(blk, -1.0, a, b, &d, &ri, &rj);
-                            }
-                        }
-                    }
-                }
-                let sum = without_y(sum, held(i), held(i));
-                add_sandwich(&mut first.a[dpos], &sum, &ri);
-            }
-        }
-        // The hinges' rank-one blocks c ∇θ ∇θᵀ (`system.rs`): with w_q = P_qᵀ ∇_q θ = (g_q, r_q × g_q)
-        // (g_q's y zeroed where the ground holds the vertex; a pinned vertex is no unknown),
-        // Pᵀ (c ∇θ ∇θᵀ) P = c W Wᵀ with W_I = Σ_{q ∈ I} w_q summed per node first: block
-        // (I, J) gets c W_I W_Jᵀ, (J, I) its transpose (a hinge spans 1–4 nodes, ~2 on average:
-        // k(k + 1)/2 outer products for k nodes instead of the 16 vertex pairs'). Every pair of a hinge's vertices
-        // is an edge or its bending pair, so the level's sparsity has the block already.
-        // Without them the coarse levels did not see bending: at 10,242 vertices with the
-        // modeler's D = 0.05 J the conjugate gradient took 6× the iterations (BENCHMARKS.md).
+        first.add_springs(sys, m, x);
         if sys.hinged {
-            for (h, hn) in hpos.iter().enumerate() {
-                let c = sys.hc[h];
-                if c == 0.0 {
-                    continue;
-                }
-                let (g, hv) = (&sys.hg[h], &m.hinges.v[h]);
-                let cs = c.sqrt();
-                let mut w = [[0.0; 6]; 4];
-                for q in 0..4 {
-                    let v = hv[q] as usize;
-                    if !free(v) {
-                        continue; // a pinned vertex is no unknown: w_q = 0
-                    }
-                    let gq = [cs * g[3 * q], if held(v) { 0.0 } else { cs * g[3 * q + 1] }, cs * g[3 * q + 2]];
-                    let rg = cross(&first.off[v], &gq);
-                    let wn = &mut w[hn.slot[q] as usize];
-                    for (e, x) in wn.iter_mut().zip([gq[0], gq[1], gq[2], rg[0], rg[1], rg[2]]) {
-                        *e += x;
-                    }
-                }
-                let k = hn.nodes as usize;
-                for a in 0..k {
-                    for b in a..k {
-                        let (ab, ba) = (hn.at[4 * a + b], hn.at[4 * b + a]);
-                        if ab == super::aggregate::NONE {
-                            continue;
-                        }
-                        let (wa, wb) = (&w[a], &w[b]);
-                        let mut o = [0.0; 36];
-                        for p in 0..6 {
-                            for t in 0..6 {
-                                o[6 * p + t] = wa[p] * wb[t];
-                            }
-                        }
-                        let blk = &mut first.a[ab as usize];
-                        for q in 0..36 {
-                            blk[q] += o[q];
-                        }
-                        if a != b {
-                            let blk = &mut first.a[ba as usize];
-                            for p in 0..6 {
-                                for t in 0..6 {
-                                    blk[6 * t + p] += o[6 * p + t];
-                                }
-                            }
-                        }
-                    }
-                }
-            }
+            first.add_hinges(sys, m, hpos);
         }
-        // Level l + 1 from level l.
-        let mut above = &*first;
-        for lv in rest.iter_mut() {
-            let s = &lv.s;
-            centres(s, |u| above.c[u], &mut lv.c, &mut lv.off);
-            lv.a.fill([0.0; 36]);
-            for c in 0..s.n {
-                for &u in &s.member[s.mstart[c] as usize..s.mstart[c + 1] as usize] {
-                    let ru = lv.off[u as usize];
-                    for e in above.s.start[u as usize] as usize..above.s.start[u as usize + 1] as usize {
-                        let rw = lv.off[above.s.col[e] as usize];
-                        add_galerkin(&mut lv.a[s.pos[0][e] as usize], &above.a[e], &ru, &rw);
-                    }
-                }
-            }
-            above = lv;
-        }
-        let mut f = [0.0; 36];
-        let mut drop = [false; 6];
-        let mut col = [0.0; 6];
+        galerkin(first, rest);
         for lv in self.levels.iter_mut() {
-            for (af, a) in lv.af.iter_mut().zip(&lv.a) {
-                for q in 0..36 {
-                    af[q] = a[q] as f32;
-                }
-            }
-            for c in 0..lv.s.n {
-                f.copy_from_slice(&lv.a[lv.s.start[c] as usize]);
-                cholesky(&mut f, 6, &mut drop, BLOCK_PIVOT);
-                for q in 0..6 {
-                    let mut e = [0.0; 6];
-                    e[q] = 1.0;
-                    cholesky_solve(&f, 6, &drop, &e, &mut col);
-                    for p in 0..6 {
-                        lv.dinv[c][6 * p + q] = col[p];
-                    }
-                }
-            }
+            lv.invert_diagonal();
         }
         self.factor();
     }
