@@ -142,6 +142,32 @@ pub fn pulled_sphere() -> (World, impl Fn(usize) -> Vec<Target>) {
     (a, pull)
 }
 
+/// How the page steps (`World::advance`: a step that does not finish is split, or retried with
+/// crushed hinges let go).
+pub fn page_budget() -> softsculpt::world::Budget {
+    softsculpt::world::Budget { splits: 3, relax: true, ..softsculpt::world::Budget::converge() }
+}
+
+/// The modeler's `model` (the rooted mushroom, or the sphere or octopus set on the ground)
+/// subdivided `subdivisions` times, settled 2 s, frozen under load and given the material
+/// `preset` with the gas's push kept (what the page's material switch does), then `overrides`
+/// (parameter id, value), settled 1 s.
+pub fn with_material(preset: &str, model: &str, subdivisions: u32, overrides: &[(&str, f64)]) -> World {
+    use softsculpt::body::{FreezeOptions, GasReference};
+    let mut w: World = if model == "mushroom" { rooted_mushroom_subdivided(subdivisions) } else { on_ground(&builtin(model).unwrap(), subdivisions, "modeler") };
+    w.advance(2.0, &page_budget()).unwrap();
+    w.freeze(0, FreezeOptions { under_load: true, keep_tension: false }).unwrap();
+    let push = w.stats(0).pressure - w.bodies[0].gas_reference().ambient_pressure;
+    w.apply_preset(0, preset).unwrap();
+    for &(id, v) in overrides {
+        w.set_param(0, id, softsculpt::params::Value::Number(v)).unwrap();
+    }
+    let gas = GasReference { ambient_pressure: (w.stats(0).pressure - push).max(0.0), ..w.bodies[0].gas_reference() };
+    w.bodies[0].set_gas_reference(gas).unwrap();
+    w.advance(1.0, &page_budget()).unwrap();
+    w
+}
+
 /// How a material takes the modeler's press or grab (issue #37, `examples/clay.rs`,
 /// `tests/presets.rs`): the change of the body's depth at the brush's centre — the distance from
 /// the front-most vertex (largest z) to the back-most — under the tool, 5 s and 10 s after
@@ -153,10 +179,8 @@ pub struct ToolRun {
     pub at10: f64,
 }
 
-/// The modeler's `model` (the rooted mushroom, or the sphere or octopus set on the ground)
-/// subdivided `subdivisions` times, settled 2 s, frozen under load and given the material
-/// `preset` with the gas's push kept (what the page's material switch does), then `overrides`
-/// (parameter id, value), settled 1 s; then the modeler's default press (15 cm at the centre of
+/// The modeler's `model` with the material `preset` ([`with_material`]); then the modeler's
+/// default press (15 cm at the centre of
 /// a 35 cm brush, weight (1 − (d/r)²)², target springs of ω = 600 1/s, pressed in over 0.25 s
 /// and held to 1.5 s) or grab (the brush's vertices on target springs of m w ω², moved 0.4 m out
 /// along z over 0.5 s, held to 1.5 s), let go, stepped as the page steps (`World::advance`:
@@ -164,21 +188,7 @@ pub struct ToolRun {
 /// that what the body does as a whole (an unrooted body slides and tips under the tool) does not
 /// count.
 pub fn press_or_pull(preset: &str, model: &str, pull: bool, subdivisions: u32, overrides: &[(&str, f64)]) -> ToolRun {
-    use softsculpt::body::{FreezeOptions, GasReference};
-    use softsculpt::params::Value;
-    use softsculpt::world::Budget;
-    let mut w: World = if model == "mushroom" { rooted_mushroom_subdivided(subdivisions) } else { on_ground(&builtin(model).unwrap(), subdivisions, "modeler") };
-    let budget = Budget { splits: 3, relax: true, ..Budget::converge() };
-    w.advance(2.0, &budget).unwrap();
-    w.freeze(0, FreezeOptions { under_load: true, keep_tension: false }).unwrap();
-    let push = w.stats(0).pressure - w.bodies[0].gas_reference().ambient_pressure;
-    w.apply_preset(0, preset).unwrap();
-    for &(id, v) in overrides {
-        w.set_param(0, id, Value::Number(v)).unwrap();
-    }
-    let gas = GasReference { ambient_pressure: (w.stats(0).pressure - push).max(0.0), ..w.bodies[0].gas_reference() };
-    w.bodies[0].set_gas_reference(gas).unwrap();
-    w.advance(1.0, &budget).unwrap();
+    let (mut w, budget) = (with_material(preset, model, subdivisions, overrides), page_budget());
     let x0 = w.bodies[0].positions().to_vec();
     let m = w.bodies[0].masses().to_vec();
     let n = m.len();
@@ -271,24 +281,13 @@ pub fn bulge_bound(rest: f64, spacing: f64, height: f64, r: f64) -> f64 {
     2.0 * (rest + spacing * 8.0 * height / (r * r))
 }
 
-/// The modeler's `model` (the rooted mushroom, or the sphere or octopus on the ground)
-/// subdivided `subdivisions` times, settled 2 s, frozen under load and given the material
-/// `preset` as the page's material switch does, settled 1 s; then the modeler's inflate brush
+/// The modeler's `model` with the material `preset` ([`with_material`]); then the modeler's
+/// inflate brush
 /// held at its front-most vertex for `seconds` (radius 0.35 m, weight (1 − (d/r)²)², each frame
 /// every rest length × the mean of its ends' 1 + rate w dt, rate 0.3 1/s: `tools/brush.ts`
 /// `inflateFactor`), then 2 s to settle.
 pub fn inflated(preset: &str, model: &str, seconds: f64, subdivisions: u32) -> Bulge {
-    use softsculpt::body::{FreezeOptions, GasReference};
-    use softsculpt::world::Budget;
-    let mut w: World = if model == "mushroom" { rooted_mushroom_subdivided(subdivisions) } else { on_ground(&builtin(model).unwrap(), subdivisions, "modeler") };
-    let budget = Budget { splits: 3, relax: true, ..Budget::converge() };
-    w.advance(2.0, &budget).unwrap();
-    w.freeze(0, FreezeOptions { under_load: true, keep_tension: false }).unwrap();
-    let push = w.stats(0).pressure - w.bodies[0].gas_reference().ambient_pressure;
-    w.apply_preset(0, preset).unwrap();
-    let gas = GasReference { ambient_pressure: (w.stats(0).pressure - push).max(0.0), ..w.bodies[0].gas_reference() };
-    w.bodies[0].set_gas_reference(gas).unwrap();
-    w.advance(1.0, &budget).unwrap();
+    let (mut w, budget) = (with_material(preset, model, subdivisions, &[]), page_budget());
     let x0 = w.bodies[0].positions().to_vec();
     let n = x0.len() / 3;
     let c = (0..n).max_by(|&p, &q| x0[3 * p + 2].total_cmp(&x0[3 * q + 2])).unwrap();
