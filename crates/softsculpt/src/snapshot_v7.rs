@@ -36,16 +36,7 @@ pub(crate) fn extension7(w: &World) -> ExtensionV7 {
     let bodies: Vec<Vec<f64>> = w
         .bodies
         .iter()
-        .map(|b| {
-            let mut frozen = b.model.hinges.clone();
-            frozen.rest_to(&b.frozen.x);
-            let same = frozen.rest.iter().zip(&b.model.hinges.rest).all(|(p, q)| p.to_bits() == q.to_bits());
-            if same {
-                Vec::new()
-            } else {
-                b.model.hinges.rest.clone()
-            }
-        })
+        .map(|b| if b.model.hinges.rest_is_of(&b.frozen.x) { Vec::new() } else { b.model.hinges.rest.clone() })
         .collect();
     ExtensionV7 { bodies: if bodies.iter().all(Vec::is_empty) { Vec::new() } else { bodies }, overlaps: w.overlaps.clone() }
 }

@@ -204,6 +204,11 @@ pub fn excess(theta: f64, rest: f64) -> f64 {
     }
 }
 
+/// The rest angle a hinge takes from the shape `x`: its angle there, 0 where it has none.
+fn rest_angle(x: &[f64], hv: &[u32; 4]) -> f64 {
+    angle_and_gradient(x, hv).map_or(0.0, |(t, _)| t)
+}
+
 impl Hinges {
     /// The hinges of `tris` (rest angles and weights still zero: [`Hinges::rest_to`]).
     pub fn new(tris: &[[u32; 3]]) -> Self {
@@ -229,7 +234,7 @@ impl Hinges {
             let n = [norm(cross(e, sub(xk, xi))), norm(cross(sub(xl, xi), e))];
             let w = e2 / (0.5 * (n[0] + n[1]));
             self.weight[h] = if w.is_finite() { w } else { 0.0 };
-            self.rest[h] = angle_and_gradient(x, hv).map_or(0.0, |(t, _)| t);
+            self.rest[h] = rest_angle(x, hv);
             self.thin[h] = n.map(|n| n / e2).map(|u| if u.is_finite() { FADE_BELOW * u } else { 0.0 });
         }
     }
@@ -264,6 +269,12 @@ impl Hinges {
             self.rest[h] = excess(theta - r2, 0.0);
         }
         released
+    }
+
+    /// Whether every rest angle is the one [`Hinges::rest_to`] gives the shape `x`, bit for bit
+    /// (no plastic flow moved them since), without copying anything.
+    pub(crate) fn rest_is_of(&self, x: &[f64]) -> bool {
+        self.v.iter().zip(&self.rest).all(|(hv, r)| rest_angle(x, hv).to_bits() == r.to_bits())
     }
 
     /// Bending energy Σ ½ D w r² (J) at `x` (r = θ − θ̄, faded at a crushed face: [`bend`]),
