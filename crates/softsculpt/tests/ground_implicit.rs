@@ -180,7 +180,7 @@ fn imported_icosphere_obj(level: u32) -> String {
 /// (D = 0.1 J) at most 12.4 (2–7 Newton iterations per step) — 178 while the coarse levels
 /// left the hinges out (`multigrid.rs`). Bound: 40 (3.2×).
 /// Written for the coarse nodes' nearly unfelt tilts (`multigrid::BLOCK_PIVOT`): with the
-/// ground's releases at 2, 4, 8, … (before 2026-11-27) and those tilts kept down to pivots of
+/// ground's releases at 2, 4, 8, … (an earlier schedule) and those tilts kept down to pivots of
 /// 1e-10, the assembly after a release in step 12 made the V-cycle indefinite and every Newton
 /// iteration after it ran its conjugate gradient to the cap of 2,000 — 64,598 iterations in
 /// that step, 760 per Newton iteration, this test 105 s against 6. With the releases at 1–4,

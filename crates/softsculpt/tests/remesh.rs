@@ -250,12 +250,12 @@ fn box_mesh([w, h, d]: [f64; 3]) -> (TriMesh, [[f64; 3]; 8]) {
     (load_obj(s.as_bytes()).unwrap().mesh, p)
 }
 
-/// A 4 × 4 × 10 cm box (x, y up, z): the new-user trial's tower.
+/// A 4 × 4 × 10 cm box (x, y up, z): the tower a user's first trial remeshed.
 fn tower_box() -> TriMesh {
     box_mesh([0.04, 0.1, 0.04]).0
 }
 
-/// The new-user trial: the 4 × 4 × 10 cm box remeshed at its mean edge length (as the modeler's
+/// A user's first trial: the 4 × 4 × 10 cm box remeshed at its mean edge length (as the modeler's
 /// Remesh does). The remesher alone turns it into a 5-vertex double pyramid 7.8 cm wide; the body's
 /// remesh keeps the box. Its last try keeps the 90° edges (creases above 60°): corners and
 /// edges are constrained, never moved, and every other vertex is projected onto a flat face, so

@@ -31,15 +31,15 @@ fn a_ball_scaled_by_s_rests_in_the_same_shape_scaled_by_s() {
     // asymmetry grows from rounding into a roll (measured on the 1 cm ball, its centre's x:
     // 1.3e-8 at 4 s, 9e-7 at 5, 6e-5 at 6, then a roll of 0.048 of the radius by 7 s, at ~70×
     // per second; the 1 m ball's grows from 1e-17 at ~3× per second), so a comparison at 8 s
-    // (as this test made until 2026-11-27) met a roll whenever a change to the solver moved the
+    // (as this test once made) met a roll whenever a change to the solver moved the
     // rounding — at 1e-4 and 1e-7 tolerance before, with the ground's releases at Newton
     // iterations 1–4 after (off by 0.12). Why: the 642-vertex ball starts balanced on one vertex
     // (its single lowest point), an unstable orientation of its facets — the 1 m ball's centre x
     // doubles every ~2 s over 40 s (1.7e-17 → 2.8e-9) and it rolls to a stable one; checked
     // once, throwaway. Starting it on a face would make the rest stable.
     // At 20 m dt stays 1/60 s, finer than similar: the path is less damped and friction holds
-    // another footprint; compared at rest (40 s, against the reference at 8 s): measured 0.048
-    // of the radius until 2026-11-27, 1.7e-5 with the releases at 1–4; bound 0.06 (the preset unscaled on the 1 cm ball is off by more than
+    // another footprint; compared at rest (40 s, against the reference at 8 s): measured 1.7e-5
+    // of the radius (0.048 with the ground's releases at 2, 4, 8, … only); bound 0.06 (the preset unscaled on the 1 cm ball is off by more than
     // 0.05·20, so the bound still tells scaled from unscaled).
     let (reference, none) = settled(1.0, 1.0, 4.0);
     let (rest, _) = settled(1.0, 1.0, 8.0);

@@ -17,15 +17,12 @@
 //! dt F_g,y = r_y(v⁺) (N·s). The vertices with r_y < 0 (the plane would have to pull them
 //! down) are released for the rest of the step, and Newton goes on with them free (the set only
 //! shrinks, so it cannot cycle; the tolerance still counts from the first residual): when Newton
-//! has converged, and at Newton iterations 1, 2, 3, 4, then 8, 16, … ([`release_due`]; until
-//! 2026-11-27 at 2, 4, 8, …: the first iterations' releases let go at once the vertices the
-//! landing's prediction over-held, and a stiff ball's patch peels faster — 10,242 vertices, the
-//! presets' first second: Newton iterations default 324 → 271, balloon 328 → 228, jelly 343 →
-//! 245, clay 412 → 375, k = k_b = 500 330 → 297, stiff rubber 4,561 → 1,061 (61 → 13 s), cloth
-//! 1,363 → 1,452; at 40,962 the default's drop 361 → 264; at 2,562 even or fewer but stiff
-//! rubber's 353 → 401 (fewer CG iterations); releasing at every iteration instead cost clay
-//! 2.5×, at 1, 2, 4, 8, … clay 2.1×: BENCHMARKS.md). Measured on a 10,242-vertex sphere
-//! landing with the presets of `tests/presets.rs`: releasing only at convergence, a crumpling
+//! has converged, and at Newton iterations 1, 2, 3, 4, then 8, 16, … ([`release_due`]: the
+//! first iterations' releases let go at once the vertices the landing's prediction over-held,
+//! so a stiff ball's patch peels in fewer Newton iterations than with releases at 2, 4, 8, …
+//! only — stiff rubber's first second at 10,242 vertices 4,561 → 1,061; releasing at every
+//! iteration instead cost clay 2.5×: docs/history/benchmarks-log.md, "Landing inside the
+//! implicit step"). Measured on a 10,242-vertex sphere landing with the presets of `tests/presets.rs`: releasing only at convergence, a crumpling
 //! cloth stalled for 100 iterations at a relative residual of ~1e-3 with 140 of its 327 held
 //! vertices pulled down; releasing at every iterate, clay stalled at ~5e-3 (a few vertices let
 //! go every iteration or two, each time a changed problem); the spaced releases let both
@@ -41,8 +38,8 @@
 //! vertices stalls in most steps of its landing, each step 64 held iterations, 36 more from
 //! that iterate to the cap of 100, and a third solve without the ground; starting again at
 //! 64 took its first second from 4,117 to 4,541 Newton iterations but 123k to 44k CG
-//! iterations, 97 → 38 s (the other presets unchanged or faster: clay 5.3 → 4.3 s; BENCHMARKS
-//! "Landing inside the implicit step"). Giving up at 32 or 48 then: rubber 29 / 34 s but
+//! iterations, 97 → 38 s (the other presets unchanged or faster: clay 5.3 → 4.3 s; the history
+//! log, "Landing inside the implicit step"). Giving up at 32 or 48 then: rubber 29 / 34 s but
 //! cloth 10.6 → 16–17 s. A body at rest on the ground is then an equilibrium of the solve: the plane
 //! carries the bottom's weight, and v⁺ = v is already converged (measured: 0–1 Newton
 //! iterations per step at rest, against 3).
@@ -66,7 +63,7 @@
 //! Newton iterations, 138 → 22 s; the centre of mass 0.8–2.3 cm from a dt/4 reference run
 //! this way, where the old way at dt was 1.0–3.8 cm from it; three times sampled). At 10,242
 //! vertices, where the ring is half an edge deep, the landing's first second with the presets
-//! of `tests/presets.rs` (BENCHMARKS.md, "Landing inside the implicit step"): k = k_b = 500
+//! of `tests/presets.rs` (docs/history/benchmarks-log.md, "Landing inside the implicit step"): k = k_b = 500
 //! 2.7× faster; the default 1.1×, balloon 1.4×, jelly 1.2×, clay 1.5×, cloth 1.2–1.3× slower
 //! (the prediction over-holds vertices the body stops above the plane, each release one more
 //! Newton round); stiff rubber chaotic either way. With restitution the projection's bounce is
