@@ -178,7 +178,7 @@ fn imported_icosphere_obj(level: u32) -> String {
 /// solve must stay short: measured at most 7.6 conjugate-gradient iterations per Newton
 /// iteration in a step (20–34 Newton iterations per step from step 7); with the preset's hinges
 /// (D = 0.1 J) at most 12.4 (2–7 Newton iterations per step) — 178 while the coarse levels
-/// left the hinges out (`multigrid.rs`). Bound: 40 (3.2×).
+/// left the hinges out (`multigrid/`). Bound: 40 (3.2×).
 /// Written for the coarse nodes' nearly unfelt tilts (`multigrid::BLOCK_PIVOT`): with the
 /// ground's releases at 2, 4, 8, … (an earlier schedule) and those tilts kept down to pivots of
 /// 1e-10, the assembly after a release in step 12 made the V-cycle indefinite and every Newton

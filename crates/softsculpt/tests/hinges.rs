@@ -210,7 +210,7 @@ fn the_hinges_damping_never_adds_energy() {
 
 /// Hinges switched on in the middle of a run (the solver's hinge arrays are allocated at its
 /// first evaluation with D > 0, the multigrid's per-hinge nodes at its first assembly with them:
-/// `implicit/system.rs`, `multigrid.rs`) step exactly as a solver built afresh does: the world
+/// `implicit/system.rs`, `multigrid/`) step exactly as a solver built afresh does: the world
 /// restored from a snapshot taken at the switch, given the same D, takes the same bits (a
 /// restored world continues bit for bit: `tests/snapshot.rs`). 10,242 vertices, so that the
 /// multigrid's coarse levels, which carry the hinges, are in use.

@@ -12,7 +12,7 @@
 //! or a coupling of the level above joins a member of I to a member of J. Each row lists its
 //! diagonal first, then the other columns in increasing order. Per entry of the level above,
 //! `pos` says where in this level's entries its block is summed (the Galerkin product Pᵀ A P,
-//! 6×6 blocks of a translation and a rotation per node: `multigrid.rs`).
+//! 6×6 blocks of a translation and a rotation per node: `multigrid/`).
 
 use super::adjacency::SpringRows;
 

@@ -3,7 +3,7 @@
 //!
 //! **Why**: a body at rest solves almost the same problem every step (half a Newton iteration
 //! and half a conjugate-gradient iteration per step on the modeler's 10,242-vertex sphere), and
-//! the coarse levels' assembly (`multigrid.rs`) was a quarter of such a step's time. The coarse
+//! the coarse levels' assembly (`multigrid/`) was a quarter of such a step's time. The coarse
 //! levels only precondition: any symmetric positive definite cycle gives the same backward-Euler
 //! step within the tolerance. Levels assembled a few steps ago, for the same held vertices,
 //! parameters and dt, precondition a resting step as well as fresh ones (measured: the same

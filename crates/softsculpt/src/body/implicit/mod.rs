@@ -9,7 +9,7 @@
 //! each Newton step δ from A δ = −r with A = M + dt D + dt² K (K, D the projected stiffness and
 //! damping, `system.rs`) by a preconditioned conjugate gradient (`cg.rs`; block Jacobi, or a
 //! multigrid V-cycle from `multigrid::MULTIGRID_FROM` vertices, or
-//! `multigrid::HINGED_FROM` with the hinges on: `multigrid.rs`), then a
+//! `multigrid::HINGED_FROM` with the hinges on: `multigrid/`), then a
 //! line search along δ ([`Implicit::line_search`]). Anchors: Baraff & Witkin 1998 (large steps in cloth simulation).
 //!
 //! **Convergence** (what `tolerance` means): with the mass-weighted norm

@@ -26,7 +26,7 @@ struct Solve {
     /// The iteration at which the ground last released vertices, and last added some.
     released: Option<u32>,
     added: Option<u32>,
-    /// The coarse matrices need assembling (`multigrid.rs`): at the first V-cycle of this
+    /// The coarse matrices need assembling (`multigrid/`): at the first V-cycle of this
     /// solve and after the matrices change (ground vertices released, compressed springs
     /// switched to the absolute value: a stale coarse level mis-preconditions the
     /// conjugate gradient; measured on the 10,242-vertex sphere at k = 500 landing, 205,797

@@ -28,7 +28,7 @@
 //!   with the springs into 3×3 blocks per coupled pair (`blocks.rs`, [`System::prepare`]);
 //!   the indefinite dt² D w (θ − θ̄) ∇²θ is dropped (it vanishes at the rest angle). Its diagonal 3×3 blocks go
 //!   into the block-Jacobi preconditioner and its rank-one blocks into the multigrid's coarse
-//!   levels (`multigrid.rs`).
+//!   levels (`multigrid/`).
 //! - **viscous damping** −c m v: D += c m I (exact).
 //! - **gravity**, user forces, the kept load of a freeze under load: constant, nothing.
 //! - **gas** f_i = (P − P_ref) ∇_i V, P = nRT/V: −∂f/∂x = (nRT/V²) ∇V ∇Vᵀ − (P − P_ref) ∇²V. The
@@ -694,7 +694,7 @@ impl System {
     }
 
     /// out = b − A' p, A' = A without the gas's rank-one term (the multigrid cycle's residual:
-    /// `multigrid.rs`). Pinned rows are 0 (b and p are 0 there too).
+    /// `multigrid/`). Pinned rows are 0 (b and p are 0 there too).
     pub fn residual(&self, th: &Threads, m: &Model, p: &[f64], b: &[f64], out: &mut [f64], slots: &mut [[f64; 4]]) {
         assert!(b.len() >= 3 * m.mass.len());
         self.rows_pass::<true>(th, m, p, 0.0, b, out, slots);
