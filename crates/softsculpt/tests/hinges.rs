@@ -169,7 +169,7 @@ fn hinges_alone_restore_a_dented_shell() {
     assert!(without < 1.95, "without hinges the dent stays: height {without} m");
 }
 
-/// The hinge passes split over threads (`implicit/system.rs`): each hinge's values are computed
+/// The hinge passes split over threads (`implicit/system/`): each hinge's values are computed
 /// alone and every vertex sums its hinges in one fixed order, so one and two threads agree —
 /// the issue asks for 1e-12 relative (beyond summation order); here the same bits are expected.
 #[test]
@@ -210,7 +210,7 @@ fn the_hinges_damping_never_adds_energy() {
 
 /// Hinges switched on in the middle of a run (the solver's hinge arrays are allocated at its
 /// first evaluation with D > 0, the multigrid's per-hinge nodes at its first assembly with them:
-/// `implicit/system.rs`, `multigrid/`) step exactly as a solver built afresh does: the world
+/// `implicit/system/`, `multigrid/`) step exactly as a solver built afresh does: the world
 /// restored from a snapshot taken at the switch, given the same D, takes the same bits (a
 /// restored world continues bit for bit: `tests/snapshot.rs`). 10,242 vertices, so that the
 /// multigrid's coarse levels, which carry the hinges, are in use.

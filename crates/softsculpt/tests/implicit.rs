@@ -518,7 +518,7 @@ fn a_step_that_will_not_converge_is_given_up_early_and_a_converging_one_is_untou
     // step converges (before crushed faces faded their hinges, `hinges::bend`, a few took
     // 60–130 Newton iterations and one buckled and did not converge within the cap).
     // Then a gale (wind 100 m/s, drag 10 kg/(m²·s)): the wind's dependence on v⁺ through the
-    // faces' velocities and normals is not in the matrix (`system.rs`), and against a force that
+    // faces' velocities and normals is not in the matrix (`system/`), and against a force that
     // strong Newton does not converge (at 50 m/s and drag 5 this pulled body's step did) — the
     // step to refuse.
     let (mut a, pull) = pulled_sphere();

@@ -49,7 +49,7 @@
 //! τ ω ≲ 2 (the page's `stableDt` takes the bound). No τ where k = 0.
 //!
 //! The implicit integrator's matrix takes the Gauss–Newton part D w ∇θ ∇θᵀ of the Hessian
-//! (positive semi-definite, rank one per hinge, `implicit/system.rs`) and drops
+//! (positive semi-definite, rank one per hinge, `implicit/system/`) and drops
 //! D w (θ − θ̄) ∇²θ, which is indefinite and vanishes at the rest angle.
 //!
 //! A face crushed below half its frozen height over the edge fades its hinge's force and matrix

@@ -1,7 +1,7 @@
 //! Self-contacts inside the implicit solve: one-sided penalty springs between a vertex and a
 //! face of the same body, found by the world's contact broad and narrow phase at the start of
 //! the step (`world/contacts.rs`, [`crate::world::World`]'s stage 1) and coupled into the
-//! backward-Euler system (`implicit/system.rs`) like every other force.
+//! backward-Euler system (`implicit/system/`) like every other force.
 //!
 //! **Energy.** A vertex–face contact pairs vertex p with face (a, b, c) at barycentric weights
 //! w (Σ w = 1) of the closest point q found at the start of the step, with n the unit vector

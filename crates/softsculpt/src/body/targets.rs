@@ -8,7 +8,7 @@
 //! a zero-length spring to a fixed point plus a dashpot to the ground frame (the anchor is held
 //! still within a step). The explicit integrators add it as a force (stable for
 //! dt ≲ 2 / sqrt(k_t / m_i)); the implicit one also puts k_t I into the stiffness and c_t I into
-//! the damping of its system (`implicit/system.rs`), exactly, so any strength is stable: with
+//! the damping of its system (`implicit/system/`), exactly, so any strength is stable: with
 //! k_t ≫ m/dt² the vertex lands on the anchor in one step. It is external work, not part of the
 //! energies in the statistics. Pinned vertices ignore it. Kept in snapshots.
 

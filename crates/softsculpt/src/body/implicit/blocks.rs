@@ -1,7 +1,7 @@
 //! A hinged body's matrix as 3×3 blocks, row by row (block compressed sparse rows), for the
 //! conjugate gradient's many products.
 //!
-//! The evaluation leaves the matrix A = M + dt D + dt² K in pieces (`system.rs`): per spring
+//! The evaluation leaves the matrix A = M + dt D + dt² K in pieces (`system/`): per spring
 //! entry its (a, b, d) (the block B = a I + b d dᵀ), per hinge its coefficient c_h and gradient
 //! ∇θ (the rank-one c_h ∇θ ∇θᵀ over its four vertices), per vertex the scalar diagonal. A
 //! product from those pieces takes, per row, the springs' coefficients, a pass over every hinge

@@ -1,5 +1,5 @@
 //! The preconditioned conjugate gradient on A δ = −r (A = M + dt D + dt² K, symmetric positive
-//! definite after the projections of `system.rs`). Preconditioner (`multigrid/`): the inverse
+//! definite after the projections of `system/`). Preconditioner (`multigrid/`): the inverse
 //! of each vertex's 3×3 diagonal block (block Jacobi), or on large bodies an aggregation
 //! multigrid V-cycle. A is applied row by row (`System::product`): matrix-free from the
 //! evaluation's pieces, or from 3×3 blocks summed once a hinged body's solve runs long

@@ -50,7 +50,7 @@ pub struct Kept {
     /// The vertices the ground held then (their y no unknown), ascending.
     pub held: Vec<u32>,
     /// Whether compressed springs entered by the absolute value of their transverse factor
-    /// (`system.rs`).
+    /// (`system/`).
     pub absolute: bool,
     /// [`inputs`] then.
     pub inputs: u64,
@@ -102,7 +102,7 @@ impl Fx {
 /// A fingerprint of everything besides x_t, the held vertices and the projection that the
 /// coarse levels' assembly reads: the stiffnesses, dampings, rigidity, dt, the masses and
 /// pins, the springs' and bending springs' rest lengths, the hinges' weights (the system's
-/// coefficients `system.rs` and the multigrid's `assemble`). (Target springs also enter the
+/// coefficients `system/` and the multigrid's `assemble`). (Target springs also enter the
 /// coarse levels, through the diagonal: levels assembled with them are never kept, nor are
 /// kept ones used while they act.)
 pub(crate) fn inputs(fr: &Frame) -> u64 {

@@ -7,7 +7,7 @@
 //!   r(v⁺) = M (v⁺ − v) − dt f(x + dt v⁺, v⁺)        (kg·m/s per coordinate)
 //!
 //! each Newton step δ from A δ = −r with A = M + dt D + dt² K (K, D the projected stiffness and
-//! damping, `system.rs`) by a preconditioned conjugate gradient (`cg.rs`; block Jacobi, or a
+//! damping, `system/`) by a preconditioned conjugate gradient (`cg.rs`; block Jacobi, or a
 //! multigrid V-cycle from `multigrid::MULTIGRID_FROM` vertices, or
 //! `multigrid::HINGED_FROM` with the hinges on: `multigrid/`), then a
 //! line search along δ ([`Implicit::line_search`]). Anchors: Baraff & Witkin 1998 (large steps in cloth simulation).
@@ -140,7 +140,7 @@ const LINE_MAX: u32 = 6;
 /// an inexact linear solve, or a conjugate direction from [`CONJUGATE_FROM`] on, blurs this —
 /// a needless switch costs speed only), switches the rest of this Newton solve's matrices to the
 /// absolute-value projection of compressed springs (the multigrid's coarse levels are assembled
-/// again from them) (`system.rs`; Chen et al. 2024, "Trust-region eigenvalue filtering for
+/// again from them) (`system/`; Chen et al. 2024, "Trust-region eigenvalue filtering for
 /// projected Newton"). Why: on a compressed, flattened bottom (a body on the ground), a vertex
 /// whose springs are all compressed has almost nothing but its mass against moving out of the
 /// surface in the clamped matrix (m = 1e-4 kg against dt² k ≈ 0.14 kg at 10,242 vertices and
@@ -301,7 +301,7 @@ impl Implicit {
             if trial == 0 && s0 < 0.0 && s > -OVERSHOOT * s0 {
                 // The full step went well past the minimum along δ: the matrix under-estimates
                 // the curvature (`OVERSHOOT`); from here on this step's matrices take compressed
-                // springs' transverse stiffness by its absolute value (`system.rs`). The next
+                // springs' transverse stiffness by its absolute value (`system/`). The next
                 // trial's evaluation already builds them.
                 self.sys.absolute = true;
             }
@@ -419,7 +419,7 @@ impl Implicit {
 
     /// The coarse levels afresh from the system at the current iterate (`self.xt`), recorded as
     /// what the scratch levels now are — except with target springs, whose stiffness is in the
-    /// system's diagonal (`system.rs`) but not in [`Kept`]: levels assembled with them are
+    /// system's diagonal (`system/`) but not in [`Kept`]: levels assembled with them are
     /// never kept (`built` None: a later resting step assembles from the state's [`Kept`]
     /// again, as a restored world would).
     fn assemble(&mut self, fr: &Frame) {

@@ -1,4 +1,4 @@
-//! The step's incremental potential G(v⁺), whose gradient is the residual r (`system.rs`):
+//! The step's incremental potential G(v⁺), whose gradient is the residual r (`system/`):
 //!
 //!   G(v⁺) = ½ (v⁺ − v)ᵀ M (v⁺ − v) + E(x + dt v⁺) + dt R(v⁺)                 (J)
 //!
@@ -28,7 +28,7 @@
 //! over the vertices and one over the springs' frozen directions, no square roots: measured
 //! 573 ms of the 19.98 s of 180 budgeted frames of the grab at 5,762 vertices (2.9 %).
 //!
-//! The terms, each beside the force it is the potential of (the force's formula in `system.rs`):
+//! The terms, each beside the force it is the potential of (the force's formula in `system/`):
 //! - springs and bending springs: ½ k (l − L)², damping R = ½ cs ((v_j − v_i) · d)²;
 //! - hinges: ½ D w r² (r = θ − θ̄, faded at a crushed face), damping R = ½ D w τ ṙ²;
 //! - gas: −nRT ln(V / V₀) + P_ref (V − V₀) (`gas::energy`);

@@ -26,7 +26,7 @@ impl Level {
         }
     }
 
-    /// The hinges' rank-one blocks c ∇θ ∇θᵀ (`system.rs`): with w_q = P_qᵀ ∇_q θ = (g_q, r_q × g_q)
+    /// The hinges' rank-one blocks c ∇θ ∇θᵀ (`system/`): with w_q = P_qᵀ ∇_q θ = (g_q, r_q × g_q)
     /// (g_q's y zeroed where the ground holds the vertex; a pinned vertex is no unknown),
     /// Pᵀ (c ∇θ ∇θᵀ) P = c W Wᵀ with W_I = Σ_{q ∈ I} w_q summed per node first: block
     /// (I, J) gets c W_I W_Jᵀ, (J, I) its transpose (a hinge spans 1–4 nodes, ~2 on average:

@@ -72,7 +72,7 @@ pub(super) fn add_ptp(blk: &mut Blk, s: f64, ri: &[f64; 3], rj: &[f64; 3]) {
     }
 }
 
-/// A spring's 3×3 block B = a I + b d dᵀ (`system.rs`).
+/// A spring's 3×3 block B = a I + b d dᵀ (`system/`).
 #[inline(always)]
 pub(super) fn spring_block(a: f64, b: f64, d: &[f64; 3]) -> [[f64; 3]; 3] {
     std::array::from_fn(|p| std::array::from_fn(|q| b * d[p] * d[q] + if p == q { a } else { 0.0 }))

@@ -1,5 +1,5 @@
 //! The conjugate gradient's preconditioner: one aggregation-multigrid V-cycle on A = M + dt D +
-//! dt² K (`system.rs`), its coarse matrices built from the fine coefficients at the first
+//! dt² K (`system/`), its coarse matrices built from the fine coefficients at the first
 //! Newton iteration of every solve and again when the fine matrix changes its kind in it (the
 //! ground releases vertices, compressed springs switch to the absolute value: `stale` in
 //! `Implicit::newton`), or for a body nearly at rest kept from an earlier step (`keep.rs`). In
@@ -26,7 +26,7 @@
 //!
 //!   A_{l+1}[I, J] = Σ_{u ∈ I, w ∈ J} P_uᵀ A_l[u, w] P_w.
 //!
-//! On the finest level a spring block B = a I + b d dᵀ (see `system.rs`) between i ∈ I and
+//! On the finest level a spring block B = a I + b d dᵀ (see `system/`) between i ∈ I and
 //! j ∈ J adds P_iᵀ B P_i to A[I, I] and −P_iᵀ B P_j to A[I, J] (from row i; row j the mirror),
 //! with P_iᵀ B P_j = a P_iᵀ P_j + b w_i w_jᵀ, w_i = (d, r_i × d) and
 //! P_iᵀ P_j = [[I, −[r_j]×], [[r_i]×, (r_i·r_j) I − r_j r_iᵀ]]. Left out of the coarse
