@@ -12,12 +12,17 @@
 //!    integrator, dt, contacts): it holds obstacles and takes its defaults from the table.
 //! 4. `body`: a soft body, stepped with the settings it is handed.
 //! 5. `world`: the unit of simulation, which owns bodies and settings and runs the step.
-//! 6. `scene`, `snapshot`, `snapshot_v3`…`snapshot_v7`, `delta`, `workload`, `sketch`,
-//!    `compat`, and the crate root `lib`: they build, save, load, compare or drive whole
-//!    worlds.
+//! 6. `scene`, `snapshot`, `delta`, `workload`, `sketch`, `compat`, and the crate root `lib`:
+//!    they build, save, load, compare or drive whole worlds.
 //!
-//! Modules of one layer may import each other (`snapshot` and its `snapshot_vN` readers do both
-//! ways, as do `snapshot` and `delta`).
+//! Modules of one layer may import each other (`snapshot` and `delta` do both ways).
+//!
+//! The sub-modules of `snapshot` are its format's versions, each built on the one before
+//! (`SNAPSHOT_LAYERS`): `v1` (versions 1 and 2), `v3` … `v7`, then `mod` (the header, the
+//! policy, the reader that dispatches on the version). A version's file reads and writes its
+//! own extension and the payload below it; it never imports a newer version or `mod`. Before
+//! issue #39 they were `snapshot_v3` … `snapshot_v7` beside `snapshot.rs`, which imported them
+//! and was imported back for the older versions' types.
 //!
 //! The sub-modules of `mesh` form layers the same way (`MESH_LAYERS`; `mesh/mod.rs` only
 //! declares them and re-exports their names). Lowest first:
@@ -62,8 +67,12 @@ const LAYERS: &[&[&str]] = &[
     &["settings"],
     &["body"],
     &["world"],
-    &["scene", "snapshot", "snapshot_v3", "snapshot_v4", "snapshot_v5", "snapshot_v6", "snapshot_v7", "delta", "workload", "sketch", "compat", "lib"],
+    &["scene", "snapshot", "delta", "workload", "sketch", "compat", "lib"],
 ];
+
+/// The versions of the snapshot format, oldest first (`mod`: `snapshot/mod.rs`; see the
+/// module documentation).
+const SNAPSHOT_LAYERS: &[&[&str]] = &[&["v1"], &["v3"], &["v4"], &["v5"], &["v6"], &["v7"], &["mod"]];
 
 /// The layers of `mesh`'s sub-modules, lowest first (`mod`: `mesh/mod.rs`; see the module
 /// documentation).
@@ -94,6 +103,15 @@ fn no_mesh_module_imports_one_above_it() {
     assert!(mesh.modules.len() > 10 && mesh.modules.contains(&"format".to_string()), "the sub-modules of mesh were not found: {:?}", mesh.modules);
     let problems = mesh.layer_problems(MESH_LAYERS, "MESH_LAYERS in tests/layers.rs");
     assert!(problems.is_empty(), "{} imports from a higher layer of mesh (see tests/layers.rs):\n{}", problems.len(), problems.join("\n"));
+}
+
+#[test]
+fn no_snapshot_version_imports_a_newer_one() {
+    let files = sources(&src());
+    let snapshot = Level::new(&files, &["snapshot"], "mod");
+    assert_eq!(snapshot.modules.len(), 6, "the versions of snapshot were not found: {:?}", snapshot.modules);
+    let problems = snapshot.layer_problems(SNAPSHOT_LAYERS, "SNAPSHOT_LAYERS in tests/layers.rs");
+    assert!(problems.is_empty(), "{} imports of a newer snapshot version (see tests/layers.rs):\n{}", problems.len(), problems.join("\n"));
 }
 
 /// The scan reads what the compiler would: paths in `use` lines and inline, groups across

@@ -1,12 +1,12 @@
-//! Snapshot format version 5 (`crate::snapshot` holds the header, versions 1 and 2 and the
-//! policy; `crate::snapshot_v3` version 3, `crate::snapshot_v4` version 4): the version-4
+//! Snapshot format version 5 (`super` holds the header and the policy; `v1.rs` versions 1
+//! and 2, and each version below this one its own file): the version-4
 //! payload followed by [`ExtensionV5`], each body's flexural rigidity D (J, `Material::rigidity`,
 //! the hinges' bending energy). Versions 1 to 4 read with D = 0 (no hinge energy: what those
 //! versions' bodies had).
 //!
 //! Undo deltas (`crate::delta`, format 4) compare it with the material.
 
-use crate::snapshot::{payload_v4, world_from_v4, WorldV4};
+use super::v4::{payload_v4, world_from_v4, WorldV4};
 use crate::world::World;
 use serde::{Deserialize, Serialize};
 

@@ -1,12 +1,12 @@
-//! Snapshot format version 3 (`crate::snapshot` holds the header, versions 1 and 2 and the
-//! policy): the version-2 payload followed by [`ExtensionV3`], each body's plasticity (yield
+//! Snapshot format version 3 (`super` holds the header and the policy; `v1.rs` versions 1
+//! and 2, and each version below this one its own file): the version-2 payload followed by [`ExtensionV3`], each body's plasticity (yield
 //! strain, flow rate, the plastic dissipation so far) and whether its gas uses the bounding
 //! ellipsoid (the version-1 part then says `Exact` in its place); and which pending scene freezes
 //! keep the tension. Versions 1 and 2 read with the defaults: elastic, no dissipation, the
 //! volume mode the version-1 part names, freezes without keeping the tension.
 
 use crate::body::VolumeMode;
-use crate::snapshot::{payload, extension, ExtensionV2, WorldV1};
+use super::v1::{apply_extension, extension, payload, world_from_v1, ExtensionV2, WorldV1};
 use crate::world::{Action, World};
 use serde::{Deserialize, Serialize};
 
@@ -96,6 +96,20 @@ pub(crate) fn apply_extension3(w: &mut World, ext: &ExtensionV3) -> Result<(), S
 pub(crate) fn payload_v3(w: &World) -> WorldV3 {
     WorldV3 { base: payload(w), ext: extension(w), ext3: extension3(w) }
 }
+
+/// A world from a whole payload (an empty target list means none on any body, an empty
+/// version-3 list the defaults on every body).
+pub(crate) fn world_from_v3(v3: WorldV3) -> Result<World, String> {
+    let mut ext = v3.ext;
+    let mut world = world_from_v1(v3.base)?;
+    if ext.targets.is_empty() {
+        ext.targets = vec![Vec::new(); world.bodies.len()];
+    }
+    apply_extension(&mut world, &ext)?;
+    apply_extension3(&mut world, &v3.ext3)?;
+    Ok(world)
+}
+
 
 #[cfg(test)]
 mod tests {

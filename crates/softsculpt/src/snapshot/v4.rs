@@ -1,5 +1,5 @@
-//! Snapshot format version 4 (`crate::snapshot` holds the header, versions 1 and 2 and the
-//! policy; `crate::snapshot_v3` version 3): the version-3 payload followed by [`ExtensionV4`],
+//! Snapshot format version 4 (`super` holds the header and the policy; `v1.rs` versions 1
+//! and 2, and each version below this one its own file): the version-3 payload followed by [`ExtensionV4`],
 //! each body's implicit warm start — the velocity change v⁺ − v of its last accepted implicit
 //! step and that step's dt, from which the next implicit step starts its Newton iterations
 //! (`body/implicit/mod.rs`). A restored world therefore takes the same steps, bit for bit, as
@@ -9,7 +9,7 @@
 //!
 //! Undo deltas (`crate::delta`, format 3) keep it with the velocities (scope `All`).
 
-use crate::snapshot::{payload_v3, world_from_v3, WorldV3};
+use super::v3::{payload_v3, world_from_v3, WorldV3};
 use crate::world::World;
 use serde::{Deserialize, Serialize};
 

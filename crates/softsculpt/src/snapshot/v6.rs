@@ -1,5 +1,5 @@
-//! Snapshot format version 6 (`crate::snapshot` holds the header, versions 1 and 2 and the
-//! policy; `crate::snapshot_v3` to `crate::snapshot_v5` versions 3 to 5): the version-5 payload
+//! Snapshot format version 6 (`super` holds the header and the policy; `v1.rs` versions 1
+//! and 2, and each version below this one its own file): the version-5 payload
 //! followed by [`ExtensionV6`], each body's kept coarse levels — where the implicit integrator's
 //! multigrid levels it reuses while the body rests were assembled (`body/implicit/keep.rs`), so a
 //! restored world assembles the same levels and takes the same steps bit for bit. Versions 1
@@ -9,7 +9,7 @@
 //! Undo deltas (`crate::delta`, format 5) keep it with the velocities, as the warm start.
 
 use crate::body::implicit::Kept;
-use crate::snapshot::{payload_v5, world_from_v5, WorldV5};
+use super::v5::{payload_v5, world_from_v5, WorldV5};
 use crate::world::World;
 use serde::{Deserialize, Serialize};
 

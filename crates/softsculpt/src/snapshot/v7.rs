@@ -1,5 +1,5 @@
-//! Snapshot format version 7 (`crate::snapshot` holds the header, versions 1 and 2 and the
-//! policy; `crate::snapshot_v3` to `crate::snapshot_v6` versions 3 to 6): the version-6 payload
+//! Snapshot format version 7 (`super` holds the header and the policy; `v1.rs` versions 1
+//! and 2, and each version below this one its own file): the version-6 payload
 //! followed by [`ExtensionV7`]: each body's hinge rest angles where the plastic stage moved them
 //! off the frozen shape's (`body/plastic.rs`, "Bending"), and the pairs of bodies whose contacts
 //! are off until they part (`world/overlaps.rs`). Versions 1 to 6 read with the rest angles of
@@ -9,7 +9,7 @@
 //! Undo deltas (`crate::delta`, format 6) keep it with the rest lengths: what a plastic step
 //! changed, undo puts back.
 
-use crate::snapshot::{payload_v6, world_from_v6, WorldV6};
+use super::v6::{payload_v6, world_from_v6, WorldV6};
 use crate::world::World;
 use serde::{Deserialize, Serialize};
 
