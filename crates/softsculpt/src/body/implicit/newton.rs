@@ -5,7 +5,8 @@
 //! and one Newton step (linear solve, conjugate direction, line search). The loop's state is
 //! [`Solve`]; the maths is in the module doc of `mod.rs`.
 
-use super::{cg, ground, keep, weight_impulse, Implicit, Kept, SolverIterations, WARM_FROM};
+use super::search::WARM_FROM;
+use super::{cg, ground, keep, weight_impulse, Implicit, Kept, SolverIterations};
 use super::super::forces::Fault;
 use super::system::Frame;
 use crate::par::Threads;
