@@ -30,3 +30,13 @@ export function fieldText(v: number, digits = FIELD_DIGITS): string {
 export function volumeText(volume: number, closed: boolean): string {
   return closed ? `V ${sig3(volume)} m³` : 'open surface (no volume)';
 }
+
+/** Three significant digits as `toPrecision` writes them (0.0167, 0.500), '?' for a value not known: the worker's messages. */
+export function precision3(t: number | undefined): string {
+  return t === undefined ? '?' : t.toPrecision(3);
+}
+
+/** A fraction as a percentage: one decimal below 1 %, none above ("0.5 %", "12 %"). */
+export function percent(x: number): string {
+  return `${(100 * x).toFixed(x < 0.01 ? 1 : 0)} %`;
+}
