@@ -3,6 +3,7 @@
 //! they step on. Every call on a world finds it here ([`with_world`], [`with_body`]).
 //! Single-threaded (wasm32 without threads).
 
+use crate::abi::exports;
 use crate::views::BodyViews;
 use crate::{index, Fail, Res};
 use softsculpt::scene::SceneSpec;
@@ -108,87 +109,81 @@ pub struct SceneInfo {
     pub duration: f64,
 }
 
-/// An empty world with the parameter table's defaults.
-#[no_mangle]
-pub extern "C" fn ss_world_new() -> i32 {
-    index(|| Ok(insert(World::new(Vec::new(), WorldSettings::default()))))
-}
+exports! {
+    /// An empty world with the parameter table's defaults.
+    pub fn ss_world_new() -> i32 {
+        index(|| Ok(insert(World::new(Vec::new(), WorldSettings::default()))))
+    }
 
-#[no_mangle]
-pub extern "C" fn ss_world_free(w: u32) {
-    WORLDS.with(|t| {
-        if let Some(slot) = (w as usize)
-            .checked_sub(1)
-            .and_then(|i| t.borrow_mut().get_mut(i).map(Option::take))
-        {
-            drop(slot);
-        }
-    });
-}
+    pub fn ss_world_free(w: u32) {
+        WORLDS.with(|t| {
+            if let Some(slot) = (w as usize)
+                .checked_sub(1)
+                .and_then(|i| t.borrow_mut().get_mut(i).map(Option::take))
+            {
+                drop(slot);
+            }
+        });
+    }
 
-/// Step every world on `n` threads: the caller and n − 1 of the helper threads the page started
-/// (`ss_thread_serve`; 0: all of them). Returns the count in use; −1 (error) when the build has
-/// no threads (n > 1 without atomics) or too few helpers serve. 1 goes back to one thread.
-#[no_mangle]
-pub extern "C" fn ss_use_threads(n: u32) -> i32 {
-    index(|| {
-        if n > 1 && softsculpt::par::max_threads() < n as usize {
-            return Err(Fail::usage(format!(
-                "{n} threads asked for; this build runs {} (the threaded build needs the page cross-origin isolated)",
-                softsculpt::par::max_threads()
-            )));
-        }
-        // The old pool is dropped first, so its helpers serve the new one.
-        THREADS.with(|p| *p.borrow_mut() = softsculpt::par::Threads::single());
-        WORLDS.with(|t| t.borrow_mut().iter_mut().flatten().for_each(|h| h.world.share_threads(&softsculpt::par::Threads::single())));
-        let pool = softsculpt::par::Threads::new(n as usize).map_err(Fail::usage)?;
-        let count = pool.count();
-        THREADS.with(|p| *p.borrow_mut() = pool);
-        Ok(count)
-    })
-}
+    /// Step every world on `n` threads: the caller and n − 1 of the helper threads the page started
+    /// (`ss_thread_serve`; 0: all of them). Returns the count in use; −1 (error) when the build has
+    /// no threads (n > 1 without atomics) or too few helpers serve. 1 goes back to one thread.
+    pub fn ss_use_threads(n: u32) -> i32 {
+        index(|| {
+            if n > 1 && softsculpt::par::max_threads() < n as usize {
+                return Err(Fail::usage(format!(
+                    "{n} threads asked for; this build runs {} (the threaded build needs the page cross-origin isolated)",
+                    softsculpt::par::max_threads()
+                )));
+            }
+            // The old pool is dropped first, so its helpers serve the new one.
+            THREADS.with(|p| *p.borrow_mut() = softsculpt::par::Threads::single());
+            WORLDS.with(|t| t.borrow_mut().iter_mut().flatten().for_each(|h| h.world.share_threads(&softsculpt::par::Threads::single())));
+            let pool = softsculpt::par::Threads::new(n as usize).map_err(Fail::usage)?;
+            let count = pool.count();
+            THREADS.with(|p| *p.borrow_mut() = pool);
+            Ok(count)
+        })
+    }
 
-/// A helper thread's life (a Web Worker on the same module and shared memory, its stack and
-/// thread-local block set up: `web/src/engine/threads.ts`): serve the pool's passes; never
-/// returns. Threaded builds only; elsewhere it returns at once.
-#[no_mangle]
-pub extern "C" fn ss_thread_serve() {
-    #[cfg(all(target_arch = "wasm32", target_feature = "atomics"))]
-    softsculpt::par::serve();
-}
+    /// A helper thread's life (a Web Worker on the same module and shared memory, its stack and
+    /// thread-local block set up: `web/src/engine/threads.ts`): serve the pool's passes; never
+    /// returns. Threaded builds only; elsewhere it returns at once.
+    pub fn ss_thread_serve() {
+        #[cfg(all(target_arch = "wasm32", target_feature = "atomics"))]
+        softsculpt::par::serve();
+    }
 
-/// Passes a helper thread took part in so far (`softsculpt::par::passes_helped`), as f64.
-#[no_mangle]
-pub extern "C" fn ss_thread_passes() -> f64 {
-    softsculpt::par::passes_helped() as f64
-}
+    /// Passes a helper thread took part in so far (`softsculpt::par::passes_helped`), as f64.
+    pub fn ss_thread_passes() -> f64 {
+        softsculpt::par::passes_helped() as f64
+    }
 
-/// The address of the flag a helper's JavaScript sets (`Atomics.store`, u32) when its
-/// `ss_thread_serve` traps, so a pass waiting for it fails instead of waiting forever
-/// (`softsculpt::par::host`). 0 in builds without threads.
-#[no_mangle]
-pub extern "C" fn ss_thread_trapped_flag() -> usize {
-    #[cfg(all(target_arch = "wasm32", target_feature = "atomics"))]
-    return softsculpt::par::trapped_flag() as usize;
-    #[cfg(not(all(target_arch = "wasm32", target_feature = "atomics")))]
-    0
-}
+    /// The address of the flag a helper's JavaScript sets (`Atomics.store`, u32) when its
+    /// `ss_thread_serve` traps, so a pass waiting for it fails instead of waiting forever
+    /// (`softsculpt::par::host`). 0 in builds without threads.
+    pub fn ss_thread_trapped_flag() -> usize {
+        #[cfg(all(target_arch = "wasm32", target_feature = "atomics"))]
+        return softsculpt::par::trapped_flag() as usize;
+        #[cfg(not(all(target_arch = "wasm32", target_feature = "atomics")))]
+        0
+    }
 
-/// Threads the worlds step on (1 until `ss_use_threads`).
-#[no_mangle]
-pub extern "C" fn ss_threads() -> u32 {
-    THREADS.with(|p| p.borrow().count() as u32)
-}
+    /// Threads the worlds step on (1 until `ss_use_threads`).
+    pub fn ss_threads() -> u32 {
+        THREADS.with(|p| p.borrow().count() as u32)
+    }
 
-/// The standard benchmark workload at an icosphere level (see `softsculpt::workload`).
-#[no_mangle]
-pub extern "C" fn ss_workload(level: u32) -> i32 {
-    index(|| {
-        if level > 8 {
-            return Err(Fail::usage(format!(
-                "level {level} is too large (at most 8)"
-            )));
-        }
-        Ok(insert(softsculpt::workload::world(level)))
-    })
+    /// The standard benchmark workload at an icosphere level (see `softsculpt::workload`).
+    pub fn ss_workload(level: u32) -> i32 {
+        index(|| {
+            if level > 8 {
+                return Err(Fail::usage(format!(
+                    "level {level} is too large (at most 8)"
+                )));
+            }
+            Ok(insert(softsculpt::workload::world(level)))
+        })
+    }
 }

@@ -25,6 +25,10 @@
 //!   valid until a call that replaces bodies (`ss_add_*`, `ss_clear`, `ss_subdivide`,
 //!   `ss_restore`, `ss_open_scene`, `ss_apply_delta`, `ss_open_project_v1`): ask again after
 //!   those, and re-make the views after any call (memory growth).
+//! - **One table** (`abi.rs`): every call below is written once, in an `exports!` block of its
+//!   module, which records its name, doc comment and signature; the page's types for the calls
+//!   (`web/src/engine/abi.ts`), with the layout table's slots, the stats order and the delta
+//!   scope codes, are written from it by `tests/abi.rs` (`UPDATE_ABI=1`), never by hand.
 //!
 //! # Calls
 //! | call | does |
@@ -39,6 +43,7 @@
 //! | `ss_thread_serve()`, `ss_thread_trapped_flag() -> ptr` | a helper Web Worker's life on the shared memory (never returns; `web/src/engine/threads.ts`); the u32 it sets when that traps |
 //! | `ss_add_builtin(w, name, len, mass) -> b` | a built-in model (`sphere`, `mushroom`, `octopus`…) of `mass` kg |
 //! | `ss_add_mesh(w, pos, n_vertices, idx, n_indices, mass, prepare) -> b` | an indexed mesh (f64 xyz, u32 indices); `prepare` 1 = weld, check, orient and reorder like a file, 0 = exactly as given; result: warnings JSON |
+//! | `ss_add_sketch(w, xy, n, edge, mass) -> b` | a balloon sketched from a closed outline of n points (f64 x y, m), inflated to rest (`softsculpt::sketch`); `edge` ≤ 0: the default edge length |
 //! | `ss_add_obj(w, bytes, len, mass) -> b` | an OBJ file; result: warnings JSON (array of strings) |
 //! | `ss_add_file(w, name, len, bytes, len, split, mass) -> b` | a mesh file of any format (`softsculpt::mesh::load`), one body or one per piece (`split` = 1, largest first); result: `{format, up_axis, pieces, …}` (`import.rs`) |
 //! | `ss_apply_preset_scaled(w, b, name, len, size)` | `World::apply_preset_scaled`: the preset for a model `size` times as large (similarity); result: gas parameters skipped on an open body |
@@ -49,6 +54,7 @@
 //! | `ss_forget_rewind(w)` | `World::forget_rewind`: the page changed the model |
 //! | `ss_stable_dt(w, name, len) -> f64` | `World::stable_dt`: the explicit integrator's largest stable step (s) for every body; 0 for implicit; −1 error |
 //! | `ss_body_accuracy(w, b) -> f64` | the relative residual body b's last implicit step was accepted at when its deadline stopped it (0: converged; −1: error) |
+//! | `ss_body_newton_iterations(w, b)` | Newton iterations of body b's last step (0 after an explicit one) |
 //! | `ss_body_relaxed(w, b)` | what of the hinges body b's last step let go of: 0 nothing, 1 crushed faces', 2 all (`Relaxed`) |
 //! | `ss_sync(w)` | refresh every body's f32 render positions, pins and stats |
 //! | `ss_body_count(w)`, `ss_body_views(w, b) -> ptr` | bodies; body b's layout table (`views.rs`) |
@@ -78,6 +84,7 @@
 //! | `ss_apply_delta(w, ptr, len)` | apply a delta; result: its inverse's bytes |
 //! | `ss_open_project_v1(w, ptr, len)` | a version-1 project file of the modeler becomes the world; result `{name, ui}` |
 
+pub mod abi;
 mod handle;
 mod history;
 mod import;
@@ -85,6 +92,9 @@ mod scene;
 mod views;
 mod world;
 
+use abi::exports;
+pub use history::{DeltaScopeCode, SCOPES};
+pub use views::{Slot, Stat, LAYOUT_LEN, SLOTS, STATS, STATS_LEN};
 use std::cell::RefCell;
 
 /// Why a call failed: a kind, a message, and extra fields for the error JSON.
@@ -174,61 +184,63 @@ pub(crate) unsafe fn text<'a>(ptr: *const u8, len: usize, what: &str) -> Res<&'a
     })
 }
 
-/// Allocate `len` bytes in wasm memory for the page to fill.
-#[no_mangle]
-pub extern "C" fn ss_alloc(len: usize) -> *mut u8 {
-    let mut v = Vec::<u8>::with_capacity(len.max(1));
-    let p = v.as_mut_ptr();
-    std::mem::forget(v);
-    p
-}
+exports! {
+    /// Allocate `len` bytes in wasm memory for the page to fill.
+    pub fn ss_alloc(len: usize) -> *mut u8 {
+        let mut v = Vec::<u8>::with_capacity(len.max(1));
+        let p = v.as_mut_ptr();
+        std::mem::forget(v);
+        p
+    }
 
-/// Free memory from [`ss_alloc`].
-///
-/// # Safety
-/// `ptr` and `len` must come from one call of `ss_alloc`.
-#[no_mangle]
-pub unsafe extern "C" fn ss_dealloc(ptr: *mut u8, len: usize) {
-    if !ptr.is_null() {
-        drop(Vec::from_raw_parts(ptr, 0, len.max(1)));
+    /// Free memory from [`ss_alloc`].
+    ///
+    /// # Safety
+    /// `ptr` and `len` must come from one call of `ss_alloc`.
+    pub unsafe fn ss_dealloc(ptr: *mut u8, len: usize) {
+        if !ptr.is_null() {
+            drop(Vec::from_raw_parts(ptr, 0, len.max(1)));
+        }
+    }
+
+    /// The last error, JSON (see the crate documentation).
+    pub fn ss_error_ptr() -> *const u8 {
+        ERROR.with(|e| e.borrow().as_ptr())
+    }
+    pub fn ss_error_len() -> usize {
+        ERROR.with(|e| e.borrow().len())
+    }
+
+    /// The last result's bytes.
+    pub fn ss_result_ptr() -> *const u8 {
+        RESULT.with(|r| r.borrow().as_ptr())
+    }
+    pub fn ss_result_len() -> usize {
+        RESULT.with(|r| r.borrow().len())
+    }
+
+    /// The material presets as JSON (`softsculpt::params::material_presets_json`: name, help) in the
+    /// result slot.
+    pub fn ss_material_presets() -> i32 {
+        status(|| {
+            set_result(softsculpt::params::material_presets_json().into_bytes());
+            Ok(())
+        })
+    }
+
+    /// The parameter table as JSON (`softsculpt::params::table_json`) in the result slot.
+    pub fn ss_param_table() -> i32 {
+        status(|| {
+            set_result(softsculpt::params::table_json().into_bytes());
+            Ok(())
+        })
     }
 }
 
-/// The last error, JSON (see the crate documentation).
-#[no_mangle]
-pub extern "C" fn ss_error_ptr() -> *const u8 {
-    ERROR.with(|e| e.borrow().as_ptr())
-}
-#[no_mangle]
-pub extern "C" fn ss_error_len() -> usize {
-    ERROR.with(|e| e.borrow().len())
-}
-
-/// The last result's bytes.
-#[no_mangle]
-pub extern "C" fn ss_result_ptr() -> *const u8 {
-    RESULT.with(|r| r.borrow().as_ptr())
-}
-#[no_mangle]
-pub extern "C" fn ss_result_len() -> usize {
-    RESULT.with(|r| r.borrow().len())
-}
-
-/// The material presets as JSON (`softsculpt::params::material_presets_json`: name, help) in the
-/// result slot.
-#[no_mangle]
-pub extern "C" fn ss_material_presets() -> i32 {
-    status(|| {
-        set_result(softsculpt::params::material_presets_json().into_bytes());
-        Ok(())
-    })
-}
-
-/// The parameter table as JSON (`softsculpt::params::table_json`) in the result slot.
-#[no_mangle]
-pub extern "C" fn ss_param_table() -> i32 {
-    status(|| {
-        set_result(softsculpt::params::table_json().into_bytes());
-        Ok(())
-    })
+/// Every raw export of the binding, module by module (`abi.rs`): what `tests/abi.rs` writes the
+/// page's `web/src/engine/abi.ts` from.
+pub fn exports() -> impl Iterator<Item = &'static abi::Export> {
+    [EXPORTS, handle::EXPORTS, world::EXPORTS, import::EXPORTS, scene::EXPORTS, history::EXPORTS]
+        .into_iter()
+        .flatten()
 }

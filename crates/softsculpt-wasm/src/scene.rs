@@ -15,6 +15,7 @@
 //! world coordinates), `{"kind":"capsule","a":[…],"b":[…],"radius":r}`,
 //! `{"kind":"mesh","positions":[x0,y0,z0,…],"indices":[i0,i1,i2,…]}`.
 
+use crate::abi::exports;
 use crate::handle::{with_world, SceneInfo};
 use crate::{bytes, set_result, status, text, Fail};
 use serde_json::json;
@@ -40,104 +41,6 @@ fn scene_fail(e: SceneError) -> Fail {
     f
 }
 
-/// Make a file (`name`, bytes) available to the next `ss_open_scene`.
-///
-/// # Safety
-/// The pointers must point to `name_len` and `len` readable bytes.
-#[no_mangle]
-pub unsafe extern "C" fn ss_scene_file(
-    name: *const u8,
-    name_len: usize,
-    ptr: *const u8,
-    len: usize,
-) -> i32 {
-    status(|| {
-        let name = text(name, name_len, "the file name")?.to_string();
-        let data = bytes(ptr, len).to_vec();
-        FILES.with(|f| f.borrow_mut().insert(name, data));
-        Ok(())
-    })
-}
-
-/// The world becomes the scene's (bodies, settings, events, clock at 0); result
-/// `{"names": […], "dt": s, "duration": s}`. On error (kind `scene`, with `line` and `key`
-/// when known) the world is untouched.
-///
-/// # Safety
-/// `ptr` must point to `len` readable bytes.
-#[no_mangle]
-pub unsafe extern "C" fn ss_open_scene(w: u32, ptr: *const u8, len: usize) -> i32 {
-    let files = FILES.with(|f| std::mem::take(&mut *f.borrow_mut()));
-    status(|| {
-        let text = text(ptr, len, "the scene")?;
-        let mut resolve = |path: &str| -> Result<Vec<u8>, String> {
-            let base = path.rsplit(['/', '\\']).next().unwrap_or(path);
-            files
-                .get(path)
-                .or_else(|| files.get(base))
-                .cloned()
-                .ok_or_else(|| format!("not given: open '{base}' together with the scene"))
-        };
-        let run = SceneRun::load(text, &mut resolve).map_err(scene_fail)?;
-        with_world(w, |h| {
-            let SceneRun {
-                spec,
-                world,
-                names,
-                duration,
-                ..
-            } = run;
-            set_result(
-                json!({ "names": names, "dt": world.settings.dt, "duration": duration })
-                    .to_string()
-                    .into_bytes(),
-            );
-            h.world = world;
-            h.scene = Some(SceneInfo {
-                spec,
-                names,
-                duration,
-            });
-            h.rebuild_views();
-            Ok(())
-        })
-    })
-}
-
-/// The world as a scene file (TOML) in the result: bodies as they are now (named as in the
-/// open scene, `body1`, … otherwise), the world's settings, the open scene's obstacles and
-/// events and its length (the table's default duration otherwise).
-#[no_mangle]
-pub extern "C" fn ss_save_scene(w: u32) -> i32 {
-    status(|| {
-        with_world(w, |h| {
-            if h.world.bodies.is_empty() {
-                return Err(Fail::usage("no bodies to save"));
-            }
-            let scene = h.scene.as_ref();
-            let names: Vec<String> = (0..h.world.bodies.len())
-                .map(|k| {
-                    scene
-                        .and_then(|s| s.names.get(k).cloned())
-                        .unwrap_or_else(|| format!("body{}", k + 1))
-                })
-                .collect();
-            let pairs: Vec<(&str, &SoftBody)> = names
-                .iter()
-                .map(String::as_str)
-                .zip(&h.world.bodies)
-                .collect();
-            let duration = scene.map_or(params::DURATION.number(), |s| s.duration);
-            let spec =
-                scene::save::scene_of(&h.world.settings, &pairs, duration, scene.map(|s| &s.spec));
-            let toml = scene::to_toml(&spec)
-                .map_err(|e| Fail::new("scene", format!("cannot write the scene: {e}")))?;
-            set_result(toml.into_bytes());
-            Ok(())
-        })
-    })
-}
-
 fn obstacle_json(o: &Obstacle) -> serde_json::Value {
     let mut v = match &o.shape {
         Shape::Sphere { center, radius } => {
@@ -157,20 +60,116 @@ fn obstacle_json(o: &Obstacle) -> serde_json::Value {
     v
 }
 
-/// The world's obstacles as JSON in the result (see the module documentation).
-#[no_mangle]
-pub extern "C" fn ss_obstacles(w: u32) -> i32 {
-    status(|| {
-        with_world(w, |h| {
-            let list: Vec<serde_json::Value> = h
-                .world
-                .settings
-                .obstacles
-                .iter()
-                .map(obstacle_json)
-                .collect();
-            set_result(serde_json::Value::Array(list).to_string().into_bytes());
+exports! {
+    /// Make a file (`name`, bytes) available to the next `ss_open_scene`.
+    ///
+    /// # Safety
+    /// The pointers must point to `name_len` and `len` readable bytes.
+    pub unsafe fn ss_scene_file(
+        name: *const u8,
+        name_len: usize,
+        ptr: *const u8,
+        len: usize,
+    ) -> i32 {
+        status(|| {
+            let name = text(name, name_len, "the file name")?.to_string();
+            let data = bytes(ptr, len).to_vec();
+            FILES.with(|f| f.borrow_mut().insert(name, data));
             Ok(())
         })
-    })
+    }
+
+    /// The world becomes the scene's (bodies, settings, events, clock at 0); result
+    /// `{"names": […], "dt": s, "duration": s}`. On error (kind `scene`, with `line` and `key`
+    /// when known) the world is untouched.
+    ///
+    /// # Safety
+    /// `ptr` must point to `len` readable bytes.
+    pub unsafe fn ss_open_scene(w: u32, ptr: *const u8, len: usize) -> i32 {
+        let files = FILES.with(|f| std::mem::take(&mut *f.borrow_mut()));
+        status(|| {
+            let text = text(ptr, len, "the scene")?;
+            let mut resolve = |path: &str| -> Result<Vec<u8>, String> {
+                let base = path.rsplit(['/', '\\']).next().unwrap_or(path);
+                files
+                    .get(path)
+                    .or_else(|| files.get(base))
+                    .cloned()
+                    .ok_or_else(|| format!("not given: open '{base}' together with the scene"))
+            };
+            let run = SceneRun::load(text, &mut resolve).map_err(scene_fail)?;
+            with_world(w, |h| {
+                let SceneRun {
+                    spec,
+                    world,
+                    names,
+                    duration,
+                    ..
+                } = run;
+                set_result(
+                    json!({ "names": names, "dt": world.settings.dt, "duration": duration })
+                        .to_string()
+                        .into_bytes(),
+                );
+                h.world = world;
+                h.scene = Some(SceneInfo {
+                    spec,
+                    names,
+                    duration,
+                });
+                h.rebuild_views();
+                Ok(())
+            })
+        })
+    }
+
+    /// The world as a scene file (TOML) in the result: bodies as they are now (named as in the
+    /// open scene, `body1`, … otherwise), the world's settings, the open scene's obstacles and
+    /// events and its length (the table's default duration otherwise).
+    pub fn ss_save_scene(w: u32) -> i32 {
+        status(|| {
+            with_world(w, |h| {
+                if h.world.bodies.is_empty() {
+                    return Err(Fail::usage("no bodies to save"));
+                }
+                let scene = h.scene.as_ref();
+                let names: Vec<String> = (0..h.world.bodies.len())
+                    .map(|k| {
+                        scene
+                            .and_then(|s| s.names.get(k).cloned())
+                            .unwrap_or_else(|| format!("body{}", k + 1))
+                    })
+                    .collect();
+                let pairs: Vec<(&str, &SoftBody)> = names
+                    .iter()
+                    .map(String::as_str)
+                    .zip(&h.world.bodies)
+                    .collect();
+                let duration = scene.map_or(params::DURATION.number(), |s| s.duration);
+                let spec =
+                    scene::save::scene_of(&h.world.settings, &pairs, duration, scene.map(|s| &s.spec));
+                let toml = scene::to_toml(&spec)
+                    .map_err(|e| Fail::new("scene", format!("cannot write the scene: {e}")))?;
+                set_result(toml.into_bytes());
+                Ok(())
+            })
+        })
+    }
+
+    /// The world's obstacles as JSON in the result (see the module documentation).
+    pub fn ss_obstacles(w: u32) -> i32 {
+        status(|| {
+            with_world(w, |h| {
+                let list: Vec<serde_json::Value> = h
+                    .world
+                    .settings
+                    .obstacles
+                    .iter()
+                    .map(obstacle_json)
+                    .collect();
+                set_result(serde_json::Value::Array(list).to_string().into_bytes());
+                Ok(())
+            })
+        })
+    }
 }

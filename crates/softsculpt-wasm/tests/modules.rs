@@ -2,6 +2,8 @@
 //!
 //! 0. `lib`: the crate root: the error and result slots, `Fail`, and the small helpers every call
 //!    uses (`status`, `index`, `bytes`, `text`).
+//!    `abi`: the `exports!` macro every module writes its calls with, and the table's types; it
+//!    imports nothing of the crate.
 //! 1. `views`: what the binding keeps beside a body for the page (`BodyViews`, the layout table).
 //! 2. `handle`: the table of world handles (`Handle`: a world, its bodies' views, the mark, the
 //!    open scene's record `SceneInfo`), `with_world`, and the calls that make and free worlds.

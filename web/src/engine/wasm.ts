@@ -1,72 +1,16 @@
 // The only module that touches the WebAssembly engine (crates/softsculpt-wasm). It loads the
-// module, types its raw exports, and reads its error and result slots. The calls are documented
-// in one place: the crate documentation of crates/softsculpt-wasm/src/lib.rs (and web/README.md).
+// module and reads its error and result slots; its raw exports' types come from the binding's
+// table (./abi.ts, written from the Rust side). The calls are documented in one place: the crate
+// documentation of crates/softsculpt-wasm/src/lib.rs (and web/README.md).
 //
 // Conventions: fallible calls return 0 / an index ≥ 0, or −1 on failure (then `errorJson()`);
 // data comes back in the result slot (`resultBytes()`, `resultText()`). Any call may grow wasm
 // memory, which replaces `memory.buffer`: typed arrays over it must be re-made after every call.
 
+import type { RawEngine } from './abi';
 import { loadThreaded } from './threads';
 
-export interface RawEngine {
-  memory: WebAssembly.Memory;
-  ss_alloc(len: number): number;
-  ss_dealloc(ptr: number, len: number): void;
-  ss_error_ptr(): number;
-  ss_error_len(): number;
-  ss_result_ptr(): number;
-  ss_result_len(): number;
-  ss_world_new(): number;
-  ss_world_free(w: number): void;
-  ss_workload(level: number): number;
-  ss_add_builtin(w: number, name: number, len: number, mass: number): number;
-  ss_add_mesh(w: number, pos: number, nVertices: number, idx: number, nIndices: number, mass: number, prepare: number): number;
-  ss_add_sketch(w: number, xy: number, nPoints: number, edge: number, mass: number): number;
-  ss_add_obj(w: number, ptr: number, len: number, mass: number): number;
-  ss_add_file(w: number, name: number, nameLen: number, ptr: number, len: number, split: number, mass: number): number;
-  ss_apply_preset_scaled(w: number, b: number, name: number, len: number, size: number): number;
-  ss_animation_glb(times: number, nFrames: number, counts: number, nTracks: number, tris: number, frames: number): number;
-  ss_clear(w: number): number;
-  ss_step(w: number, n: number): number;
-  ss_sync(w: number): number;
-  ss_body_count(w: number): number;
-  ss_body_views(w: number, b: number): number;
-  ss_body_newton_iterations(w: number, b: number): number;
-  ss_body_relaxed(w: number, b: number): number;
-  ss_body_accuracy(w: number, b: number): number;
-  ss_stable_dt(w: number, name: number, len: number): number;
-  ss_advance(w: number, frameDt: number, seconds: number, minAccuracy: number, splits: number, relax: number, rewind: number): number;
-  ss_forget_rewind(w: number): number;
-  ss_param_table(): number;
-  ss_material_presets(): number;
-  ss_params(w: number, b: number): number;
-  ss_set_param(w: number, b: number, id: number, idLen: number, json: number, jsonLen: number): number;
-  ss_apply_preset(w: number, b: number, name: number, len: number): number;
-  ss_freeze(w: number, b: number, underLoad: number, keepTension: number): number;
-  ss_reset(w: number, b: number): number;
-  ss_subdivide(w: number, b: number): number;
-  ss_move_ground(w: number, height: number): number;
-  ss_let_overlapping_be(w: number): number;
-  ss_remesh(w: number, b: number, edge: number, underLoad: number): number;
-  ss_quality(w: number, b: number): number;
-  ss_scale_rest(w: number, b: number): number;
-  ss_set_masses(w: number, b: number): number;
-  ss_set_pins(w: number, b: number): number;
-  ss_apply_loads(w: number, b: number): number;
-  ss_set_targets(w: number, b: number, ptr: number, count: number): number;
-  ss_snapshot(w: number): number;
-  ss_restore(w: number, ptr: number, len: number): number;
-  ss_scene_file(name: number, nameLen: number, ptr: number, len: number): number;
-  ss_open_scene(w: number, ptr: number, len: number): number;
-  ss_save_scene(w: number): number;
-  ss_obstacles(w: number): number;
-  ss_mark(w: number): number;
-  ss_delta(w: number, scope: number): number;
-  ss_apply_delta(w: number, ptr: number, len: number): number;
-  ss_open_project_v1(w: number, ptr: number, len: number): number;
-  ss_use_threads(n: number): number;
-  ss_threads(): number;
-}
+export type { RawEngine };
 
 let engine: RawEngine | null = null;
 /** Threads the engine steps on (`engineThreads`). */

@@ -7,7 +7,10 @@
 // openScene, applyDelta, openProjectV1). Get it again after a call — the getters re-make
 // the arrays when needed and are cheap otherwise — and never keep one across calls.
 
+import { LAYOUT_LEN, SCOPE, SLOT, STATS_LEN, readStats, type DeltaScope, type Stats } from './abi';
 import { errorJson, raw, resultBytes, resultText, view, withArrays, withBytes } from './wasm';
+
+export type { DeltaScope, Stats };
 
 /** What `ss_remesh` reports (lengths in m; `volume_change` relative, before the remesher's correction). */
 export interface RemeshReport {
@@ -65,12 +68,6 @@ function check(r: number): number {
 }
 
 const encode = (s: string) => new TextEncoder().encode(s);
-
-export interface Stats {
-  step: number; time: number; volume: number; pressure: number;
-  kinetic: number; elastic: number; gas: number; gravity: number; total: number;
-  momentum: [number, number, number]; centerOfMass: [number, number, number]; maxSpeed: number;
-}
 
 export type ParamValue = number | boolean | string | [number, number, number];
 
@@ -135,19 +132,8 @@ export function animationGlb(times: Float64Array, tracks: { triangles: Uint32Arr
   return resultBytes();
 }
 
-/** What an undo delta keeps (crates/softsculpt/src/delta.rs): 'whole' is the world as it was at the mark, whatever the steps since did. */
-export type DeltaScope = 'none' | 'touched' | 'all' | 'whole';
-
 /** What a freeze leaves unbalanced (`softsculpt::body::FreezeReport`): forces in N. */
 export interface FreezeReport { residual: number; load: number; iterations: number; clamped: number }
-const SCOPES: Record<DeltaScope, number> = { none: 0, touched: 1, all: 2, whole: 3 };
-
-// Slots of the layout table (crates/softsculpt-wasm/src/views.rs).
-const L = {
-  n: 0, f: 1, s: 2, k: 3, positions: 4, velocities: 5, render: 6, triangles: 7, springs: 8, masses: 9,
-  pinned: 10, rest: 11, bendingRest: 12, userForces: 13, facePressures: 14, scratch: 15, stats: 16,
-} as const;
-const LAYOUT_LEN = 17;
 
 /** Body `index` of a world: counts and typed-array views (see the file comment). */
 export class BodyView {
@@ -172,20 +158,20 @@ export class BodyView {
     return this.layoutCopy;
   }
 
-  private get<T extends ArrayBufferView>(slot: keyof typeof L, make: (ptr: number, len: number) => T, len: number): T {
+  private get<T extends ArrayBufferView>(slot: keyof typeof SLOT, make: (ptr: number, len: number) => T, len: number): T {
     const l = this.layout();
     let a = this.cache.get(slot) as T | undefined;
     if (!a) {
-      a = make(l[L[slot]], len);
+      a = make(l[SLOT[slot]], len);
       this.cache.set(slot, a);
     }
     return a;
   }
 
-  get vertexCount(): number { return this.layout()[L.n]; }
-  get faceCount(): number { return this.layout()[L.f]; }
-  get springCount(): number { return this.layout()[L.s]; }
-  get bendingCount(): number { return this.layout()[L.k]; }
+  get vertexCount(): number { return this.layout()[SLOT.n]; }
+  get faceCount(): number { return this.layout()[SLOT.f]; }
+  get springCount(): number { return this.layout()[SLOT.s]; }
+  get bendingCount(): number { return this.layout()[SLOT.k]; }
 
   /** The engine's positions (m, xyz per vertex): read only. */
   get positions(): Float64Array { return this.get('positions', view.f64, 3 * this.vertexCount); }
@@ -208,11 +194,7 @@ export class BodyView {
 
   /** Statistics as of the last `sync()`. */
   get stats(): Stats {
-    const s = this.get('stats', view.f64, 16);
-    return {
-      step: s[0], time: s[1], volume: s[2], pressure: s[3], kinetic: s[4], elastic: s[5], gas: s[6],
-      gravity: s[7], total: s[8], momentum: [s[9], s[10], s[11]], centerOfMass: [s[12], s[13], s[14]], maxSpeed: s[15],
-    };
+    return readStats(this.get('stats', view.f64, STATS_LEN));
   }
 }
 
@@ -455,7 +437,7 @@ export class World {
   mark(): void { this.call((w) => raw().ss_mark(w)); }
   /** Bytes of a delta that takes the world back to the mark. */
   delta(scope: DeltaScope): Uint8Array {
-    this.call((w) => raw().ss_delta(w, SCOPES[scope]));
+    this.call((w) => raw().ss_delta(w, SCOPE[scope]));
     return resultBytes();
   }
   /** Apply a delta; returns its inverse (to redo what it undid). Throws kind 'delta' (world untouched). */
