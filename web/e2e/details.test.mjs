@@ -10,7 +10,7 @@ import { mkdirSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { browserSuite, inspect, openModeler, shot } from './harness.mjs';
+import { animationFrames, browserSuite, inspect, openModeler, shot } from './harness.mjs';
 
 const suite = browserSuite();
 /** A fresh page on the modeler, closed after test `t` whether it passes or not (a failed test's page would keep simulating). */
@@ -219,13 +219,13 @@ test('the wind arrow stays inside the view, as the wind is set and as the view t
   await page.mouse.move(100, 700);
   await page.keyboard.press('w');
   await page.waitForFunction(() => window.softsculpt.windArrow().visible, null, { timeout: 10000 });
-  await page.waitForTimeout(300);
+  await animationFrames(page); // the arrow is placed as the view is drawn
   await inside('after W');
   // A quarter turn of the view (a drag on empty space): the wind now blows across the screen.
   await page.mouse.down();
   await page.mouse.move(350, 700, { steps: 10 });
   await page.mouse.up();
-  await page.waitForTimeout(300);
+  await animationFrames(page); // the view turns at once with the mouse, the arrow with the next drawing
   await inside('after turning the view');
   await shot(page, 'details-08-wind-arrow');
   assert.deepEqual(errors, []);

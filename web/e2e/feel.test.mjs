@@ -7,7 +7,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { browserSuite, dist, drag, inspect, openModeler, settle, shot, topVertex, vertex } from './harness.mjs';
+import { animationFrames, browserSuite, dist, drag, inspect, openModeler, settle, shot, simulate, steady, topVertex, until, vertex } from './harness.mjs';
 
 const suite = browserSuite();
 
@@ -15,9 +15,12 @@ const modelList = (page) => page.locator('.lil-controller', { hasText: 'built-in
 async function load(page, name) {
   await modelList(page).selectOption(name);
   await page.waitForFunction((n) => window.softsculpt.settings().model === n && !window.softsculpt.busy(), name, { timeout: 60000 });
-  await page.waitForTimeout(500);
+  // A model arrives at rest: half a simulated second lets it start moving before it is seen to settle.
+  await simulate(page, 0.5);
   await settle(page, 0.05, 30000);
 }
+/** The material list's value as shown (lil-gui's select named "material"). */
+const materialShown = (page, value) => until(page, (v) => [...document.querySelectorAll('.lil-controller')].find((c) => c.querySelector('.lil-name')?.textContent === 'material')?.querySelector('select')?.value === v, value, 15000);
 const view = (page) => inspect(page, () => window.softsculpt.view());
 /** The camera's azimuth about the vertical through its target (degrees). */
 const azimuth = (v) => (Math.atan2(v.position[2] - v.target[2], v.position[0] - v.target[0]) * 180) / Math.PI;
@@ -46,18 +49,25 @@ test('shortcuts work after clicking the panel, and letter keys never change the 
   await load(page, 'sphere');
   await modelList(page).focus();
   await page.keyboard.press('m');
-  await page.waitForTimeout(800);
+  await until(page, () => window.softsculpt.tool() === 'mass');
+  // Had the list taken the key, its load would be handled by the worker before these steps.
+  await simulate(page, 0.3);
   assert.equal(await inspect(page, () => window.softsculpt.tool()), 'mass');
   assert.equal(await inspect(page, () => window.softsculpt.settings().model), 'sphere');
   assert.equal(await inspect(page, () => window.softsculpt.vertexCount()), 642);
   // Space after a button click plays or pauses; it does not click the button again.
   const undoSizes = await inspect(page, () => window.softsculpt.history());
   await page.locator('#panel button', { hasText: 'Undo' }).click();
-  await page.waitForTimeout(300);
+  // The worker takes commands between its ticks, in order: frames simulated after the click carry the undo's history.
+  await simulate(page, 0.2);
   const afterUndo = await inspect(page, () => window.softsculpt.history());
   await page.keyboard.press('Space');
-  await page.waitForTimeout(300);
+  await until(page, () => window.softsculpt.playing() === false);
   assert.equal(await inspect(page, () => window.softsculpt.playing()), false);
+  // Paused, the worker sends nothing to wait on: Space again plays (had Space clicked the button,
+  // it would undo once more each time), and the frames simulated then carry any undo sent before.
+  await page.keyboard.press('Space');
+  await simulate(page, 0.2);
   assert.deepEqual(await inspect(page, () => window.softsculpt.history()), afterUndo, `one undo only (before: ${undoSizes})`);
   assert.deepEqual(errors, []);
   await page.context().close();
@@ -71,13 +81,14 @@ test('the camera turns as a turntable, stops with the mouse, keeps the horizon l
   // A 60 px drag on empty space (the lower left, off the model).
   await page.mouse.move(150, 500);
   await page.mouse.down();
-  for (let i = 1; i <= 10; i++) { await page.mouse.move(150 + 6 * i, 500); await page.waitForTimeout(16); }
+  for (let i = 1; i <= 10; i++) { await page.mouse.move(150 + 6 * i, 500); await page.waitForTimeout(16); } // paces the moves, as a hand does
   await page.mouse.up();
   const v1 = await view(page);
   const turned = Math.abs(azimuth(v1) - azimuth(v0));
   // 0.8 turns per view height: 0.8 · 360° · 60 / 800 ≈ 21.6°; before, the trackball turned ~60°.
   assert.ok(turned > 10 && turned < 35, `turned ${turned}° for 60 px`);
-  await page.waitForTimeout(1500);
+  // Inertia (damped per frame) or an ease (per page second) would show within 90 frames (1.5 s at 60 fps, longer on a slow page).
+  await animationFrames(page, 90);
   const v2 = await view(page);
   assert.ok(dist(v1.position, v2.position) < 1e-9, 'no drift after the mouse stops');
   // Dragged far up and down: never under the floor (the ground would hide the model).
@@ -93,7 +104,8 @@ test('the camera turns as a turntable, stops with the mouse, keeps the horizon l
   assert.ok(Math.abs(v1.right[1]) < 1e-9, `horizon tilt ${v1.right[1]}`);
   // Twenty wheel clicks inward: the camera stops outside the model's bounding sphere.
   await page.mouse.move(640, 400);
-  for (let i = 0; i < 20; i++) { await page.mouse.wheel(0, -200); await page.waitForTimeout(30); }
+  for (let i = 0; i < 20; i++) { await page.mouse.wheel(0, -200); await page.waitForTimeout(30); } // paces the clicks, as a hand does
+  await animationFrames(page);
   const radius = await inspect(page, () => {
     const x = window.softsculpt.positions(), c = window.softsculpt.view().target;
     let r = 0;
@@ -108,7 +120,7 @@ test('the camera turns as a turntable, stops with the mouse, keeps the horizon l
   await page.mouse.move(500, 450, { steps: 8 });
   await page.mouse.up({ button: 'right' });
   await page.keyboard.press('v');
-  await page.waitForTimeout(300);
+  await animationFrames(page); // V sets the view at once (camera.ts frame)
   const framed = await view(page);
   assert.ok(range(framed) > 2 * radius && range(framed) < 6 * radius, `framed at ${range(framed)} m for radius ${radius} m`);
   const centre = await inspect(page, () => {
@@ -139,7 +151,8 @@ test('raising the ground lifts the rooted mushroom with it: it stands on the pla
   const height = page.locator('.lil-controller', { hasText: 'ground height' }).locator('input').first();
   await height.fill('0.5');
   await height.press('Enter');
-  await page.waitForTimeout(2500);
+  // The plane is raised with the next frame; 2.5 simulated seconds show the mushroom resting there and still playing.
+  await simulate(page, 2.5);
   const [lo1, hi1] = await span();
   // On the raised plane to rounding (its pinned foot moved with it), and as tall as before: the
   // mushroom was resting, and a translation changes no force (1 cm: the settle's own wobble).
@@ -162,7 +175,8 @@ test('a blow-up is said once in the user\'s terms, the view frames the model put
   await dt.fill('0.02');
   await dt.press('Enter');
   await page.waitForFunction(() => window.softsculpt.playing() === false, null, { timeout: 30000 });
-  await page.waitForTimeout(500);
+  // Said in the tick that paused (worker/document.ts); the ticks after it do not step, so nothing more is said.
+  await until(page, () => window.softsculpt.messages().some((m) => m.kind === 'error'));
   const errorsShown = (await inspect(page, () => window.softsculpt.messages())).filter((m) => m.kind === 'error');
   assert.equal(errorsShown.length, 1, JSON.stringify(errorsShown));
   const text = errorsShown[0].text;
@@ -178,6 +192,11 @@ test('a blow-up is said once in the user\'s terms, the view frames the model put
   // time it was put back to.
   // The view eases back (FOLLOW_TAU) on the page's clock (nothing simulates while paused): wait
   // for the vertices to be on screen, then check them.
+  // Times are said to three significant digits (format.ts sig3: 7.6 s, 7.74 s, 10.2 s). The frame
+  // put back may come after the message: wait until the time drawn is the one said.
+  const sig3 = (t) => String(Number(t.toPrecision(3)));
+  const said = text.match(/put back to t = ([\d.]+) s/)?.[1];
+  await until(page, (t) => String(Number(window.softsculpt.stats().time.toPrecision(3))) === t, said);
   const canvas = await page.locator('#view').boundingBox();
   const shown = [(await topVertex(page)).index, 0];
   await page.waitForFunction(([c, is]) => is.every((i) => { const p = window.softsculpt.screenOf(i); return p.x > c.x && p.x < c.x + c.width && p.y > c.y && p.y < c.y + c.height; }), [canvas, shown], { timeout: 10000 }).catch(() => {});
@@ -187,7 +206,7 @@ test('a blow-up is said once in the user\'s terms, the view frames the model put
   }
   const back = await inspect(page, () => window.softsculpt.stats().time);
   assert.ok((await inspect(page, () => window.softsculpt.plots())).every((s) => s.values.length <= 2), 'the plots restarted at the time put back to');
-  assert.match(text, new RegExp(`put back to t = ${back.toFixed(2)} s`), text);
+  assert.equal(said, sig3(back), `put back to t = ${back} s: ${text}`);
   await shot(page, '41-blow-up-message');
   // Another model: plays again, the old notes go; the error is not cleared by it (it goes by
   // itself after its reading time, at least 10 s: view/hud.ts messageLifetime).
@@ -211,7 +230,8 @@ test('a grab while paused says why nothing happens and adds no undo step', async
   await page.mouse.down();
   await page.mouse.move(top.screen.x + 40, top.screen.y - 60, { steps: 6 });
   await page.mouse.up();
-  await page.waitForTimeout(300);
+  // The page refuses the stroke itself (app.ts: ACTS_WHILE_PLAYING): nothing goes to the worker.
+  await until(page, () => /paused: the grab acts while the simulation plays/.test(window.softsculpt.lastMessage()));
   assert.deepEqual(await inspect(page, () => window.softsculpt.history()), before);
   assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /paused: the grab acts while the simulation plays/);
   assert.deepEqual(errors, []);
@@ -239,13 +259,14 @@ test('without a GPU the view is drawn within its pixel budget, the model sharp e
   await page.keyboard.press('Space');
   await page.waitForFunction(() => window.softsculpt.playing() === false);
   await page.locator('.lil-title', { hasText: 'View' }).click();
-  await page.waitForTimeout(500);
+  // The frames stepped before the pause are drawn: the count of renders stops.
+  await steady(page, () => window.softsculpt.drawing().renders);
   const still = await buffer();
-  await page.waitForTimeout(500);
+  await animationFrames(page, 30);
   assert.equal((await buffer()).renders, still.renders, 'paused and untouched, the view is not redrawn');
   await page.locator('.lil-controller', { hasText: 'full resolution' }).locator('input').click();
   await page.waitForFunction(() => window.softsculpt.drawing().full === true);
-  await page.waitForTimeout(300);
+  await until(page, (r) => window.softsculpt.drawing().renders > r, still.renders);
   const full = await buffer();
   assert.equal(full.pixelRatio, 1);
   assert.deepEqual([full.w, full.h], [full.cssW, full.cssH], 'every CSS pixel drawn');
@@ -261,7 +282,8 @@ test('the ? hint never covers the readout, in a narrow window too', async () => 
   // ends; a slow-motion line is longer still (the 12th and 13th sessions' trials: cut off).
   const ctx = await suite.browser.newContext({ viewport: { width: 1000, height: 700 } });
   const { page, errors } = await openModeler(suite.browser, suite.server.url, ctx);
-  await page.waitForTimeout(1500);
+  // The readout's lines (pace, slow motion) come with the frames: a simulated second of them.
+  await simulate(page, 1);
   const rects = await page.evaluate(() => ['readout', 'hint'].map((c) => document.querySelector(`#hud .${c}`).getBoundingClientRect().toJSON()));
   const [r, h] = rects;
   assert.equal(await inspect(page, () => window.softsculpt.hintVisible()), true, 'first visit: the ? hint');
@@ -278,17 +300,17 @@ test('the brush ring shows the radius and strength under the cursor; keys and B 
   assert.equal(await inspect(page, () => window.softsculpt.hintVisible()), true, 'first visit: the ? hint');
   const top = await topVertex(page);
   await page.mouse.move(top.screen.x, top.screen.y + 30);
-  await page.waitForTimeout(300);
+  await until(page, () => window.softsculpt.ring() !== null);
   let ring = await inspect(page, () => window.softsculpt.ring());
   assert.ok(ring && Math.abs(ring.radius - 0.35) < 1e-12, JSON.stringify(ring));
   await shot(page, '42-brush-ring');
   await page.keyboard.press(']');
-  await page.waitForTimeout(200);
+  await until(page, (r) => window.softsculpt.ring()?.radius > r, ring.radius);
   ring = await inspect(page, () => window.softsculpt.ring());
   assert.ok(Math.abs(ring.radius - 0.35 * 1.2) < 1e-9, `] grows the ring: ${ring.radius}`);
   const f0 = ring.fraction;
   await page.keyboard.press('}');
-  await page.waitForTimeout(200);
+  await until(page, (f) => window.softsculpt.ring()?.fraction > f, f0);
   ring = await inspect(page, () => window.softsculpt.ring());
   assert.ok(ring.fraction > f0, 'a stronger pull shows on the ring');
   assert.ok(Math.abs((await inspect(page, () => window.softsculpt.brush())).strength - 600 * 1.2) < 1e-9);
@@ -305,7 +327,8 @@ test('the brush ring shows the radius and strength under the cursor; keys and B 
   await page.mouse.move(top.screen.x, top.screen.y + 30, { steps: 5 });
   const history = await inspect(page, () => window.softsculpt.history());
   await page.mouse.click(top.screen.x, top.screen.y + 30);
-  await page.waitForTimeout(400);
+  // A stroke would reach the worker and come back in the history of the frames simulated after it.
+  await simulate(page, 0.3);
   assert.deepEqual(await inspect(page, () => window.softsculpt.history()), history, 'the setting click is not a stroke');
   assert.equal(await inspect(page, () => window.softsculpt.banner()), null, 'the click set it: the banner is gone');
   await page.keyboard.press('?');
@@ -344,7 +367,7 @@ test('mirror X: a press on one side of the sphere dents its mirror image as much
   await page.keyboard.press('p');
   await page.mouse.move(pick.screen.x, pick.screen.y);
   await page.mouse.down();
-  await page.waitForTimeout(1500);
+  await simulate(page, 1.5);
   const [a1, b1] = [await vertex(page, pick.a), await vertex(page, pick.b)];
   await page.mouse.up();
   const da = dist(a0, a1), db = dist(b0, b1);
@@ -367,12 +390,12 @@ test('the strain view colours the stretch of a grab and fades back to white', as
   await page.mouse.move(top.screen.x, top.screen.y + 10);
   await page.mouse.down();
   await page.mouse.move(top.screen.x, top.screen.y - 120, { steps: 10 });
-  await page.waitForTimeout(1200);
+  await simulate(page, 1.2);
   const held = await inspect(page, () => Math.max(...window.softsculpt.strain()));
   await shot(page, '44-strain-view');
   await page.mouse.up();
   assert.ok(held > 0.02, `the pulled springs are stretched: ${held}`);
-  await page.waitForTimeout(3000);
+  await simulate(page, 3);
   const released = await inspect(page, () => Math.max(...window.softsculpt.strain().map(Math.abs)));
   assert.ok(released < held / 2, `released, the stretch springs back: ${released} (held ${held})`);
   assert.deepEqual(errors, []);
@@ -385,7 +408,7 @@ test('a pen\'s pressure scales the press: a light touch dents less than a firm o
   await page.keyboard.press('p');
   const top = await topVertex(page);
   const at = { x: top.screen.x, y: top.screen.y + 40 };
-  /** Press with a pen at `pressure` for 1.5 s: how far the vertex under it went in (m). */
+  /** Press with a pen at `pressure` for 1.5 simulated seconds: how far the vertex under it went in (m). */
   const press = async (pressure) => {
     await settle(page, 0.02, 30000);
     const i = await inspect(page, (p) => {
@@ -405,7 +428,7 @@ test('a pen\'s pressure scales the press: a light touch dents less than a firm o
     }, { type, at, extra });
     await pen('pointerdown', { pressure });
     await pen('pointermove', { pressure });
-    await page.waitForTimeout(1500);
+    await simulate(page, 1.5);
     const during = await vertex(page, i);
     await pen('pointerup', { pressure: 0, buttons: 0 });
     return dist(before, during);
@@ -423,7 +446,7 @@ test('a pen\'s pressure scales the press: a light touch dents less than a firm o
 test('the kangaroo stands on its pinned feet, and a material preset keeps a frozen body\'s shape', async () => {
   const { page, errors } = await openModeler(suite.browser, suite.server.url);
   await load(page, 'kangaroo');
-  await page.waitForTimeout(2000);
+  await simulate(page, 2);
   const extent = await inspect(page, () => {
     const x = window.softsculpt.positions(), lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
     for (let i = 0; i < x.length; i++) { lo[i % 3] = Math.min(lo[i % 3], x[i]); hi[i % 3] = Math.max(hi[i % 3], x[i]); }
@@ -437,10 +460,10 @@ test('the kangaroo stands on its pinned feet, and a material preset keeps a froz
   // springs carry is kept, so it does not shrink (before: 2.51 → 1.71 m³).
   await load(page, 'mushroom');
   await page.keyboard.press('f');
-  await page.waitForTimeout(500);
+  await until(page, () => /frozen/.test(window.softsculpt.lastMessage()));
   const v0 = (await inspect(page, () => window.softsculpt.stats())).volume;
   await page.locator('.lil-controller', { hasText: 'material' }).locator('select').selectOption('jelly');
-  await page.waitForTimeout(3000);
+  await simulate(page, 3);
   const v1 = (await inspect(page, () => window.softsculpt.stats())).volume;
   assert.ok(Math.abs(v1 / v0 - 1) < 0.1, `volume ${v0} → ${v1} m³ with jelly`);
   // Clay on the mushroom as it stands: it keeps its height (before: it slumped into an egg,
@@ -449,7 +472,7 @@ test('the kangaroo stands on its pinned feet, and a material preset keeps a froz
   const height = () => inspect(page, () => Math.max(...window.softsculpt.positions().filter((_, k) => k % 3 === 1)));
   const h0 = await height();
   await page.locator('.lil-controller', { hasText: 'material' }).locator('select').selectOption('clay');
-  await page.waitForTimeout(3000);
+  await simulate(page, 3);
   const h1 = await height();
   assert.ok(h1 > 0.97 * h0, `clay: height ${h0} → ${h1} m`);
   // Another model starts with the modeler's own material: the list forgets "clay" and names it.
@@ -464,15 +487,15 @@ test('clay keeps the shape a mirrored grab pulls and the gas in it: the body doe
   const { page, errors } = await openModeler(suite.browser, suite.server.url);
   await load(page, 'mushroom');
   await page.locator('.lil-controller', { hasText: 'material' }).locator('select').selectOption('clay');
-  await page.waitForTimeout(2000);
+  await simulate(page, 2);
   const v0 = (await inspect(page, () => window.softsculpt.stats())).volume;
   // The front of the cap at 60 % of the height (mirror X is on for the mushroom: its image on
-  // the other side is pulled too), dragged 150 px up and out, held 2 s, let go.
+  // the other side is pulled too), dragged 150 px up and out, held 2 simulated seconds, let go.
   const front = await capFront(page);
   await page.keyboard.press('g');
-  await drag(page, front, { x: front.x + 106, y: front.y - 106 }, 15, 2000);
+  await drag(page, front, { x: front.x + 106, y: front.y - 106 }, 15, 2);
   await page.mouse.up();
-  await page.waitForTimeout(3000);
+  await simulate(page, 3);
   const v1 = (await inspect(page, () => window.softsculpt.stats())).volume;
   await shot(page, '46-clay-after-a-mirrored-pull');
   // Before, every flow of the pulled springs raised the gas's reference pressure until it sucked
@@ -487,11 +510,11 @@ test('a subdivided model keeps its shape: the octopus keeps standing, the mushro
   const { page, errors } = await openModeler(suite.browser, suite.server.url);
   const height = () => inspect(page, () => { const y = window.softsculpt.positions().filter((_, k) => k % 3 === 1); return Math.max(...y) - Math.min(...y); });
   await load(page, 'octopus');
-  await page.waitForTimeout(1500);
+  await simulate(page, 1.5);
   const h0 = await height();
   await page.keyboard.press('u');
   await page.waitForFunction(() => window.softsculpt.positions().length > 3000 && !window.softsculpt.busy(), null, { timeout: 60000 });
-  await page.waitForTimeout(3000);
+  await simulate(page, 3);
   const h1 = await height();
   await shot(page, '47-octopus-subdivided-standing');
   // Loop subdivision lifted the tentacle tips off the ground (6.4 mm), so the freeze under load
@@ -504,19 +527,17 @@ test('a subdivided model keeps its shape: the octopus keeps standing, the mushro
   await load(page, 'mushroom');
   await page.keyboard.press('u');
   await page.waitForFunction(() => window.softsculpt.positions().length > 3000 && !window.softsculpt.busy(), null, { timeout: 60000 });
-  await page.waitForTimeout(2000);
+  await simulate(page, 2);
   const v0 = (await inspect(page, () => window.softsculpt.stats())).volume;
   const front = await capFront(page);
   await page.keyboard.press('g');
-  await drag(page, front, { x: front.x + 106, y: front.y - 106 }, 15, 2000);
+  await drag(page, front, { x: front.x + 106, y: front.y - 106 }, 15, 2);
   const held = (await inspect(page, () => window.softsculpt.stats())).volume;
   await shot(page, '48-subdivided-mushroom-grabbed');
-  // Let go, and wait 2.5 simulated seconds (3 s of wall time here give 2.9 of them; a busy
-  // machine, shared with other work, gave far fewer and the cap was still swinging back: 1.3 %
-  // over its volume).
+  // Let go, and wait 2.5 simulated seconds: the cap swings back within them (sooner, it was still
+  // swinging: 1.3 % over its volume).
   const tUp = (await inspect(page, () => window.softsculpt.stats())).time;
   await page.mouse.up();
-  await page.waitForTimeout(3000);
   await page.waitForFunction((t) => window.softsculpt.stats().time >= t + 2.5, tUp, { timeout: 90000 });
   const after = (await inspect(page, () => window.softsculpt.stats())).volume;
   // Measured with the real engine in Node: 0.7 % lost while held (5.4 % without hinges) and
@@ -538,17 +559,20 @@ test('the view does not creep: after three grabs and the wobbles that follow, th
   let moved = 0;
   for (const [dx, dy] of [[-220, -60], [200, -120], [0, -200]]) {
     const p = await capFront(page);
-    await drag(page, p, { x: p.x + dx, y: p.y + dy }, 20, 700);
+    await drag(page, p, { x: p.x + dx, y: p.y + dy }, 20, 0.7);
     await page.mouse.up();
-    // The wobble after the release: the view may follow it for a moment.
+    // The wobble after the release (1.5 simulated seconds): the view may follow it for a moment.
     for (let i = 0; i < 6; i++) {
-      await page.waitForTimeout(250);
+      await simulate(page, 0.25);
       moved = Math.max(moved, dist((await view(page)).target, v0.target));
     }
   }
-  await page.waitForTimeout(300);
+  // Held still by the grab, it can be slower than the threshold: let the release take effect first.
+  await simulate(page, 0.3);
   await settle(page, 0.005, 60000);
-  await page.waitForTimeout(1000); // the view eases back with τ = 0.1 s
+  // The view eases back with τ = 0.1 s of the page's clock and stops within a millionth of the
+  // model's size (camera.ts follow): wait until it has stopped, to 10 µm.
+  await steady(page, () => window.softsculpt.view().position.concat(window.softsculpt.view().target).map((c) => Math.round(c * 1e5)), null, { timeout: 60000 });
   const v1 = await view(page);
   await shot(page, 'feel-no-creep');
   // The model's centre at rest comes back to within millimetres (the rest shape is the same;
@@ -571,21 +595,22 @@ test('V frames the model where it lies now: a sphere pulled across the ground is
     return lo.map((l, d) => (l + hi[d]) / 2);
   });
   const c0 = await box();
-  // Dragged sideways by its top for 2 s: it rolls and slides along the ground.
+  // Dragged sideways by its top for 2 simulated seconds: it rolls and slides along the ground.
   const p = await capFront(page);
-  await drag(page, p, { x: p.x + 330, y: p.y }, 30, 2000);
+  await drag(page, p, { x: p.x + 330, y: p.y }, 30, 2);
   await page.mouse.up();
-  await page.waitForTimeout(300);
+  await simulate(page, 0.3); // the release takes effect (held, it can be slower than the threshold)
   await settle(page, 0.01, 60000);
   // Paused, so what V frames is exactly what is measured (settled is below 1 cm/s, not still:
   // a full run once measured the sphere 1 mm lower by the time V was pressed).
   await page.keyboard.press('Space');
   await page.waitForFunction(() => !window.softsculpt.playing());
-  await page.waitForTimeout(100);
+  // A frame stepped before the worker took the pause may still come: wait until the drawn time stops.
+  await steady(page, () => window.softsculpt.stats().time);
   const c1 = await box();
   assert.ok(dist(c1, c0) > 0.3, `the sphere moved ${dist(c1, c0)} m`);
   await page.keyboard.press('v');
-  await page.waitForTimeout(300);
+  await animationFrames(page); // V sets the view at once (camera.ts frame)
   const v = await view(page);
   // The target is the bounding sphere's centre (three.js: the bounding box's centre) of the
   // positions drawn; the body is at rest, so within a millimetre.
@@ -602,7 +627,7 @@ test('an opened project names its material, in a browser that has never seen it'
   const materialList = (p) => p.locator('.lil-controller:has(.lil-name:text-is("material")) select');
   await materialList(page).selectOption('clay');
   await page.waitForFunction(() => /material: clay/.test(window.softsculpt.lastMessage()), null, { timeout: 15000 });
-  await page.waitForTimeout(500);
+  await materialShown(page, 'clay');
   assert.equal(await materialList(page).inputValue(), 'clay');
   const stiffness = await inspect(page, () => window.softsculpt.param('stiffness'));
   const [download] = await Promise.all([page.waitForEvent('download'), page.keyboard.press('Control+s')]);
@@ -616,7 +641,7 @@ test('an opened project names its material, in a browser that has never seen it'
   assert.equal(await materialList(fresh.page).inputValue(), 'modeler\'s own');
   await fresh.page.locator('input[data-picker=project]').setInputFiles(path);
   await fresh.page.waitForFunction((k) => window.softsculpt.param('stiffness') === k, stiffness, { timeout: 15000 });
-  await fresh.page.waitForTimeout(500);
+  await materialShown(fresh.page, 'clay');
   assert.equal(await materialList(fresh.page).inputValue(), 'clay');
   await shot(fresh.page, 'feel-project-material');
   assert.deepEqual([...errors, ...fresh.errors], []);

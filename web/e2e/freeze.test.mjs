@@ -49,18 +49,18 @@ test('Freeze keeping the tension: the frozen mushroom holds still and a press de
   assert.ok(drift < 1e-5, `the frozen mushroom moved ${drift} m in 1 s`);
   await shot(page, '30-frozen-taut');
 
-  // Press the cap's top (default depth 0.15 m) for 2.5 s.
+  // Press the cap's top (default depth 0.15 m) for 2.5 simulated seconds.
   const top = await topVertex(page);
   const c0 = s1.centerOfMass;
   await page.keyboard.press('p');
   await page.mouse.move(top.screen.x, top.screen.y);
   await page.mouse.down();
-  await page.waitForTimeout(2500);
+  await simulate(page, 2.5);
   const pressed = await vertex(page, top.index);
   const c1 = (await stats(page)).centerOfMass;
   await shot(page, '31-frozen-press-dents');
   await page.mouse.up();
-  await page.waitForTimeout(300); // the press is released (its springs held the dent still)
+  await simulate(page, 0.3); // the press is released (its springs held the dent still)
   // A dent, not a swing: the top goes down by more than 5 cm (the core measures 10 cm for the
   // same press before and after the freeze) while the centre of mass moves less than a fifth
   // of that (the cap swinging on its stem would carry the centre of mass along).
@@ -86,9 +86,9 @@ test('Freeze during a grab keeps the pulled shape, and Subdivide twice after it 
   await page.mouse.down();
   for (let k = 1; k <= 15; k++) {
     await page.mouse.move(top.screen.x + (70 * k) / 15, top.screen.y - (100 * k) / 15);
-    await page.waitForTimeout(30);
+    await page.waitForTimeout(30); // paces the moves, as a hand does
   }
-  await page.waitForTimeout(1000);
+  await simulate(page, 1); // held
   await page.keyboard.press('f');
   await page.mouse.up();
   await page.waitForFunction(() => /frozen/.test(window.softsculpt.lastMessage()), null, { timeout: 30000 });

@@ -105,14 +105,31 @@ export async function topVertex(page) {
   });
 }
 
-export async function drag(page, from, to, steps = 20, holdMs = 0) {
+/**
+ * Press at `from`, move to `to` in `steps` moves, and keep the button down for `hold` more
+ * simulated seconds (the page's clock: a loaded machine simulates slower, and holds longer).
+ */
+export async function drag(page, from, to, steps = 20, hold = 0) {
   await page.mouse.move(from.x, from.y);
   await page.mouse.down();
   for (let i = 1; i <= steps; i++) {
     await page.mouse.move(from.x + ((to.x - from.x) * i) / steps, from.y + ((to.y - from.y) * i) / steps);
-    await page.waitForTimeout(20);
+    await page.waitForTimeout(20); // paces the moves, as a hand does (pointer events, not an outcome)
   }
-  if (holdMs) await page.waitForTimeout(holdMs);
+  if (hold) await simulate(page, hold);
+}
+
+/**
+ * Wait for `n` more animation frames of the page: what the page does by itself on an input (the
+ * camera, the brush ring, the banner, the panel) is done and drawn by then. Counted in
+ * requestAnimationFrame callbacks, not milliseconds.
+ */
+export async function animationFrames(page, n = 3) {
+  await page.evaluate((k) => new Promise((done) => {
+    let i = 0;
+    const f = () => (++i >= k ? done() : requestAnimationFrame(f));
+    requestAnimationFrame(f);
+  }), n);
 }
 
 export const vertex = (page, i) => page.evaluate((j) => window.softsculpt.positions().slice(3 * j, 3 * j + 3), i);
@@ -162,3 +179,67 @@ export async function frameGaps(page, action, until, arg, { timeout = 180000, se
     return { maxGapMs: Math.round(g.max), longTasks: g.long, ms: Math.round(g.ms) };
   });
 }
+
+/**
+ * Wait (up to `timeout` ms) until `cond(arg)` holds in the page, then return: the assertion that
+ * follows says what is there if it never did. For outcomes the page shows without simulating
+ * (the camera, a message, the panel), where there is no simulated time to wait for.
+ */
+export const until = (page, cond, arg, timeout = 30000) => page.waitForFunction(cond, arg, { timeout, polling: 50 }).catch(() => {});
+
+/**
+ * Wait until `value(arg)`, a page function giving JSON data, has stayed the same over `frames`
+ * animation frames in a row (a view that has eased to rest, the last frame stepped before a
+ * pause drawn: the worker's tick under way when the pause came, then its frame, take far fewer
+ * than 30 of the page's frames); on a timeout, say what it last was.
+ */
+export async function steady(page, value, arg, { frames = 30, timeout = 30000 } = {}) {
+  await page.evaluate(() => { window.__steady = { last: undefined, count: 0 }; });
+  try {
+    await page.waitForFunction(({ src, arg, frames }) => {
+      const s = window.__steady, v = JSON.stringify(new Function('arg', `return (${src})(arg);`)(arg));
+      if (v !== s.last) { s.last = v; s.count = 0; }
+      return ++s.count >= frames;
+    }, { src: value.toString(), arg, frames }, { timeout, polling: 'raf' });
+  } catch (e) {
+    throw new Error(`${value} did not stay the same for ${frames} frames: last ${await page.evaluate(() => window.__steady.last)}`);
+  }
+}
+
+/**
+ * Wait until the page has kept what a reload or a restart brings back: the worker's autosave
+ * (IndexedDB, src/storage.ts) holding `undo` undo steps and, with `camera`, the camera as it is
+ * now (localStorage, 'softsculpt.camera'). Checked every animation frame; returns whether it
+ * came within `timeout` ms.
+ */
+export const autosaved = (page, undo, { camera = false, timeout = 30000 } = {}) => page.evaluate(async ({ undo, camera, timeout }) => {
+  const record = () => new Promise((resolve) => {
+    // As the page opens it (storage.ts): version 1, the store made if the database is new.
+    const r = indexedDB.open('softsculpt', 1);
+    r.onupgradeneeded = () => r.result.createObjectStore('projects');
+    r.onerror = () => resolve(null);
+    r.onsuccess = () => {
+      const db = r.result, store = db.transaction('projects', 'readonly').objectStore('projects');
+      const pointer = store.get('autosave-current');
+      pointer.onerror = () => { db.close(); resolve(null); };
+      pointer.onsuccess = () => {
+        if (!pointer.result) { db.close(); resolve(null); return; }
+        const slot = store.get(pointer.result);
+        slot.onsuccess = () => { db.close(); resolve(slot.result ?? null); };
+        slot.onerror = () => { db.close(); resolve(null); };
+      };
+    };
+  });
+  const cameraKept = () => {
+    const kept = JSON.parse(localStorage.getItem('softsculpt.camera') ?? 'null')?.position;
+    const here = window.softsculpt.camera();
+    return kept && Math.hypot(kept[0] - here[0], kept[1] - here[1], kept[2] - here[2]) < 1e-9;
+  };
+  const t0 = performance.now();
+  for (;;) {
+    const rec = await record();
+    if (rec?.history?.undo?.length === undo && (!camera || cameraKept())) return true;
+    if (performance.now() - t0 > timeout) return false;
+    await new Promise((r) => requestAnimationFrame(r));
+  }
+}, { undo, camera, timeout });

@@ -8,7 +8,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import validator from 'gltf-validator';
-import { browserSuite, inspect, openModeler, settle, shot } from './harness.mjs';
+import { browserSuite, inspect, openModeler, settle, shot, simulate, steady } from './harness.mjs';
 import { sliverObj } from './icosphere.mjs';
 
 const suite = browserSuite();
@@ -39,7 +39,9 @@ test('an open cloth-like mesh loads without gas, says so, and the gas controls a
   // new-user trial remeshed the model behind the dialog from the panel).
   const subdivide = await page.locator('.lil-gui button', { hasText: 'Subdivide' }).boundingBox();
   await page.mouse.click(subdivide.x + subdivide.width / 2, subdivide.y + subdivide.height / 2);
-  await page.waitForTimeout(500);
+  // The model behind plays on: a command sent by any of these would be taken by the worker
+  // before the steps of these frames (it takes commands between ticks, in order).
+  await simulate(page, 0.3);
   assert.equal(await inspect(page, () => window.softsculpt.vertexCount()), behind);
   assert.doesNotMatch(await inspect(page, () => window.softsculpt.lastMessage()), /frozen|subdivid/);
   await page.keyboard.press('Enter');
@@ -54,7 +56,7 @@ test('an open cloth-like mesh loads without gas, says so, and the gas controls a
   assert.equal(await gas.count(), 1);
   // Its gas parameters (amount, temperature, volume mode) are disabled.
   assert.ok(await gas.locator('.lil-controller.lil-disabled').count() >= 3, 'the gas controls are disabled');
-  await page.waitForTimeout(1500);
+  await simulate(page, 1.5);
   const x = await inspect(page, () => window.softsculpt.positions());
   assert.ok(x.every(Number.isFinite), 'it simulates');
   await shot(page, 'import-02-cloth-loaded');
@@ -64,7 +66,7 @@ test('an open cloth-like mesh loads without gas, says so, and the gas controls a
   await page.waitForFunction(() => window.softsculpt.vertexCount() === 33 * 33 && !window.softsculpt.busy(), null, { timeout: 30000 });
   await page.keyboard.press('f');
   await page.waitForFunction(() => /frozen/.test(window.softsculpt.lastMessage()), null, { timeout: 15000 });
-  await page.waitForTimeout(1000);
+  await simulate(page, 1);
   assert.deepEqual((await shown(page)).filter((m) => /error/.test(m.kind)), [], 'no error shown');
   assert.ok((await inspect(page, () => window.softsculpt.positions())).every(Number.isFinite), 'it simulates');
   await shot(page, 'import-03-cloth-subdivided');
@@ -87,7 +89,7 @@ test('a file of two shells: the dialog counts them; largest only, or one body pe
   await page.locator('.import-dialog button[type=submit]').click();
   await page.waitForFunction(() => window.softsculpt.bodies() === 2);
   assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /2 pieces as 2 bodies/);
-  await page.waitForTimeout(3000);
+  await simulate(page, 3);
   await shot(page, 'import-04-pieces-as-bodies');
   // Not a pile: the larger ball keeps its height (diameter 1 m), both finite.
   const x = await inspect(page, () => window.softsculpt.positions());
@@ -106,7 +108,7 @@ test('Remesh keeps an imported 8-vertex tower its shape: made at a shorter edge,
   const { page, ctx, errors } = await openModeler(suite.browser, suite.server.url);
   await page.locator('input[data-picker=import]').setInputFiles(join(FIXTURES, 'zup-tower.stl'));
   await drawn(page, 'zup-tower.stl');
-  await page.waitForTimeout(1000);
+  await simulate(page, 1);
   const before = await inspect(page, () => window.softsculpt.positions());
   assert.equal(before.length, 8 * 3);
   await page.locator('.lil-gui button', { hasText: 'Remesh' }).click();
@@ -116,10 +118,10 @@ test('Remesh keeps an imported 8-vertex tower its shape: made at a shorter edge,
   // No sliver: the smallest angle after (the flips' guard: 0° before it, a face of three
   // collinear vertices on the tower's flat top; measured 23–32° since).
   assert.ok(Number(message.match(/smallest \d+° → (\d+)°/)[1]) >= 10, message);
-  await page.waitForTimeout(1000);
+  await simulate(page, 1);
   const after = await inspect(page, () => window.softsculpt.positions());
   // Tolerance: the remesh keeps the tower's corners exactly (its edges are kept as creases), so
-  // what is left is the 1 s it stands under its own weight before and after (10 cm tall on a
+  // what is left is the simulated second it stands under its own weight before and after (10 cm tall on a
   // 4 × 4 cm base: it sags by well under a millimetre): 2 mm allowed per side. The old
   // remesh made a 5-vertex double pyramid 9.8 × 8.0 × 10 cm: 3–6 cm off.
   for (let d = 0; d < 3; d++) {
@@ -164,7 +166,7 @@ test('a Z-up STL stands upright at its own size, fills the view, and its export 
   await drawn(page, 'zup-tower.stl');
   assert.equal(await page.locator('.import-dialog').count(), 0);
   assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /turned from Z-up to Y-up/);
-  await page.waitForTimeout(1500);
+  await simulate(page, 1.5);
   // Upright, 0.1 m tall as in the file (the file's z), not rescaled to 2.5 m.
   const x = await inspect(page, () => window.softsculpt.positions());
   const [lo, hi] = extent(x, 1);
@@ -205,7 +207,8 @@ test('the default model exported as STL comes back standing: the header says Y-u
   // Paused, so the shape exported is the shape measured and the one read back is not moving.
   await page.keyboard.press('Space');
   await page.waitForFunction(() => window.softsculpt.playing() === false);
-  await page.waitForTimeout(300);
+  // A frame stepped before the worker took the pause may still come: wait until the drawn time stops.
+  await steady(page, () => window.softsculpt.stats().time);
   const before = await inspect(page, () => window.softsculpt.positions());
   const [lo, hi] = extent(before, 1);
   const [download] = await Promise.all([page.waitForEvent('download'), page.locator('.lil-gui button', { hasText: 'Export STL' }).click()]);
@@ -243,7 +246,7 @@ function stlVertices(buf) {
 test('recording while playing exports a GLB of morph targets that the Khronos validator accepts', async () => {
   const { page } = await openModeler(suite.browser, suite.server.url);
   await page.locator('.lil-gui button', { hasText: '● Record' }).click();
-  await page.waitForTimeout(2000);
+  await simulate(page, 2);
   await shot(page, 'import-07-recording');
   await page.locator('.lil-gui button', { hasText: 'Stop recording' }).click();
   const [download] = await Promise.all([page.waitForEvent('download'), page.locator('.lil-gui button', { hasText: 'Export recording' }).click()]);

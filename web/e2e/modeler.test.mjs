@@ -6,51 +6,9 @@ import assert from 'node:assert/strict';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { browserSuite, shot, drag, dist, inspect, openModeler, settle, simulate, topVertex, vertex } from './harness.mjs';
+import { autosaved, browserSuite, shot, drag, dist, inspect, openModeler, settle, simulate, topVertex, until, vertex } from './harness.mjs';
 
 const suite = browserSuite();
-
-/**
- * Wait (up to `timeout` ms) until `cond(arg)` holds in the page, then return: the assertion that
- * follows says what is there if it never did. For outcomes the page shows without simulating
- * (the camera, a message, the panel), where there is no simulated time to wait for.
- */
-const until = (page, cond, arg, timeout = 30000) => page.waitForFunction(cond, arg, { timeout, polling: 50 }).catch(() => {});
-
-/**
- * Wait until the page has kept what a reload brings back: the worker's autosave (IndexedDB,
- * src/storage.ts) holding `undo` undo steps, and the camera as it is now (localStorage,
- * 'softsculpt.camera'). Returns whether both came within `timeout` ms.
- */
-const autosaved = (page, undo, timeout = 30000) => page.evaluate(async ({ undo, timeout }) => {
-  const record = () => new Promise((resolve) => {
-    // As the page opens it (storage.ts): version 1, the store made if the database is new.
-    const r = indexedDB.open('softsculpt', 1);
-    r.onupgradeneeded = () => r.result.createObjectStore('projects');
-    r.onerror = () => resolve(null);
-    r.onsuccess = () => {
-      const db = r.result, store = db.transaction('projects', 'readonly').objectStore('projects');
-      const pointer = store.get('autosave-current');
-      pointer.onerror = () => { db.close(); resolve(null); };
-      pointer.onsuccess = () => {
-        if (!pointer.result) { db.close(); resolve(null); return; }
-        const slot = store.get(pointer.result);
-        slot.onsuccess = () => { db.close(); resolve(slot.result ?? null); };
-        slot.onerror = () => { db.close(); resolve(null); };
-      };
-    };
-  });
-  const t0 = performance.now();
-  for (;;) {
-    const rec = await record();
-    const kept = JSON.parse(localStorage.getItem('softsculpt.camera') ?? 'null')?.position;
-    const here = window.softsculpt.camera();
-    if (rec?.history?.undo?.length === undo && kept && Math.hypot(kept[0] - here[0], kept[1] - here[1], kept[2] - here[2]) < 1e-9) return true;
-    if (performance.now() - t0 > timeout) return false;
-    await new Promise((r) => setTimeout(r, 100));
-  }
-}, { undo, timeout });
-
 
 test('the default model renders: the mushroom on the ground, pixels not uniform', async () => {
   const { page, errors } = await openModeler(suite.browser, suite.server.url);
@@ -142,7 +100,7 @@ test('pinned vertices stay fixed under a grab drag', async () => {
   await settle(page);
   const top = await topVertex(page);
   await page.keyboard.press('n');
-  await drag(page, top.screen, top.screen, 2, 100);
+  await drag(page, top.screen, top.screen, 2, 0.1);
   await page.mouse.up();
   // The pins come back with the next frame from the simulation.
   await until(page, () => window.softsculpt.pinned().filter(Boolean).length >= 3);
@@ -276,7 +234,7 @@ test('reload restores the autosaved project', async () => {
   const pins0 = (await inspect(page, () => window.softsculpt.pinned())).filter(Boolean).length; // the stem's foot
   await page.keyboard.press('n');
   const top = await topVertex(page);
-  await drag(page, top.screen, top.screen, 2, 50);
+  await drag(page, top.screen, top.screen, 2, 0.05);
   await page.mouse.up();
   await until(page, (p0) => window.softsculpt.pinned().filter(Boolean).length > p0, pins0);
   await page.keyboard.press('u'); // subdivide: a different mesh that must come back
@@ -291,7 +249,7 @@ test('reload restores the autosaved project', async () => {
   await page.mouse.up();
   const camera = await inspect(page, () => window.softsculpt.camera());
   // The autosave is written a moment after the last change (its debounce), the camera when it settles.
-  assert.ok(await autosaved(page, 2), 'the autosave holds the two undo steps and the camera');
+  assert.ok(await autosaved(page, 2, { camera: true }), 'the autosave holds the two undo steps and the camera');
   await page.reload();
   await page.waitForFunction(() => window.softsculpt?.ready === true);
   assert.equal(await inspect(page, () => window.softsculpt.vertexCount()), n);

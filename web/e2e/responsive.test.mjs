@@ -11,7 +11,7 @@ import assert from 'node:assert/strict';
 import { mkdtempSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { browserSuite, shot, frameGaps, inspect, openModeler } from './harness.mjs';
+import { animationFrames, autosaved, browserSuite, shot, frameGaps, inspect, openModeler, until } from './harness.mjs';
 import { writeIcosphere } from './icosphere.mjs';
 
 const suite = browserSuite();
@@ -22,7 +22,9 @@ const simulationWorkers = (page) => page.workers().filter((w) => !isHelper(w));
 /** Until the page runs one simulation worker and the helpers its engine's threads need, no more. */
 async function oneSimulation(page) {
   const threads = await inspect(page, () => window.softsculpt.threads());
-  for (let i = 0; i < 100 && !(simulationWorkers(page).length === 1 && page.workers().filter(isHelper).length === threads - 1); i++) await page.waitForTimeout(100);
+  // Workers are seen from here (playwright), not in the page: checked every few animation frames, for up to 30 s.
+  const t0 = Date.now();
+  while (!(simulationWorkers(page).length === 1 && page.workers().filter(isHelper).length === threads - 1) && Date.now() - t0 < 30000) await animationFrames(page, 5);
   assert.equal(simulationWorkers(page).length, 1, 'one simulation worker');
   assert.equal(page.workers().filter(isHelper).length, threads - 1, `its ${threads - 1} helper thread(s), no more`);
 }
@@ -49,7 +51,9 @@ test('the simulation runs in a worker; loading, importing and subdividing never 
         await busy(page);
         assert.match(await inspect(page, () => window.softsculpt.busy() ?? 'done already'), label);
         await meanwhile();
-        await page.waitForTimeout(150);
+        // The frames on their way to the screen when the worker became busy are drawn in the
+        // next few animation frames: drawing, not waiting.
+        await animationFrames(page, 10);
       });
       await during(aside);
     }, () => window.softsculpt.busy() === null, null, { settleMs: 0, timeout: 240000, startPaused: true });
@@ -77,7 +81,7 @@ test('the simulation runs in a worker; loading, importing and subdividing never 
   assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /imported icosphere_L6\.obj: 40962 vertices/);
 
   await whileBusy('subdividing to 163,842 vertices', () => page.keyboard.press('u'), /subdividing|done already/, stillThere(40962), async (aside) => {
-    await page.waitForTimeout(500);
+    await animationFrames(page, 30); // measured a while (half a second at 60 fps) before the camera turns
     await aside(async () => {
       await shot(page, '32-subdividing');
       // The camera still turns meanwhile (aside: drawing the 40k mesh as it turns takes 50–300 ms
@@ -92,7 +96,8 @@ test('the simulation runs in a worker; loading, importing and subdividing never 
     });
   });
   await count(163842);
-  await page.waitForTimeout(500);
+  await until(page, () => window.softsculpt.history().join() === '3,0');
+  await animationFrames(page);
   await shot(page, '33-subdivided');
   assert.deepEqual(await inspect(page, () => window.softsculpt.history()), [3, 0]);
   assert.deepEqual(errors, []);
@@ -103,7 +108,8 @@ test('a worker that dies is restarted from the autosave, and the page says so', 
   const { page, errors } = await openModeler(suite.browser, suite.server.url);
   await page.keyboard.press('u');
   await page.waitForFunction(() => window.softsculpt.vertexCount() === 1442);
-  await page.waitForTimeout(1000); // the autosave is written a moment after the operation
+  // The autosave is written a moment after the operation: wait until it holds the subdivision.
+  assert.ok(await autosaved(page, (await inspect(page, () => window.softsculpt.history()))[0]), 'the subdivision autosaved');
   const [worker] = simulationWorkers(page);
   await worker.evaluate(() => { setTimeout(() => { throw new Error('boom'); }); });
   await page.waitForFunction(() => /stopped because of an error/.test(window.softsculpt.lastMessage()));
@@ -113,7 +119,7 @@ test('a worker that dies is restarted from the autosave, and the page says so', 
   // The old worker is gone with its helpers; a new one runs with its own.
   await oneSimulation(page);
   assert.notEqual(simulationWorkers(page)[0], worker);
-  await page.waitForTimeout(300);
+  await animationFrames(page, 10);
   await shot(page, '34-worker-restarted');
   assert.deepEqual(errors, []);
   await page.context().close();

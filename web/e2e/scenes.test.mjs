@@ -8,7 +8,7 @@ import { mkdirSync, readFileSync, readdirSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { SHOTS, browserSuite, inspect, openModeler } from './harness.mjs';
+import { SHOTS, browserSuite, inspect, openModeler, steady } from './harness.mjs';
 
 const SCENES = fileURLToPath(new URL('../../scenes/', import.meta.url));
 const FIGURES = join(SCENES, 'screenshots');
@@ -58,8 +58,8 @@ nrt = 40.0
   await page.waitForFunction(() => window.softsculpt.scene()?.bodies === 2);
   assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /opened scene drop\.toml: 2 bodies/);
   // A scene opens paused at t = 0 (its first events are seen when one plays it), and the model
-  // list does not show the scene as a model.
-  await page.waitForTimeout(500);
+  // list does not show the scene as a model. Its first frames drawn: play state and time steady.
+  await steady(page, () => [window.softsculpt.playing(), window.softsculpt.scene()?.time]);
   assert.equal(await inspect(page, () => window.softsculpt.playing()), false);
   assert.equal(await sceneTime(page), 0);
   assert.equal(await inspect(page, () => window.softsculpt.banner()), 'Paused — Space to play');
@@ -132,7 +132,8 @@ for (const file of readdirSync(SCENES).filter((f) => f.endsWith('.toml')).sort()
     const at = MOMENT[file] ?? duration;
     await page.waitForFunction((t) => window.softsculpt.scene().time >= t, at, { timeout: 120000, polling: 50 });
     await page.keyboard.press(' ');
-    await page.waitForTimeout(300);
+    // A frame stepped before the worker took the pause may still come: wait until the drawn time stops.
+    await steady(page, () => window.softsculpt.scene()?.time);
     mkdirSync(FIGURES, { recursive: true });
     await page.screenshot({ path: join(FIGURES, file.replace('.toml', '.png')) });
     assert.ok((await sceneTime(page)) >= at);

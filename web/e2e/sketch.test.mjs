@@ -2,7 +2,7 @@
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { browserSuite, shot, inspect, openModeler } from './harness.mjs';
+import { browserSuite, shot, inspect, openModeler, simulate } from './harness.mjs';
 
 const suite = browserSuite();
 
@@ -39,7 +39,7 @@ test('a star drawn with the sketch tool becomes a closed inflated balloon, undoa
   // A closed surface of a sphere's topology: F = 2V − 4 (Euler: V − E + F = 2, E = 3F/2).
   assert.equal(f, 2 * v - 4, `${v} vertices, ${f} faces`);
   assert.ok(s.volume > 0 && s.pressure > 0, `volume ${s.volume}, pressure ${s.pressure}: inflated`);
-  await page.waitForTimeout(500);
+  await simulate(page, 0.5); // the balloon as it stands half a simulated second later
   await shot(page, 'sketch-star-balloon');
   // Undo brings the mushroom back.
   await page.keyboard.press('Control+z');
