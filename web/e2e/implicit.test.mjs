@@ -183,8 +183,8 @@ test('an imported 10,242-vertex sphere rests where it stands; a grab keeps its p
   const v0 = (await inspect(page, () => window.softsculpt.stats())).volume;
   const h0 = await extent(page);
   const top = await upperFront(page);
-  // Held 2.5 s of simulated time (2.3–5.1 px at real time; held 2.5 s of wall clock instead, CI
-  // once measured 8.1 px on a loaded machine, where this page runs below real time).
+  // Held 2.5 s of simulated time (2.3–5.1 px at real time): a hold measured on the wall clock
+  // would give a slower machine less simulated time to follow the cursor.
   const cursor = await grabAndHold(page, top, 40, -60, 2.5);
   const at = await inspect(page, (j) => window.softsculpt.screenOf(j), top);
   await shot(page, '25-grab-imported-10242');

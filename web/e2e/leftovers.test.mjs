@@ -11,7 +11,7 @@ import assert from 'node:assert/strict';
 import { writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { browserSuite, dist, inspect, openModeler, settle, shot, simulate, topVertex } from './harness.mjs';
+import { browserSuite, dist, inspect, openModeler, settle, shot, simulate, topVertex, until } from './harness.mjs';
 import { icosphere } from './icosphere.mjs';
 
 const suite = browserSuite();
@@ -19,12 +19,6 @@ const suite = browserSuite();
 const control = (page, name) => page.locator('.lil-controller', { hasText: name });
 const modelList = (page) => control(page, 'built-in').locator('select');
 const materialShown = (page) => control(page, 'material').locator('select').evaluate((s) => (s.selectedIndex < 0 ? '' : s.options[s.selectedIndex].text));
-/**
- * Wait (up to `timeout` ms) until `cond(arg)` holds in the page, then return: the assertion that
- * follows says what is there if it never did. For what the page shows without simulating (the
- * panel, the overlay, the brush ring), where there is no simulated time to wait for.
- */
-const until = (page, cond, arg, timeout = 30000) => page.waitForFunction(cond, arg, { timeout, polling: 50 }).catch(() => {});
 /** Wait until the material list shows an entry matching `pattern` (a RegExp source). */
 const untilMaterial = (page, pattern) => until(page, (p) => {
   const s = [...document.querySelectorAll('.lil-controller')].find((c) => c.textContent.includes('material') && c.querySelector('select'))?.querySelector('select');
