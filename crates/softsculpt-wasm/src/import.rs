@@ -4,7 +4,8 @@
 
 use crate::abi::exports;
 use crate::handle::with_world;
-use crate::world::{add, mesh_fail, param_fail};
+use crate::fails::{mesh_fail, param_fail};
+use crate::world::add;
 use crate::{bytes, index, set_result, status, text, Fail};
 use softsculpt::mesh::{self, animation, pieces, MeshFormat};
 use serde_json::json;

@@ -85,9 +85,12 @@
 //! | `ss_open_project_v1(w, ptr, len)` | a version-1 project file of the modeler becomes the world; result `{name, ui}` |
 
 pub mod abi;
+mod bodyops;
+mod fails;
 mod handle;
 mod history;
 mod import;
+mod params;
 mod scene;
 mod views;
 mod world;
@@ -240,7 +243,7 @@ exports! {
 /// Every raw export of the binding, module by module (`abi.rs`): what `tests/abi.rs` writes the
 /// page's `web/src/engine/abi.ts` from.
 pub fn exports() -> impl Iterator<Item = &'static abi::Export> {
-    [EXPORTS, handle::EXPORTS, world::EXPORTS, import::EXPORTS, scene::EXPORTS, history::EXPORTS]
+    [EXPORTS, handle::EXPORTS, world::EXPORTS, params::EXPORTS, bodyops::EXPORTS, import::EXPORTS, scene::EXPORTS, history::EXPORTS]
         .into_iter()
         .flatten()
 }

@@ -1,103 +1,17 @@
-//! The calls on a world and its bodies (the world found by its handle: `handle.rs`). Each call
-//! checks its arguments, delegates to the core, and turns the core's error into a [`Fail`].
+//! The calls on a world and its bodies (the world found by its handle: `handle.rs`): bodies
+//! added, stepping and the clock, what a body's last step did, its views, overlapping pieces
+//! and snapshots. Each call checks its arguments, delegates to the core, and turns the core's
+//! error into a [`Fail`] (`fails.rs`). Parameters: `params.rs`; operations on one body's shape:
+//! `bodyops.rs`.
 
 use crate::abi::exports;
-use crate::handle::{with_body, with_world};
-use crate::views::BodyViews;
+use crate::fails::{body_fail, mesh_fail, snapshot_fail, step_fail};
+use crate::handle::with_world;
 use crate::{bytes, fail, index, set_result, status, text, Fail, Res};
-use softsculpt::body::{BodyError, FreezeOptions};
 use softsculpt::mesh::{self, builtin, LoadedMesh, ObjData, TriMesh};
-use softsculpt::params::{self, ParamError, Scope, Value};
-use softsculpt::snapshot::SnapshotError;
 use softsculpt::{
-    world::{Budget, Interrupt}, Material, MeshError, SimError, SoftBody, StepError, Target, World,
+    world::{Budget, Interrupt}, Material, MeshError, SoftBody, World,
 };
-
-// ----- the core's errors as `Fail` --------------------------------------------------------------
-
-pub fn mesh_fail(e: MeshError) -> Fail {
-    let line = if let MeshError::Parse { line, .. } = e {
-        Some(line)
-    } else {
-        None
-    };
-    let f = Fail::new("mesh", e.to_string());
-    match line {
-        Some(l) => f.with("line", l),
-        None => f,
-    }
-}
-
-/// A simulation error: a parameter refused, a wrong length (usage), or a blow-up (step).
-pub fn sim_fail(e: SimError) -> Fail {
-    match &e {
-        SimError::BadParameter { name, .. } => {
-            Fail::new("parameter", e.to_string()).with("parameter", *name)
-        }
-        SimError::Length { .. } => Fail::usage(e.to_string()),
-        SimError::NonFinite { step } => Fail::new("step", e.to_string())
-            .with("step", *step)
-            .with("cause", "non_finite"),
-        SimError::Collapsed { step, volume } => Fail::new("step", e.to_string())
-            .with("step", *step)
-            .with("cause", "collapsed")
-            .with("volume", *volume),
-        SimError::NotConverged { step, time, .. } => Fail::new("step", e.to_string())
-            .with("step", *step)
-            .with("time", *time)
-            .with("converged", false)
-            .with("cause", "not_converged"),
-        SimError::Interrupted { step, time } => Fail::new("step", e.to_string())
-            .with("step", *step)
-            .with("time", *time)
-            .with("cause", "interrupted"),
-    }
-}
-
-fn body_fail(e: BodyError) -> Fail {
-    match e {
-        BodyError::Mesh(m) => mesh_fail(m),
-        BodyError::Sim(s) => sim_fail(s),
-    }
-}
-
-/// Names the parameter and its unit.
-pub fn param_fail(e: ParamError) -> Fail {
-    let unit = params::find(&e.id).map(|p| p.unit).unwrap_or("");
-    Fail::new("parameter", e.to_string())
-        .with("parameter", e.id)
-        .with("unit", unit)
-}
-
-fn step_fail(e: StepError) -> Fail {
-    let mut f = Fail::new("step", e.to_string())
-        .with("time", e.time)
-        .with("step", e.step);
-    // What went wrong, for the page to say in the user's terms: `cause` is `non_finite` (a
-    // blow-up), `collapsed` (the gas volume fell to zero or below; `volume` m³) or
-    // `not_converged` (an implicit step did not converge: a shorter step may succeed).
-    match e.error {
-        SimError::NotConverged { .. } => f = f.with("converged", false).with("cause", "not_converged"),
-        SimError::NonFinite { .. } => f = f.with("cause", "non_finite"),
-        SimError::Collapsed { volume, .. } => f = f.with("cause", "collapsed").with("volume", volume),
-        SimError::Interrupted { .. } => f = f.with("cause", "interrupted"),
-        _ => {}
-    }
-    if let Some(l) = e.line {
-        f = f.with("line", l);
-    }
-    if let Some(t) = e.rolled_back_to {
-        f = f.with("rolled_back_to", t);
-    }
-    if let Some(t) = e.rewound_to {
-        f = f.with("rewound_to", t);
-    }
-    f
-}
-
-pub fn snapshot_fail(e: SnapshotError) -> Fail {
-    Fail::new("snapshot", e.to_string())
-}
 
 // ----- the world ----------------------------------------------------------------------------------
 pub(crate) fn add(w: u32, mesh: &TriMesh, mass: f64, warnings: &[String]) -> Res<usize> {
@@ -140,23 +54,6 @@ fn interrupted() -> bool {
     false
 }
 
-/// A JSON value as the parameter `id` takes it: a number, `[x, y, z]`, a choice's name, or a flag.
-fn value_of(id: &str, v: &serde_json::Value) -> Result<Value, ParamError> {
-    let refuse = || ParamError {
-        id: id.to_string(),
-        message: format!("cannot take the value {v}"),
-    };
-    Ok(match v {
-        serde_json::Value::Number(n) => Value::Number(n.as_f64().ok_or_else(refuse)?),
-        serde_json::Value::Bool(f) => Value::Flag(*f),
-        serde_json::Value::String(s) => params::choice(params::find(id)?.id, s)?,
-        serde_json::Value::Array(a) if a.len() == 3 => {
-            let c = |k: usize| a[k].as_f64().ok_or_else(refuse);
-            Value::Vector([c(0)?, c(1)?, c(2)?])
-        }
-        _ => return Err(refuse()),
-    })
-}
 
 exports! {
     /// A built-in model by name, of total mass `mass` (kg), with the default material.
@@ -397,76 +294,6 @@ exports! {
         }
     }
 
-    // ----- parameters -----------------------------------------------------------------------------
-
-    /// Every body and world parameter of body `b` and its world, as a JSON object in the result
-    /// (`null` for the ground's when there is no ground).
-    pub fn ss_params(w: u32, b: u32) -> i32 {
-        status(|| {
-            with_body(w, b, |h, i| {
-                let out: serde_json::Map<String, serde_json::Value> = h
-                    .world
-                    .param_values(i, &[Scope::Body, Scope::World])
-                    .into_iter()
-                    .map(|(id, v)| (id.to_string(), v.and_then(|v| serde_json::to_value(v).ok()).unwrap_or(serde_json::Value::Null)))
-                    .collect();
-                set_result(serde_json::Value::Object(out).to_string().into_bytes());
-                Ok(())
-            })
-        })
-    }
-
-    /// Apply preset `name` (`softsculpt::params::presets`): its body parameters on body `b`, its
-    /// world parameters on the world; all or nothing.
-    ///
-    /// # Safety
-    /// `name` must point to `len` bytes.
-    pub unsafe fn ss_apply_preset(w: u32, b: u32, name: *const u8, len: usize) -> i32 {
-        status(|| {
-            let name = text(name, len, "the preset name")?;
-            with_world(w, |h| h.world.apply_preset(b as usize, name).map_err(param_fail))
-        })
-    }
-
-    /// Set parameter `id` (body parameters on body `b`, world parameters on the world) from a JSON
-    /// value; refused with an error naming the parameter and its unit.
-    ///
-    /// # Safety
-    /// `id` must point to `id_len` bytes and `json` to `json_len` bytes.
-    pub unsafe fn ss_set_param(
-        w: u32,
-        b: u32,
-        id: *const u8,
-        id_len: usize,
-        json: *const u8,
-        json_len: usize,
-    ) -> i32 {
-        status(|| {
-            let id = text(id, id_len, "the parameter id")?;
-            let v: serde_json::Value = serde_json::from_slice(bytes(json, json_len)).map_err(|e| {
-                param_fail(ParamError {
-                    id: id.to_string(),
-                    message: format!("the value is not JSON ({e})"),
-                })
-            })?;
-            let value = value_of(id, &v).map_err(param_fail)?;
-            with_world(w, |h| {
-                h.world.set_param(b as usize, id, value).map_err(param_fail)
-            })
-        })
-    }
-
-    /// `World::move_ground`: the ground to `height` m, carrying the bodies standing on it; result
-    /// `{"moved": n}` (bodies moved). Refused like `ss_set_param("ground.height")`.
-    pub fn ss_move_ground(w: u32, height: f64) -> i32 {
-        status(|| {
-            with_world(w, |h| {
-                let moved = h.world.move_ground(height).map_err(param_fail)?;
-                set_result(serde_json::json!({ "moved": moved }).to_string().into_bytes());
-                Ok(())
-            })
-        })
-    }
 
     /// `World::let_overlapping_bodies_be`: contacts off between the bodies that overlap or touch
     /// now, until they part (an import's pieces); result `{"pairs": [[a, b], …]}`.
@@ -476,173 +303,6 @@ exports! {
                 let pairs = h.world.let_overlapping_bodies_be();
                 set_result(serde_json::json!({ "pairs": pairs }).to_string().into_bytes());
                 Ok(())
-            })
-        })
-    }
-
-    // ----- operations on a body --------------------------------------------------------------------
-
-    /// Rest shape := current shape; `under_load` = 1 keeps carrying the weight, `keep_tension` = 1
-    /// keeps the gas pressing (rest lengths solved); result `{"residual": N, "load": N,
-    /// "iterations": n, "clamped": n}`.
-    pub fn ss_freeze(w: u32, b: u32, under_load: u32, keep_tension: u32) -> i32 {
-        status(|| {
-            with_body(w, b, |h, i| {
-                let how = FreezeOptions { under_load: under_load != 0, keep_tension: keep_tension != 0 };
-                let r = h.world.freeze(i, how).map_err(sim_fail)?;
-                set_result(serde_json::json!({ "residual": r.residual, "load": r.load, "iterations": r.iterations, "clamped": r.clamped }).to_string().into_bytes());
-                Ok(())
-            })
-        })
-    }
-
-    /// Back to the last frozen shape.
-    pub fn ss_reset(w: u32, b: u32) -> i32 {
-        status(|| {
-            with_body(w, b, |h, i| {
-                h.world.bodies[i].reset();
-                Ok(())
-            })
-        })
-    }
-
-    /// Replace body `b` by its isotropic remeshing to edge length `edge` (m)
-    /// (`World::remesh_reporting`; `under_load` ≠ 0: frozen under load); result
-    /// `{"dropped_events": n, "edge": m, "requested": m, "crease_deg": deg | null, "tries": n,
-    /// "distance": m, "volume_change": fraction}`: the edge length used (shorter than asked when the
-    /// shape needed it), keeping creases or not, and how far the surface moved. A remesh that would
-    /// change the shape is an error and changes nothing. Its views change.
-    pub fn ss_remesh(w: u32, b: u32, edge: f64, under_load: u32) -> i32 {
-        status(|| {
-            with_body(w, b, |h, i| {
-                let (dropped, _, r) = h.world.remesh_reporting(i, edge, under_load != 0).map_err(sim_fail)?;
-                h.views[i] = BodyViews::new(&h.world, i);
-                let json = serde_json::json!({
-                    "dropped_events": dropped, "edge": r.edge, "requested": r.requested, "crease_deg": r.crease_deg,
-                    "tries": r.tries, "distance": r.departure.distance(), "volume_change": r.departure.volume_change,
-                });
-                set_result(json.to_string().into_bytes());
-                Ok(())
-            })
-        })
-    }
-
-    /// Body `b`'s triangle quality (`World::quality`); result: JSON with the smallest angle and the
-    /// share of angles below 25° (degrees, fraction), the shortest and mean edge (m), the edges'
-    /// spread (σ/mean) and `poor` (`Quality::is_poor`).
-    pub fn ss_quality(w: u32, b: u32) -> i32 {
-        status(|| {
-            with_body(w, b, |h, i| {
-                let q = h.world.quality(i).map_err(sim_fail)?;
-                let json = serde_json::json!({
-                    "min_angle_deg": q.min_angle_deg, "small_angle_share": q.small_angle_share,
-                    "edge_min": q.edge_min, "edge_mean": q.edge_mean, "edge_spread": q.edge_spread, "poor": q.is_poor(),
-                });
-                set_result(json.to_string().into_bytes());
-                Ok(())
-            })
-        })
-    }
-
-    /// Replace body `b` by its Loop subdivision (frozen plainly, its resting vertices kept on their
-    /// support: `World::subdivide`); result `{"dropped_events": n}` (its pending scene events no
-    /// longer fit). Its views change.
-    pub fn ss_subdivide(w: u32, b: u32) -> i32 {
-        status(|| {
-            with_body(w, b, |h, i| {
-                let (dropped, _) = h.world.subdivide(i, softsculpt::body::FreezeOptions::default()).map_err(sim_fail)?;
-                h.views[i] = BodyViews::new(&h.world, i);
-                set_result(
-                    serde_json::json!({ "dropped_events": dropped })
-                        .to_string()
-                        .into_bytes(),
-                );
-                Ok(())
-            })
-        })
-    }
-
-    /// Multiply rest lengths by the per-vertex factors in the vertex scratch (a spring takes the
-    /// mean of its ends).
-    pub fn ss_scale_rest(w: u32, b: u32) -> i32 {
-        status(|| {
-            with_body(w, b, |h, i| {
-                h.world.bodies[i]
-                    .scale_rest_lengths_by_vertex(&h.views[i].scratch)
-                    .map_err(sim_fail)
-            })
-        })
-    }
-
-    /// Vertex masses (kg) from the vertex scratch.
-    pub fn ss_set_masses(w: u32, b: u32) -> i32 {
-        status(|| {
-            with_body(w, b, |h, i| {
-                h.world.bodies[i]
-                    .set_masses(&h.views[i].scratch)
-                    .map_err(sim_fail)
-            })
-        })
-    }
-
-    /// Pins from the pinned view (1 pinned, 0 free); only vertices that change are touched.
-    pub fn ss_set_pins(w: u32, b: u32) -> i32 {
-        status(|| {
-            with_body(w, b, |h, i| {
-                let body = &mut h.world.bodies[i];
-                for (v, &p) in h.views[i].pinned.iter().enumerate() {
-                    if body.is_pinned(v) != (p != 0) {
-                        body.set_pinned(v, p != 0).map_err(sim_fail)?;
-                    }
-                }
-                Ok(())
-            })
-        })
-    }
-
-    /// User forces (N, 3 per vertex) and face pressures (Pa, 1 per face) from the staging views.
-    pub fn ss_apply_loads(w: u32, b: u32) -> i32 {
-        status(|| {
-            with_body(w, b, |h, i| {
-                let (body, v) = (&mut h.world.bodies[i], &h.views[i]);
-                body.set_user_forces(&v.user_forces).map_err(sim_fail)?;
-                body.set_face_pressures(&v.face_pressures).map_err(sim_fail)
-            })
-        })
-    }
-
-    /// Target springs of body `b` (`SoftBody::set_targets`), replacing any it had: `count` records
-    /// of 6 f64 at `ptr`, (vertex, anchor x, y, z (m), stiffness (N/m), damping (N·s/m)); 0 clears.
-    ///
-    /// # Safety
-    /// `ptr` must point to `6 count` f64 (or be null with `count` 0).
-    pub unsafe fn ss_set_targets(w: u32, b: u32, ptr: *const f64, count: usize) -> i32 {
-        status(|| {
-            if ptr.is_null() && count > 0 {
-                return Err(Fail::usage("targets need a buffer"));
-            }
-            let rec = if count == 0 {
-                &[][..]
-            } else {
-                std::slice::from_raw_parts(ptr, 6 * count)
-            };
-            let mut targets = Vec::with_capacity(count);
-            for r in rec.chunks_exact(6) {
-                if !(r[0] >= 0.0 && r[0].fract() == 0.0 && r[0] < u32::MAX as f64) {
-                    return Err(Fail::usage(format!(
-                        "a target's vertex must be a whole number ≥ 0, got {}",
-                        r[0]
-                    )));
-                }
-                targets.push(Target {
-                    vertex: r[0] as usize,
-                    anchor: [r[1], r[2], r[3]],
-                    stiffness: r[4],
-                    damping: r[5],
-                });
-            }
-            with_body(w, b, |h, i| {
-                h.world.bodies[i].set_targets(&targets).map_err(sim_fail)
             })
         })
     }

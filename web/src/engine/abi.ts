@@ -229,6 +229,29 @@ export interface RawEngine {
    */
   ss_body_views(w: number, b: number): number;
   /**
+   * `World::let_overlapping_bodies_be`: contacts off between the bodies that overlap or touch
+   * now, until they part (an import's pieces); result `{"pairs": [[a, b], …]}`.
+   *
+   * `ss_let_overlapping_be(w: u32) -> i32`
+   */
+  ss_let_overlapping_be(w: number): number;
+  /**
+   * The whole world as snapshot bytes (`docs/snapshot.md`) in the result.
+   *
+   * `ss_snapshot(w: u32) -> i32`
+   */
+  ss_snapshot(w: number): number;
+  /**
+   * The world from snapshot bytes; on error (kind `snapshot`, the core's message) the world is
+   * untouched. Every body's views change.
+   *
+   * # Safety
+   * `ptr` must point to `len` readable bytes.
+   *
+   * `unsafe ss_restore(w: u32, ptr: *const u8, len: usize) -> i32`
+   */
+  ss_restore(w: number, ptr: number, len: number): number;
+  /**
    * Every body and world parameter of body `b` and its world, as a JSON object in the result
    * (`null` for the ground's when there is no ground).
    *
@@ -262,13 +285,6 @@ export interface RawEngine {
    * `ss_move_ground(w: u32, height: f64) -> i32`
    */
   ss_move_ground(w: number, height: number): number;
-  /**
-   * `World::let_overlapping_bodies_be`: contacts off between the bodies that overlap or touch
-   * now, until they part (an import's pieces); result `{"pairs": [[a, b], …]}`.
-   *
-   * `ss_let_overlapping_be(w: u32) -> i32`
-   */
-  ss_let_overlapping_be(w: number): number;
   /**
    * Rest shape := current shape; `under_load` = 1 keeps carrying the weight, `keep_tension` = 1
    * keeps the gas pressing (rest lengths solved); result `{"residual": N, "load": N,
@@ -345,22 +361,6 @@ export interface RawEngine {
    * `unsafe ss_set_targets(w: u32, b: u32, ptr: *const f64, count: usize) -> i32`
    */
   ss_set_targets(w: number, b: number, ptr: number, count: number): number;
-  /**
-   * The whole world as snapshot bytes (`docs/snapshot.md`) in the result.
-   *
-   * `ss_snapshot(w: u32) -> i32`
-   */
-  ss_snapshot(w: number): number;
-  /**
-   * The world from snapshot bytes; on error (kind `snapshot`, the core's message) the world is
-   * untouched. Every body's views change.
-   *
-   * # Safety
-   * `ptr` must point to `len` readable bytes.
-   *
-   * `unsafe ss_restore(w: u32, ptr: *const u8, len: usize) -> i32`
-   */
-  ss_restore(w: number, ptr: number, len: number): number;
   /**
    * A mesh file (`name`'s extension says its format, else its first bytes) read like the CLI
    * reads it (`softsculpt::mesh::load`: weld, checks, orientation, pieces): one body of `mass` kg,
@@ -500,11 +500,13 @@ export const EXPORTS: { readonly [name in Exclude<keyof RawEngine, 'memory'>]: n
   ss_body_accuracy: 2,
   ss_body_relaxed: 2,
   ss_body_views: 2,
+  ss_let_overlapping_be: 1,
+  ss_snapshot: 1,
+  ss_restore: 3,
   ss_params: 2,
   ss_apply_preset: 4,
   ss_set_param: 6,
   ss_move_ground: 2,
-  ss_let_overlapping_be: 1,
   ss_freeze: 4,
   ss_reset: 2,
   ss_remesh: 4,
@@ -515,8 +517,6 @@ export const EXPORTS: { readonly [name in Exclude<keyof RawEngine, 'memory'>]: n
   ss_set_pins: 2,
   ss_apply_loads: 2,
   ss_set_targets: 4,
-  ss_snapshot: 1,
-  ss_restore: 3,
   ss_add_file: 7,
   ss_apply_preset_scaled: 5,
   ss_animation_glb: 6,
