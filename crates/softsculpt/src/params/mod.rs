@@ -7,9 +7,13 @@
 //! Get and set by id: [`crate::world::World::param`] and [`crate::world::World::set_param`]
 //! (`world/params.rs`) route body parameters to a body's material and world parameters to the
 //! world's settings, checking the range with a message that names the parameter and its unit.
+//! The parameters that are plain fields are listed once beside their struct ([`field::Field`]:
+//! `Material::FIELDS`, `WorldSettings::FIELDS`, `Ground::FIELDS`), which get, set and
+//! validation all read.
 //! This module is plain data and pure functions: it imports nothing of bodies or worlds, which
 //! read it for their defaults (`tests/layers.rs`).
 
+pub mod field;
 pub mod presets;
 pub mod similarity;
 pub mod table;
