@@ -8,8 +8,8 @@ use crate::params as table;
 use crate::params::field::{check_fields, flag_field, number_field, Field};
 use crate::params::Value;
 
-/// Ideal gas constant R (J/(mol·K)).
-pub const GAS_CONSTANT: f64 = 8.314462618;
+/// Ideal gas constant R (J/(mol·K)) (the table's, which the page's generated params.ts shares).
+pub const GAS_CONSTANT: f64 = table::GAS_CONSTANT;
 
 /// The amount of gas n (mol) whose product n R T is `nrt` (J) at `temperature` (K): the one
 /// place nRT becomes n (the table's `gas.nrt`, a scene's `nrt`, an event's, `set_nrt`).

@@ -5,7 +5,7 @@ use super::events::Event;
 use super::spec::{BodySpec, GroundSpec, ObstacleSpec, RegionSpec, RotateSpec, SceneSpec, WorldSpec};
 use super::{line_of, SceneError};
 use crate::body::{moles, GasReference, Material, SoftBody, VolumeMode, DEFAULT_TEMPERATURE};
-use crate::params::{self as table, Param, Range};
+use crate::params::{self as table, Param, ParamId, Range};
 use crate::geometry::rotate;
 use crate::world::{ContactSettings, Ground, Integrator, Obstacle, WorldSettings};
 use crate::mesh::{builtin, load, load_obj, LoadedMesh, MeshFormat};
@@ -300,14 +300,14 @@ fn apply_preset(cx: &Ctx, body: &mut SoftBody, name: &str, given: &toml::Table) 
         return Err(cx.err("preset", format!("'{name}' sets world parameters too; a body takes a material preset ({})", names.join(", "))));
     }
     let gas = given.get("gas").and_then(|g| g.as_table());
-    let has = |id: &str| match id.split_once('.') {
+    let has = |id: ParamId| match id.id().split_once('.') {
         Some(("gas", "nrt" | "amount")) => gas.is_some_and(|g| g.contains_key("nrt") || g.contains_key("amount")),
         Some(("gas", key)) => gas.is_some_and(|g| g.contains_key(key)),
-        _ => given.contains_key(id),
+        _ => given.contains_key(id.id()),
     };
-    for (id, v) in p.values.iter().filter(|(id, _)| !has(id)) {
-        crate::params::find(id).and_then(|t| t.check(v)).map_err(|e| cx.err("preset", format!("'{name}': {e}")))?;
-        crate::world::set_body_param(body, id, *v).map_err(|e| cx.err("preset", format!("'{name}': {e}")))?;
+    for &(id, v) in p.values.iter().filter(|(id, _)| !has(*id)) {
+        id.param().check(&v).map_err(|e| cx.err("preset", format!("'{name}': {e}")))?;
+        crate::world::set_body_param(body, id, v).map_err(|e| cx.err("preset", format!("'{name}': {e}")))?;
     }
     Ok(())
 }
