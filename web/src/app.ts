@@ -172,7 +172,7 @@ export class App implements ToolContext {
   redo(): void { if (!this.tools.isDragging) this.operate({ type: 'redo' }); }
   step(): void { this.send({ type: 'step' }); }
   /** Set a parameter by its table id (see `mirror.table`). */
-  setParam(name: string, value: ParamValue): void { this.send({ type: 'setParam', name, value }); }
+  setParam(name: import('./engine/params').ParamId, value: ParamValue): void { this.send({ type: 'setParam', name, value }); }
   setMass(total: number): void { this.send({ type: 'setMass', total }); }
   /** Change settings (play, dt, real time, steps per frame); the mirror follows at once. */
   setSettings(patch: Partial<Settings>): void {

@@ -343,7 +343,7 @@ export class Document {
   }
 
   /** Change a parameter by its table id (undoable); a refused value is reported and leaves the old one. */
-  setParam(id: string, value: ParamValue): boolean {
+  setParam(id: import('../engine/params').ParamId, value: ParamValue): boolean {
     if (id === 'ground' && value === true) this.groundUnderBody = this.belowGround();
     // The ground's height moves the plane with what stands on it (the core's `move_ground`): a
     // rooted mushroom rises with it instead of being buried at its pinned foot (a new-user
