@@ -12,6 +12,7 @@ import { download, exportShape, type ExportFormat } from './io/export';
 import { rememberedUp, rememberUp } from './io/upaxis';
 import { baseName } from './project';
 import { sig3 } from './format';
+import type { ParamId } from './engine/params';
 
 export abstract class Commands {
   abstract readonly mirror: Mirror;
@@ -75,7 +76,7 @@ export abstract class Commands {
 
   step(): void { this.send({ type: 'step' }); }
   /** Set a parameter by its table id (see `mirror.table`). */
-  setParam(name: string, value: ParamValue): void { this.send({ type: 'setParam', name, value }); }
+  setParam(name: ParamId, value: ParamValue): void { this.send({ type: 'setParam', name, value }); }
   setMass(total: number): void { this.send({ type: 'setMass', total }); }
   /** Change settings (play, dt, real time, steps per frame); the mirror follows at once. */
   setSettings(patch: Partial<Settings>): void {

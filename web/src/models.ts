@@ -1,8 +1,10 @@
 // The models the modeler offers, how a mesh is placed on the ground, gas as nRT.
 // (Loading them into the engine and their default settings: engine/models.ts.)
 
-/** R (J/(mol·K)). */
-export const GAS_CONSTANT = 8.314462618;
+import { GAS_CONSTANT } from './engine/params';
+
+/** R (J/(mol·K)), the engine's (generated from its parameter table). */
+export { GAS_CONSTANT };
 
 export const MODELS = ['mushroom', 'sphere', 'octopus', 'kangaroo', 'bunny'] as const;
 export type ModelName = (typeof MODELS)[number];

@@ -5,7 +5,7 @@
 
 import type GUI from 'lil-gui';
 import type { Controller } from 'lil-gui';
-import type { ParamInfo, ParamValue, Params } from './protocol';
+import type { ParamId, ParamInfo, ParamValue, Params } from './protocol';
 import { nice } from './tools/scale';
 
 /**
@@ -64,7 +64,7 @@ export function tooltip(r: ParamInfo): string {
  * bind to (the caller refreshes it from the mirror), `set` sends an edit.
  */
 export function addParams(table: ParamInfo[], folders: Record<string, GUI>, values: Record<string, ParamValue>,
-  set: (id: string, v: ParamValue) => void, tip: (c: Controller, text: string) => Controller): void {
+  set: (id: ParamId, v: ParamValue) => void, tip: (c: Controller, text: string) => Controller): void {
   for (const r of table) {
     const s = SHOWN[r.id];
     if (!s) continue;

@@ -15,9 +15,10 @@
 // stepping meanwhile; only publishing waits).
 
 import type { Obstacle, ParamInfo, ParamValue, Stats } from './engine/world';
+import type { ParamId } from './engine/params';
 import type { ImportAnswer, ImportFrame, ImportQuestion } from './io/import';
 
-export type { Stats, Obstacle, ParamInfo, ParamValue };
+export type { Stats, Obstacle, ParamId, ParamInfo, ParamValue };
 /** Parameter values by the engine's table ids (null: not set, e.g. the ground's without ground). */
 export type Params = Record<string, ParamValue | null>;
 export type Vec3 = [number, number, number];
@@ -111,7 +112,7 @@ export type Command =
   /** One frame of steps (settings.substeps) while paused. */
   | { type: 'step' }
   /** A parameter by its table id (engine/world.ts `paramTable`); undoable; a refused value is reported (message) and the parameters are sent again. */
-  | { type: 'setParam'; name: string; value: ParamValue }
+  | { type: 'setParam'; name: ParamId; value: ParamValue }
   /** Total mass (kg) split equally over the vertices (undoable). */
   | { type: 'setMass'; total: number }
   /** A material preset of the core (balloon, jelly, clay…) on the active body, at its size (undoable). */

@@ -7,9 +7,11 @@
 //! handed, and the world owns them; `crate::world` re-exports everything here under its old
 //! paths (`world::WorldSettings`, …).
 
-use crate::error::{bad, check_non_negative, check_positive, SimError};
+use crate::error::{bad, check_positive, SimError};
 use crate::obstacles::Obstacle;
 use crate::params as table;
+use crate::params::field::{check_fields, number_field, Field};
+use crate::params::Value;
 
 /// Time integrator of the state (x, v).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -69,6 +71,13 @@ impl Ground {
     pub fn at(height: f64) -> Self {
         Ground { height, friction: table::GROUND_FRICTION.number(), restitution: table::GROUND_RESTITUTION.number() }
     }
+
+    /// The `ground.*` parameters, fields of the ground (read and set only when there is one).
+    pub const FIELDS: &'static [Field<Ground>] = &[
+        number_field!(Ground, table::GROUND_HEIGHT, height),
+        number_field!(Ground, table::GROUND_FRICTION, friction),
+        number_field!(Ground, table::GROUND_RESTITUTION, restitution),
+    ];
 }
 
 /// Contact between bodies and within a self-colliding body.
@@ -233,45 +242,73 @@ impl Default for WorldSettings {
 }
 
 impl WorldSettings {
-    /// Reject non-finite or out-of-range values with a message naming the parameter (as the CLI
-    /// flags do).
+    /// The world parameters that are fields of the settings, each with its table entry: get,
+    /// set and validation by id read this list (`world/params.rs`). A new world parameter is
+    /// its table entry, its field and its line here. (Not here: `ground`, whether there is one,
+    /// and `ground.*`, the fields of [`Ground::FIELDS`].)
+    pub const FIELDS: &'static [Field<WorldSettings>] = &[
+        number_field!(WorldSettings, table::DT, dt),
+        Field {
+            param: &table::INTEGRATOR,
+            get: |w: &WorldSettings| Value::Choice(w.integrator.name()),
+            set: |w: &mut WorldSettings, v| match v {
+                Value::Choice(c) => Integrator::from_name(c).map(|i| w.integrator = i).ok_or_else(|| "unknown integrator".into()),
+                other => Err(format!("expected a name, got {other:?}")),
+            },
+        },
+        number_field!(WorldSettings, table::TOLERANCE, tolerance),
+        Field {
+            param: &table::NEWTON_ITERATIONS,
+            get: |w: &WorldSettings| Value::Number(w.newton_iterations as f64),
+            // A count: the table's range bounds it (1 to MAX_NEWTON), a fraction is refused.
+            set: |w: &mut WorldSettings, v| match v {
+                Value::Number(x) if x.fract() == 0.0 => {
+                    w.newton_iterations = x as u32;
+                    Ok(())
+                }
+                Value::Number(x) => Err(format!("must be a whole number, got {x}")),
+                other => Err(format!("expected a number, got {other:?}")),
+            },
+        },
+        number_field!(WorldSettings, table::GRAVITY, gravity),
+        Field {
+            param: &table::WIND,
+            get: |w: &WorldSettings| Value::Vector(w.wind),
+            set: |w: &mut WorldSettings, v| match v {
+                Value::Vector(x) => {
+                    w.wind = x;
+                    Ok(())
+                }
+                other => Err(format!("expected three numbers, got {other:?}")),
+            },
+        },
+        number_field!(WorldSettings, table::WIND_DRAG, wind_drag),
+        number_field!(WorldSettings, table::CONTACT_THICKNESS, contact.thickness),
+        number_field!(WorldSettings, table::CONTACT_FRICTION, contact.friction),
+    ];
+
+    /// Reject non-finite or out-of-range values with a message naming the parameter (its table
+    /// id) and its unit: every field against its table range ([`WorldSettings::FIELDS`], and
+    /// the ground's [`Ground::FIELDS`]); then what is not a table parameter (the give-up rule,
+    /// the deadline, the obstacles).
     pub fn validate(&self) -> Result<(), SimError> {
-        check_dt(self.dt)?;
-        check_positive("tolerance", self.tolerance)?;
-        if !(1..=MAX_NEWTON).contains(&self.newton_iterations) {
-            return Err(bad("newton-iterations", format!("must be a whole number from 1 to {MAX_NEWTON}, got {}", self.newton_iterations)));
+        check_fields(WorldSettings::FIELDS, self)?;
+        if let Some(g) = &self.ground {
+            check_fields(Ground::FIELDS, g)?;
         }
         if let Some(g) = self.give_up {
             if g.stalled == 0 || g.most == 0 {
                 return Err(bad("give-up", format!("must be at least 1 iteration each, got {g:?}")));
             }
         }
-        if !self.gravity.is_finite() {
-            return Err(bad("gravity", format!("must be finite, got {}", self.gravity)));
-        }
-        if self.wind.iter().any(|w| !w.is_finite()) {
-            return Err(bad("wind", format!("must be finite, got {:?}", self.wind)));
-        }
         if let Some(d) = self.deadline {
             if !(d.accept > 0.0) || d.at.is_nan() {
                 return Err(bad("min-accuracy", format!("must be a relative residual above 0, got {}", d.accept)));
             }
         }
-        check_non_negative("wind-drag", self.wind_drag)?;
-        if let Some(g) = self.ground {
-            if !g.height.is_finite() {
-                return Err(bad("ground", format!("must be finite, got {}", g.height)));
-            }
-            check_non_negative("friction", g.friction)?;
-            if !(0.0..=1.0).contains(&g.restitution) {
-                return Err(bad("restitution", format!("must be between 0 and 1, got {}", g.restitution)));
-            }
-        }
         for (k, o) in self.obstacles.iter().enumerate() {
             o.validate().map_err(|m| bad("obstacle", format!("obstacle {}: {m}", k + 1)))?;
         }
-        check_non_negative("contact-thickness", self.contact.thickness)?;
-        check_non_negative("contact-friction", self.contact.friction)?;
         Ok(())
     }
 }

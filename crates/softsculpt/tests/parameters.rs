@@ -3,7 +3,7 @@
 
 use softsculpt::body::Material;
 use softsculpt::mesh::builtin::icosphere;
-use softsculpt::params::{self, Scope, Value, TABLE};
+use softsculpt::params::{self, ParamId, Scope, Value, TABLE};
 use softsculpt::scene::spec::{BodySpec, WorldSpec};
 use softsculpt::world::{Ground, World, WorldSettings};
 use softsculpt::SoftBody;
@@ -25,6 +25,35 @@ fn the_parameter_page_is_generated_from_the_table() {
     for p in TABLE {
         assert!(have.contains(&format!("`{}`", p.id)), "{} is documented", p.id);
     }
+}
+
+/// web/src/engine/params.ts is the table's TypeScript (ids as a type, rows, R); `UPDATE_DOCS=1`
+/// rewrites it.
+#[test]
+fn the_pages_parameter_types_are_generated_from_the_table() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../web/src/engine/params.ts");
+    let want = params::typescript::typescript();
+    if std::env::var_os("UPDATE_DOCS").is_some() {
+        std::fs::write(&path, &want).unwrap();
+    }
+    let have = std::fs::read_to_string(&path).unwrap_or_default();
+    assert!(have == want, "web/src/engine/params.ts is stale: run UPDATE_DOCS=1 cargo test -p softsculpt --test parameters");
+    for p in TABLE {
+        assert!(have.contains(&format!("| '{}'", p.id)) && have.contains(&format!("id: '{}'", p.id)), "{} is a ParamId", p.id);
+    }
+    assert!(have.contains(&format!("GAS_CONSTANT = {};", softsculpt::GAS_CONSTANT)));
+}
+
+/// The typed ids are the table's, one each, in its order, and read back from their strings.
+#[test]
+fn every_typed_id_is_one_entry_of_the_table() {
+    assert_eq!(ParamId::ALL.len(), TABLE.len());
+    for (id, p) in ParamId::ALL.iter().zip(TABLE) {
+        assert_eq!(id.param(), p);
+        assert_eq!(ParamId::find(p.id).unwrap(), *id);
+        assert_eq!(id.to_string(), p.id);
+    }
+    assert_eq!(ParamId::find("stifness").unwrap_err().to_string(), "stifness: no such parameter");
 }
 
 #[test]
@@ -155,7 +184,7 @@ fn presets_hold_valid_values_and_apply_them() {
     use softsculpt::params::presets::{preset, PRESETS};
     for p in PRESETS {
         for (id, v) in p.values {
-            let param = params::find(id).unwrap_or_else(|e| panic!("{}: {e}", p.name));
+            let param = params::find(id.id()).unwrap_or_else(|e| panic!("{}: {e}", p.name));
             assert!(param.check(v).is_ok(), "{}: {id} = {v:?} outside its range", p.name);
         }
     }

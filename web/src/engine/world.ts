@@ -86,7 +86,7 @@ export interface Advance {
 
 /** One row of the engine's parameter table (softsculpt::params). */
 export interface ParamInfo {
-  id: string;
+  id: import('./params').ParamId;
   scope: 'body' | 'world' | 'scene' | 'obstacle';
   unit: string;
   default: ParamValue;
@@ -328,7 +328,7 @@ export class World {
     return JSON.parse(resultText()) as Record<string, ParamValue | null>;
   }
   /** Set a parameter by its table id (body parameters on body `b`); throws kind 'parameter'. */
-  setParam(b: number, id: string, value: ParamValue): void {
+  setParam(b: number, id: import('./params').ParamId, value: ParamValue): void {
     const json = JSON.stringify(value) ?? 'null';
     this.call((w) => withBytes(encode(id), (ip, il) => withBytes(encode(json), (jp, jl) => raw().ss_set_param(w, b, ip, il, jp, jl))));
   }

@@ -33,6 +33,7 @@ import type { SketchCommand } from './sketch';
 import { advance, takeAccuracy } from './stepping';
 import { strokeEnd, strokeMove, strokeStart, updateStroke } from './stroking';
 import type { StrokeStart } from './strokes';
+import type { ParamId } from '../engine/params';
 
 export { HISTORY_BYTES, HISTORY_STEPS, errorText, type DocumentHooks, type SceneSource } from './docstate';
 export { HISTORY_KEPT_BYTES } from './projects';
@@ -118,7 +119,7 @@ export class Document extends DocState {
   undo(): void { travel(this, 'undo'); }
   redo(): void { travel(this, 'redo'); }
   /** Change a parameter by its table id (undoable); a refused value is reported and leaves the old one. */
-  setParam(id: string, value: ParamValue): boolean { return setParam(this, id, value); }
+  setParam(id: ParamId, value: ParamValue): boolean { return setParam(this, id, value); }
   setMass(total: number): void { setParam(this, 'mass', total); }
   /** A material preset of the core on the active body (undoable), at the model's size. */
   materialPreset(name: string): void { materialPreset(this, name); }

@@ -9,13 +9,14 @@ import { isClosed, sizeFactor } from '../io/import';
 import type { Vec3 } from '../protocol';
 import { errorText, type DocState } from './docstate';
 import { edit } from './editing';
+import type { ParamId } from '../engine/params';
 
 /** Implicit steps per 1/60 s frame past which a smaller dt is said to run in slow motion: each is
  * a Newton solve, where the modeler's default (dt = 1/60 s) takes one a frame. */
 const SLOW_IMPLICIT_STEPS = 4;
 
 /** Change a parameter by its table id (undoable); a refused value is reported and leaves the old one. */
-export function setParam(d: DocState, id: string, value: ParamValue): boolean {
+export function setParam(d: DocState, id: ParamId, value: ParamValue): boolean {
   if (id === 'ground' && value === true) d.groundUnderBody = belowGround(d);
   // The ground's height moves the plane with what stands on it (the core's `move_ground`): a
   // rooted mushroom rises with it instead of being buried at its pinned foot (a new-user

@@ -5,9 +5,11 @@
 pub use crate::error::{check_non_negative, check_positive};
 use crate::error::SimError;
 use crate::params as table;
+use crate::params::field::{check_fields, flag_field, number_field, Field};
+use crate::params::Value;
 
-/// Ideal gas constant R (J/(mol·K)).
-pub const GAS_CONSTANT: f64 = 8.314462618;
+/// Ideal gas constant R (J/(mol·K)) (the table's, which the page's generated params.ts shares).
+pub const GAS_CONSTANT: f64 = table::GAS_CONSTANT;
 
 /// The amount of gas n (mol) whose product n R T is `nrt` (J) at `temperature` (K): the one
 /// place nRT becomes n (the table's `gas.nrt`, a scene's `nrt`, an event's, `set_nrt`).
@@ -137,17 +139,35 @@ impl Material {
         self.gas_amount = moles(nrt, self.temperature);
     }
 
-    /// Reject non-finite or out-of-range values with a message naming the parameter.
+    /// The body parameters that are fields of a material, each with its table entry: get, set
+    /// and validation by id read this list (`world/params.rs`). A new material parameter is its
+    /// table entry, its field and its line here. (Not here: `mass`, the body's vertex masses;
+    /// `gas.nrt`, made of two fields; `gas.ambient`, the body's gas reference; and
+    /// `gas.amount`/`gas.temperature` are set through the body, which re-derives its gas.)
+    pub const FIELDS: &'static [Field<Material>] = &[
+        number_field!(Material, table::STIFFNESS, stiffness),
+        number_field!(Material, table::SPRING_DAMPING, spring_damping),
+        number_field!(Material, table::BENDING, bending_stiffness),
+        number_field!(Material, table::RIGIDITY, rigidity),
+        number_field!(Material, table::DAMPING, damping),
+        number_field!(Material, table::GAS_AMOUNT, gas_amount),
+        number_field!(Material, table::TEMPERATURE, temperature),
+        Field {
+            param: &table::VOLUME,
+            get: |m: &Material| Value::Choice(m.volume_mode.name()),
+            set: |m: &mut Material, v| match v {
+                Value::Choice(c) => VolumeMode::from_name(c).map(|mode| m.volume_mode = mode).ok_or_else(|| "unknown volume mode".into()),
+                other => Err(format!("expected a name, got {other:?}")),
+            },
+        },
+        flag_field!(Material, table::SELF_COLLISION, self_collision),
+        number_field!(Material, table::YIELD, yield_strain),
+        number_field!(Material, table::FLOW, flow_rate),
+    ];
+
+    /// Reject non-finite or out-of-range values with a message naming the parameter (its table
+    /// id) and its unit: every field against its table range ([`Material::FIELDS`]).
     pub fn validate(&self) -> Result<(), SimError> {
-        check_non_negative("stiffness", self.stiffness)?;
-        check_non_negative("spring-damping", self.spring_damping)?;
-        check_non_negative("bending", self.bending_stiffness)?;
-        check_non_negative("rigidity", self.rigidity)?;
-        check_non_negative("damping", self.damping)?;
-        check_non_negative("gas", self.gas_amount)?;
-        check_positive("temperature", self.temperature)?;
-        check_non_negative("yield", self.yield_strain)?;
-        check_non_negative("flow", self.flow_rate)?;
-        Ok(())
+        check_fields(Material::FIELDS, self)
     }
 }

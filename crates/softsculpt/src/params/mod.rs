@@ -1,18 +1,24 @@
 //! Every user-visible parameter, defined once: id (the scene-file key), scope, unit, default,
 //! valid range and a one-line help text ([`table`]). The CLI's flags and help, the scene
 //! format's defaults, `Material::default()` and `WorldSettings::default()` read it; the binding
-//! can hand it to the page as JSON ([`table_json`]); `docs/parameters.md` is generated from it
-//! ([`markdown`], checked by a test).
+//! can hand it to the page as JSON ([`table_json`]); `docs/parameters.md` and the page's
+//! `web/src/engine/params.ts` are generated from it ([`markdown`], [`typescript::typescript`],
+//! checked by a test). Inside the core a parameter is named by its typed [`ParamId`].
 //!
 //! Get and set by id: [`crate::world::World::param`] and [`crate::world::World::set_param`]
 //! (`world/params.rs`) route body parameters to a body's material and world parameters to the
 //! world's settings, checking the range with a message that names the parameter and its unit.
+//! The parameters that are plain fields are listed once beside their struct ([`field::Field`]:
+//! `Material::FIELDS`, `WorldSettings::FIELDS`, `Ground::FIELDS`), which get, set and
+//! validation all read.
 //! This module is plain data and pure functions: it imports nothing of bodies or worlds, which
 //! read it for their defaults (`tests/layers.rs`).
 
+pub mod field;
 pub mod presets;
 pub mod similarity;
 pub mod table;
+pub mod typescript;
 
 pub use table::*;
 
@@ -108,10 +114,12 @@ impl Param {
     }
     /// The valid names of a choice parameter.
     pub fn choices(&self) -> &'static [&'static str] {
-        match self.id {
-            "integrator" => INTEGRATOR_CHOICES,
-            "gas.volume" => VOLUME_CHOICES,
-            _ => &[],
+        if self.id == INTEGRATOR.id {
+            INTEGRATOR_CHOICES
+        } else if self.id == VOLUME.id {
+            VOLUME_CHOICES
+        } else {
+            &[]
         }
     }
     /// "N/m" or "" → " N/m" / "" for messages.
@@ -176,7 +184,24 @@ impl std::error::Error for ParamError {}
 
 /// The entry of `id`.
 pub fn find(id: &str) -> Result<&'static Param, ParamError> {
-    TABLE.iter().find(|p| p.id == id).ok_or_else(|| ParamError { id: id.to_string(), message: "no such parameter".into() })
+    ParamId::find(id).map(ParamId::param)
+}
+
+impl ParamId {
+    /// The typed id of string id `id` (the CLI's, a scene file's, the binding's).
+    pub fn find(id: &str) -> Result<ParamId, ParamError> {
+        ParamId::ALL.iter().copied().find(|p| p.param().id == id).ok_or_else(|| ParamError { id: id.to_string(), message: "no such parameter".into() })
+    }
+    /// The string id (the scene-file key).
+    pub const fn id(self) -> &'static str {
+        self.param().id
+    }
+}
+
+impl std::fmt::Display for ParamId {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.id())
+    }
 }
 
 /// The table's own spelling of choice `name` of parameter `id` (choices are `&'static str`).

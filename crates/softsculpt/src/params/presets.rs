@@ -72,60 +72,60 @@
 //!   octopus grabbed at a tentacle kept a 178° fold and lost 2.6 % of its volume for good; with
 //!   them, no fold and no loss.
 
-use super::{find, ParamError, Value};
+use super::{ParamError, ParamId, Value};
 
 /// A named set of parameter values.
 #[derive(Debug, Clone, Copy)]
 pub struct Preset {
     pub name: &'static str,
     pub help: &'static str,
-    /// (parameter id, value), applied in this order.
-    pub values: &'static [(&'static str, Value)],
+    /// (parameter, value), applied in this order.
+    pub values: &'static [(ParamId, Value)],
 }
 
 pub const MODELER: Preset = Preset {
     name: "modeler",
     help: "what the modeler opens a model with: bending as stiff as the edges, damped, 30 J of gas, on the ground, implicit at 1/60 s",
     values: &[
-        ("stiffness", Value::Number(100.0)),
-        ("spring_damping", Value::Number(0.1)),
-        ("bending", Value::Number(100.0)),
-        ("rigidity", Value::Number(0.05)),
-        ("damping", Value::Number(1.5)),
-        ("gravity", Value::Number(9.81)),
-        ("ground", Value::Flag(true)),
-        ("ground.height", Value::Number(0.0)),
-        ("ground.friction", Value::Number(0.5)),
-        ("gas.temperature", Value::Number(300.0)),
-        ("gas.nrt", Value::Number(30.0)),
-        ("integrator", Value::Choice("implicit")),
-        ("tolerance", Value::Number(1e-3)),
-        ("dt", Value::Number(1.0 / 60.0)),
+        (ParamId::Stiffness, Value::Number(100.0)),
+        (ParamId::SpringDamping, Value::Number(0.1)),
+        (ParamId::Bending, Value::Number(100.0)),
+        (ParamId::Rigidity, Value::Number(0.05)),
+        (ParamId::Damping, Value::Number(1.5)),
+        (ParamId::Gravity, Value::Number(9.81)),
+        (ParamId::Ground, Value::Flag(true)),
+        (ParamId::GroundHeight, Value::Number(0.0)),
+        (ParamId::GroundFriction, Value::Number(0.5)),
+        (ParamId::GasTemperature, Value::Number(300.0)),
+        (ParamId::GasNrt, Value::Number(30.0)),
+        (ParamId::Integrator, Value::Choice("implicit")),
+        (ParamId::Tolerance, Value::Number(1e-3)),
+        (ParamId::Dt, Value::Number(1.0 / 60.0)),
     ],
 };
 
 /// The body parameters every material preset sets, in this order.
-const fn material(k: f64, cs: f64, d: f64, c: f64, nrt: f64, yield_strain: f64, flow: f64) -> [(&'static str, Value); 8] {
+const fn material(k: f64, cs: f64, d: f64, c: f64, nrt: f64, yield_strain: f64, flow: f64) -> [(ParamId, Value); 8] {
     [
-        ("stiffness", Value::Number(k)),
-        ("spring_damping", Value::Number(cs)),
-        ("bending", Value::Number(0.0)),
-        ("rigidity", Value::Number(d)),
-        ("damping", Value::Number(c)),
-        ("gas.nrt", Value::Number(nrt)),
-        ("yield", Value::Number(yield_strain)),
-        ("flow", Value::Number(flow)),
+        (ParamId::Stiffness, Value::Number(k)),
+        (ParamId::SpringDamping, Value::Number(cs)),
+        (ParamId::Bending, Value::Number(0.0)),
+        (ParamId::Rigidity, Value::Number(d)),
+        (ParamId::Damping, Value::Number(c)),
+        (ParamId::GasNrt, Value::Number(nrt)),
+        (ParamId::Yield, Value::Number(yield_strain)),
+        (ParamId::Flow, Value::Number(flow)),
     ]
 }
 
-const BALLOON_VALUES: [(&str, Value); 8] = material(100.0, 0.1, 0.02, 0.5, 30.0, 0.0, 0.0);
-const JELLY_VALUES: [(&str, Value); 8] = material(60.0, 0.05, 0.01, 0.5, 20.0, 0.0, 0.0);
+const BALLOON_VALUES: [(ParamId, Value); 8] = material(100.0, 0.1, 0.02, 0.5, 30.0, 0.0, 0.0);
+const JELLY_VALUES: [(ParamId, Value); 8] = material(60.0, 0.05, 0.01, 0.5, 20.0, 0.0, 0.0);
 /// The clay preset's flexural rigidity D (J): hinges whose rest angles flow past the yield
 /// (module documentation, `clay`).
 pub const CLAY_RIGIDITY: f64 = 0.05;
-const CLAY_VALUES: [(&str, Value); 8] = material(300.0, 0.5, CLAY_RIGIDITY, 4.0, 20.0, 0.01, 5.0);
-const CLOTH_VALUES: [(&str, Value); 8] = material(400.0, 0.2, 0.0, 1.0, 0.0, 0.0, 0.0);
-const RUBBER_VALUES: [(&str, Value); 8] = material(2000.0, 0.5, 0.1, 1.0, 30.0, 0.0, 0.0);
+const CLAY_VALUES: [(ParamId, Value); 8] = material(300.0, 0.5, CLAY_RIGIDITY, 4.0, 20.0, 0.01, 5.0);
+const CLOTH_VALUES: [(ParamId, Value); 8] = material(400.0, 0.2, 0.0, 1.0, 0.0, 0.0, 0.0);
+const RUBBER_VALUES: [(ParamId, Value); 8] = material(2000.0, 0.5, 0.1, 1.0, 30.0, 0.0, 0.0);
 
 pub const BALLOON: Preset = Preset { name: "balloon", help: "material: a soft skin on 30 J of gas, lightly damped; bouncy", values: &BALLOON_VALUES };
 pub const JELLY: Preset = Preset { name: "jelly", help: "material: a softer skin held round by 20 J of gas, little damping; wobbles and springs back", values: &JELLY_VALUES };
@@ -143,7 +143,7 @@ pub const PRESETS: &[Preset] = &[MODELER, BALLOON, JELLY, CLAY, CLOTH, STIFF_RUB
 impl Preset {
     /// Whether it sets only body parameters (a material preset, for a scene body).
     pub fn is_material(&self) -> bool {
-        self.values.iter().all(|(id, _)| find(id).is_ok_and(|p| p.scope == super::Scope::Body))
+        self.values.iter().all(|(id, _)| id.param().scope == super::Scope::Body)
     }
 }
 

@@ -30,7 +30,7 @@
 //! comes to rest in another, collapsed shape); larger ones keep `dt` (the modeler's frame), more
 //! accurate than needed. The implicit tolerance is relative: as it is.
 
-use super::{find, ParamError, Value};
+use super::{ParamError, ParamId, Value};
 
 /// The exponent `e` of a unit (as written in the parameter table: `N·s/m³`, `m/s²`, `1/s`, …):
 /// a value in that unit becomes `value × s^e` for the model `s` times as large. None for a unit
@@ -69,9 +69,9 @@ pub fn exponent(unit: &str) -> Option<f64> {
 
 /// `value` of parameter `id` for the model `s` times as large (numbers and vectors; flags and
 /// choices as they are).
-pub fn scaled(id: &str, value: Value, s: f64) -> Result<Value, ParamError> {
-    let p = find(id)?;
-    let e = exponent(p.unit).ok_or_else(|| ParamError { id: id.into(), message: format!("no similarity rule for the unit '{}'", p.unit) })?;
+pub fn scaled(id: ParamId, value: Value, s: f64) -> Result<Value, ParamError> {
+    let p = id.param();
+    let e = exponent(p.unit).ok_or_else(|| ParamError { id: p.id.into(), message: format!("no similarity rule for the unit '{}'", p.unit) })?;
     let f = s.powf(e);
     Ok(match value {
         Value::Number(x) => Value::Number(x * f),
@@ -82,7 +82,7 @@ pub fn scaled(id: &str, value: Value, s: f64) -> Result<Value, ParamError> {
 
 /// Parameters a scaled preset also sets, from the table's defaults, scaled: they depend on the
 /// model's size too (the body's mass, the distance kept in contact).
-pub const SIZED_DEFAULTS: &[&str] = &["mass", "contact_thickness"];
+pub const SIZED_DEFAULTS: &[ParamId] = &[ParamId::Mass, ParamId::ContactThickness];
 
 #[cfg(test)]
 mod tests {

@@ -4,7 +4,8 @@
 use super::events::Event;
 use super::spec::{BodySpec, GroundSpec, ObstacleSpec, RegionSpec, RotateSpec, SceneSpec, WorldSpec};
 use super::{line_of, SceneError};
-use crate::body::{GasReference, Material, SoftBody, VolumeMode, DEFAULT_TEMPERATURE};
+use crate::body::{moles, GasReference, Material, SoftBody, VolumeMode, DEFAULT_TEMPERATURE};
+use crate::params::{self as table, Param, ParamId, Range};
 use crate::geometry::rotate;
 use crate::world::{ContactSettings, Ground, Integrator, Obstacle, WorldSettings};
 use crate::mesh::{builtin, load, load_obj, LoadedMesh, MeshFormat};
@@ -56,11 +57,25 @@ impl<'a> Ctx<'a> {
     pub(super) fn positive(&self, key: &str, v: f64) -> Result<f64, SceneError> {
         if v.is_finite() && v > 0.0 { Ok(v) } else { Err(self.err(key, format!("must be greater than 0, got {v}"))) }
     }
-    pub(super) fn non_negative(&self, key: &str, v: f64) -> Result<f64, SceneError> {
-        if v.is_finite() && v >= 0.0 { Ok(v) } else { Err(self.err(key, format!("must be 0 or more, got {v}"))) }
-    }
     pub(super) fn vec(&self, key: &str, v: [f64; 3]) -> Result<V3, SceneError> {
         if v.iter().all(|x| x.is_finite()) { Ok(v) } else { Err(self.err(key, format!("must be finite, got {v:?}"))) }
+    }
+    /// Number `v` of table parameter `p` under `key`, checked against the table's range (in the
+    /// scene format's words: "must be 0 or more", "must be greater than 0", …).
+    pub(super) fn param(&self, key: &str, p: &Param, v: f64) -> Result<f64, SceneError> {
+        if p.range.contains(v) { Ok(v) } else { Err(self.err(key, format!("{}, got {v}", must(&p.range)))) }
+    }
+}
+
+/// What a value outside `r` must be, as the scene format says it.
+fn must(r: &Range) -> String {
+    let unbounded_above = r.max == f64::INFINITY;
+    if unbounded_above && r.min == f64::NEG_INFINITY {
+        "must be a finite number".into()
+    } else if unbounded_above && r.min == 0.0 {
+        if r.min_open { "must be greater than 0".into() } else { "must be 0 or more".into() }
+    } else {
+        format!("must be {}", r.describe())
     }
 }
 
@@ -144,32 +159,29 @@ fn world_settings(spec: &SceneSpec, text: &str, resolve: Resolver) -> Result<Wor
 
 /// The `[world]` table's numbers checked, and its integrator.
 fn check_world(cx: &Ctx, w: &WorldSpec) -> Result<Integrator, SceneError> {
-    cx.positive("dt", w.dt)?;
-    cx.positive("duration", w.duration)?;
+    cx.param("dt", &table::DT, w.dt)?;
+    cx.param("duration", &table::DURATION, w.duration)?;
     if w.duration / w.dt > 1e9 {
         return Err(cx.err("dt", format!("{} s in steps of {} s is more than 10⁹ steps", w.duration, w.dt)));
     }
     let integrator = Integrator::from_name(&w.integrator)
         .ok_or_else(|| cx.err("integrator", format!("unknown integrator '{}' (euler, midpoint, rk4, symplectic, implicit)", w.integrator)))?;
-    cx.positive("tolerance", w.tolerance)?;
-    if !(1..=crate::settings::MAX_NEWTON).contains(&w.newton_iterations) {
-        return Err(cx.err("newton_iterations", format!("must be a whole number from 1 to {}, got {}", crate::settings::MAX_NEWTON, w.newton_iterations)));
-    }
-    cx.finite("gravity", w.gravity)?;
+    cx.param("tolerance", &table::TOLERANCE, w.tolerance)?;
+    // (A whole number already: the file's integer.)
+    cx.param("newton_iterations", &table::NEWTON_ITERATIONS, w.newton_iterations as f64)?;
+    cx.param("gravity", &table::GRAVITY, w.gravity)?;
     cx.vec("wind", w.wind)?;
-    cx.non_negative("wind_drag", w.wind_drag)?;
-    cx.non_negative("contact_thickness", w.contact_thickness)?;
-    cx.non_negative("contact_friction", w.contact_friction)?;
+    cx.param("wind_drag", &table::WIND_DRAG, w.wind_drag)?;
+    cx.param("contact_thickness", &table::CONTACT_THICKNESS, w.contact_thickness)?;
+    cx.param("contact_friction", &table::CONTACT_FRICTION, w.contact_friction)?;
     Ok(integrator)
 }
 
 /// `[world.ground]` checked.
 fn check_ground(cx: &Ctx, g: &GroundSpec) -> Result<Ground, SceneError> {
-    cx.finite("ground.height", g.height)?;
-    cx.non_negative("ground.friction", g.friction)?;
-    if !(0.0..=1.0).contains(&g.restitution) {
-        return Err(cx.err("ground.restitution", format!("must be between 0 and 1, got {}", g.restitution)));
-    }
+    cx.param("ground.height", &table::GROUND_HEIGHT, g.height)?;
+    cx.param("ground.friction", &table::GROUND_FRICTION, g.friction)?;
+    cx.param("ground.restitution", &table::GROUND_RESTITUTION, g.restitution)?;
     Ok(Ground { height: g.height, friction: g.friction, restitution: g.restitution })
 }
 
@@ -235,20 +247,20 @@ fn body(cx: &Ctx, b: &BodySpec, ground: Option<Ground>, index: usize, resolve: R
             }
         }
     }
-    material.stiffness = cx.non_negative("stiffness", b.stiffness)?;
-    material.spring_damping = cx.non_negative("spring_damping", b.spring_damping)?;
-    material.bending_stiffness = cx.non_negative("bending", b.bending)?;
-    material.rigidity = cx.non_negative("rigidity", b.rigidity)?;
-    material.damping = cx.non_negative("damping", b.damping)?;
-    material.yield_strain = cx.non_negative("yield", b.yield_strain)?;
-    material.flow_rate = cx.non_negative("flow", b.flow)?;
+    material.stiffness = cx.param("stiffness", &table::STIFFNESS, b.stiffness)?;
+    material.spring_damping = cx.param("spring_damping", &table::SPRING_DAMPING, b.spring_damping)?;
+    material.bending_stiffness = cx.param("bending", &table::BENDING, b.bending)?;
+    material.rigidity = cx.param("rigidity", &table::RIGIDITY, b.rigidity)?;
+    material.damping = cx.param("damping", &table::DAMPING, b.damping)?;
+    material.yield_strain = cx.param("yield", &table::YIELD, b.yield_strain)?;
+    material.flow_rate = cx.param("flow", &table::FLOW, b.flow)?;
     material.self_collision = b.self_collision;
     if let Some(g) = &b.gas {
-        material.temperature = cx.positive("gas.temperature", g.temperature.unwrap_or(DEFAULT_TEMPERATURE))?;
+        material.temperature = cx.param("gas.temperature", &table::TEMPERATURE, g.temperature.unwrap_or(DEFAULT_TEMPERATURE))?;
         material.gas_amount = match (g.amount, g.nrt) {
             (Some(_), Some(_)) => return Err(cx.err("gas", "give `amount` (mol) or `nrt` (J), not both")),
-            (Some(a), None) => cx.non_negative("gas.amount", a)?,
-            (None, Some(n)) => crate::body::moles(cx.non_negative("gas.nrt", n)?, material.temperature),
+            (Some(a), None) => cx.param("gas.amount", &table::GAS_AMOUNT, a)?,
+            (None, Some(n)) => moles(cx.param("gas.nrt", &table::GAS_NRT, n)?, material.temperature),
             (None, None) => return Err(cx.err("gas", "needs `amount` (mol) or `nrt` (J)")),
         };
         if let Some(v) = &g.volume {
@@ -256,10 +268,10 @@ fn body(cx: &Ctx, b: &BodySpec, ground: Option<Ground>, index: usize, resolve: R
                 .ok_or_else(|| cx.err("gas.volume", format!("unknown volume mode '{v}' ({})", VolumeMode::NAMES.join(", "))))?;
         }
     }
-    let mass = cx.positive("mass", b.mass)?;
+    let mass = cx.param("mass", &table::MASS, b.mass)?;
     let mut body = SoftBody::new(&mesh.mesh, mass, material).map_err(|e| cx.err(if b.gas.is_some() { "gas" } else { "" }, e.to_string()))?;
     if let Some(ambient) = b.gas.as_ref().and_then(|g| g.ambient) {
-        let gas = GasReference { ambient_pressure: cx.non_negative("gas.ambient", ambient)?, reference_volume: body.gas_reference().reference_volume };
+        let gas = GasReference { ambient_pressure: cx.param("gas.ambient", &table::AMBIENT, ambient)?, reference_volume: body.gas_reference().reference_volume };
         let (x, rest) = (body.positions().to_vec(), body.rest_lengths().to_vec());
         body.set_gas_reference(gas).and_then(|_| body.set_frozen(&x, &rest, gas)).map_err(|e| cx.err("gas.ambient", e.to_string()))?;
     }
@@ -288,14 +300,14 @@ fn apply_preset(cx: &Ctx, body: &mut SoftBody, name: &str, given: &toml::Table) 
         return Err(cx.err("preset", format!("'{name}' sets world parameters too; a body takes a material preset ({})", names.join(", "))));
     }
     let gas = given.get("gas").and_then(|g| g.as_table());
-    let has = |id: &str| match id.split_once('.') {
+    let has = |id: ParamId| match id.id().split_once('.') {
         Some(("gas", "nrt" | "amount")) => gas.is_some_and(|g| g.contains_key("nrt") || g.contains_key("amount")),
         Some(("gas", key)) => gas.is_some_and(|g| g.contains_key(key)),
-        _ => given.contains_key(id),
+        _ => given.contains_key(id.id()),
     };
-    for (id, v) in p.values.iter().filter(|(id, _)| !has(id)) {
-        crate::params::find(id).and_then(|t| t.check(v)).map_err(|e| cx.err("preset", format!("'{name}': {e}")))?;
-        crate::world::set_body_param(body, id, *v).map_err(|e| cx.err("preset", format!("'{name}': {e}")))?;
+    for &(id, v) in p.values.iter().filter(|(id, _)| !has(*id)) {
+        id.param().check(&v).map_err(|e| cx.err("preset", format!("'{name}': {e}")))?;
+        crate::world::set_body_param(body, id, v).map_err(|e| cx.err("preset", format!("'{name}': {e}")))?;
     }
     Ok(())
 }
@@ -371,7 +383,7 @@ fn obstacle(cx: &Ctx, o: &ObstacleSpec, resolve: Resolver) -> Result<Obstacle, S
         }
     };
     if let Some(f) = o.friction {
-        ob.friction = cx.non_negative("friction", f)?;
+        ob.friction = cx.param("friction", &table::OBSTACLE_FRICTION, f)?;
     }
     ob.validate().map_err(|m| cx.err("", m))?;
     Ok(ob)

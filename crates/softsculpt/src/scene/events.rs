@@ -10,6 +10,7 @@ use super::build::{select_in, BuiltBody, Ctx};
 use super::spec::{EventSpec, SceneSpec};
 use super::SceneError;
 pub use crate::world::{Action, Event};
+use crate::params as table;
 use crate::vec3::scale;
 
 /// Every action, with the keys it requires and the keys it may take (besides `time`, `action`
@@ -159,13 +160,13 @@ fn event_action(cx: &Ctx, e: &EventSpec, b: &BuiltBody, gravity: f64, until: f64
 /// A `set_gas` event's values checked: gas only in a closed body.
 fn set_gas(cx: &Ctx, e: &EventSpec, b: &BuiltBody) -> Result<Action, SceneError> {
     if let Some(a) = e.amount {
-        cx.non_negative("amount", a)?;
+        cx.param("amount", &table::GAS_AMOUNT, a)?;
     }
     if let Some(t) = e.temperature {
-        cx.positive("temperature", t)?;
+        cx.param("temperature", &table::TEMPERATURE, t)?;
     }
     if let Some(n) = e.nrt {
-        cx.non_negative("nrt", n)?;
+        cx.param("nrt", &table::GAS_NRT, n)?;
     }
     if (e.amount.unwrap_or(0.0) > 0.0 || e.nrt.unwrap_or(0.0) > 0.0) && !b.body.is_closed() {
         return Err(cx.err("amount", format!("body '{}' is open: gas needs a closed surface", b.name)));
