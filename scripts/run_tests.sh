@@ -20,7 +20,7 @@ suite() { # name, command...
 }
 
 suite setup scripts/setup.sh browser
-suite cargo cargo test --workspace --color never
+suite cargo cargo test --workspace --no-fail-fast --color never
 suite clippy cargo clippy --workspace --all-targets --color never -- -D warnings
 suite wasm make --no-print-directory web
 suite python scripts/python_tests.sh

@@ -15,7 +15,8 @@
 //! 6. `scene`, `snapshot`, `delta`, `workload`, `sketch`, `compat`, and the crate root `lib`:
 //!    they build, save, load, compare or drive whole worlds.
 //!
-//! Modules of one layer may import each other (`snapshot` and `delta` do both ways).
+//! Modules of one layer may import each other (`delta` and `compat` import `snapshot`; none of
+//! them imports back).
 //!
 //! The sub-modules of `snapshot` are its format's versions, each built on the one before
 //! (`SNAPSHOT_LAYERS`): `v1` (versions 1 and 2), `v3` … `v7`, then `mod` (the header, the

@@ -152,7 +152,7 @@ fn bad_parameters_are_refused_by_name() {
     assert!(w.step().unwrap_err().to_string().starts_with("stiffness:"));
     w.bodies[0].material.stiffness = 1.0;
     w.bodies[0].material.gas_amount = -1.0;
-    assert!(w.step().unwrap_err().to_string().starts_with("gas:"));
+    assert!(w.step().unwrap_err().to_string().starts_with("gas.amount:"));
     assert!(SoftBody::new(&icosphere(1, 1.0), 0.0, bare()).is_err());
     let body = &mut w.bodies[0];
     assert!(body.set_vertex_mass(10_000, 1.0).is_err());
