@@ -10,7 +10,7 @@
 use crate::error::{bad, check_positive, SimError};
 use crate::obstacles::Obstacle;
 use crate::params as table;
-use crate::params::field::{check_fields, number_field, Field};
+use crate::params::field::{check_fields, choice_field, number_field, Field};
 use crate::params::Value;
 
 /// Time integrator of the state (x, v).
@@ -248,14 +248,7 @@ impl WorldSettings {
     /// and `ground.*`, the fields of [`Ground::FIELDS`].)
     pub const FIELDS: &'static [Field<WorldSettings>] = &[
         number_field!(WorldSettings, table::DT, dt),
-        Field {
-            param: &table::INTEGRATOR,
-            get: |w: &WorldSettings| Value::Choice(w.integrator.name()),
-            set: |w: &mut WorldSettings, v| match v {
-                Value::Choice(c) => Integrator::from_name(c).map(|i| w.integrator = i).ok_or_else(|| "unknown integrator".into()),
-                other => Err(format!("expected a name, got {other:?}")),
-            },
-        },
+        choice_field!(WorldSettings, table::INTEGRATOR, integrator: Integrator, "integrator"),
         number_field!(WorldSettings, table::TOLERANCE, tolerance),
         Field {
             param: &table::NEWTON_ITERATIONS,

@@ -5,8 +5,7 @@
 pub use crate::error::{check_non_negative, check_positive};
 use crate::error::SimError;
 use crate::params as table;
-use crate::params::field::{check_fields, flag_field, number_field, Field};
-use crate::params::Value;
+use crate::params::field::{check_fields, choice_field, flag_field, number_field, Field};
 
 /// Ideal gas constant R (J/(mol·K)) (the table's, which the page's generated params.ts shares).
 pub const GAS_CONSTANT: f64 = table::GAS_CONSTANT;
@@ -152,14 +151,7 @@ impl Material {
         number_field!(Material, table::DAMPING, damping),
         number_field!(Material, table::GAS_AMOUNT, gas_amount),
         number_field!(Material, table::TEMPERATURE, temperature),
-        Field {
-            param: &table::VOLUME,
-            get: |m: &Material| Value::Choice(m.volume_mode.name()),
-            set: |m: &mut Material, v| match v {
-                Value::Choice(c) => VolumeMode::from_name(c).map(|mode| m.volume_mode = mode).ok_or_else(|| "unknown volume mode".into()),
-                other => Err(format!("expected a name, got {other:?}")),
-            },
-        },
+        choice_field!(Material, table::VOLUME, volume_mode: VolumeMode, "volume mode"),
         flag_field!(Material, table::SELF_COLLISION, self_collision),
         number_field!(Material, table::YIELD, yield_strain),
         number_field!(Material, table::FLOW, flow_rate),

@@ -65,3 +65,20 @@ macro_rules! flag_field {
     };
 }
 pub(crate) use flag_field;
+
+/// A [`Field`] of type `$t` for choice parameter `$param`, stored in `$field` of a type `$ty`
+/// with `name()` and `from_name(&str) -> Option<$ty>` (the integrator, the volume mode); a name
+/// it does not know is refused as "unknown `$what`".
+macro_rules! choice_field {
+    ($t:ty, $param:expr, $field:ident: $ty:ty, $what:literal) => {
+        $crate::params::field::Field::<$t> {
+            param: &$param,
+            get: |s: &$t| $crate::params::Value::Choice(s.$field.name()),
+            set: |s: &mut $t, v| match v {
+                $crate::params::Value::Choice(c) => <$ty>::from_name(c).map(|x| s.$field = x).ok_or_else(|| concat!("unknown ", $what).into()),
+                other => Err(format!("expected a name, got {other:?}")),
+            },
+        }
+    };
+}
+pub(crate) use choice_field;
