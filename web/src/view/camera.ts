@@ -105,6 +105,19 @@ export class CameraRig {
   private followedAt = performance.now();
   /** Scratch for `follow` (called every frame: no allocation). */
   private readonly away = new THREE.Vector3();
+  /** The last centre `follow` was given (what `ease` goes on following). */
+  private readonly last = new THREE.Vector3();
+
+  /**
+   * Every drawn frame: go on easing towards the last centre seen. A frame of the model comes
+   * only when it changes, so without this the view stopped wherever it was when the frames
+   * stopped: after a blow-up the model put back and paused came in one frame, and the view
+   * stayed part way along its ease, the model off screen. Not before a new view's first centre
+   * (`reanchor`).
+   */
+  ease(now = performance.now()): void {
+    if (!this.reanchor) this.follow(this.last, now);
+  }
 
   /**
    * The model's centre this frame. The camera's target eases (time constant FOLLOW_TAU, no jump)
@@ -119,6 +132,7 @@ export class CameraRig {
   follow(centre: THREE.Vector3, now = performance.now()): void {
     const dt = Math.min(0.25, Math.max(0, (now - this.followedAt) / 1000));
     this.followedAt = now;
+    if (centre !== this.last) this.last.copy(centre);
     if (this.reanchor) { this.anchor.copy(centre); this.base.copy(this.target); this.reanchor = false; return; }
     if (this.moving || !this.controls.enabled) return;
     const away = followTarget(this.base, this.anchor, centre, FOLLOW_ZONE * this.radius, this.away).sub(this.target);

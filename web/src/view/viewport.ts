@@ -190,6 +190,7 @@ export class Viewport {
    */
   render(): void {
     this.rig.update();
+    this.rig.ease();
     if (!this.dirty) return;
     this.dirty = false;
     if (this.windArrow.visible) this.placeWind();
