@@ -59,7 +59,6 @@
 use super::adjacency::{FaceRows, HingeRows, SpringRows};
 use super::Relaxed;
 use super::blocks::{Blocks, Pieces};
-use super::super::hinges::{bend_crushed, rate, Hinges};
 use std::sync::atomic::{AtomicU64, Ordering};
 use super::ground::GroundSet;
 use super::super::{gas, Model};

@@ -1,7 +1,11 @@
 //! The product A p and the preconditioner's diagonal for the conjugate gradient
 //! (`super::System`), matrix-free from the pieces or from a hinged body's summed blocks.
 
-use super::*;
+use super::super::adjacency::SpringRows;
+use super::super::super::Model;
+use super::{System, VCHUNK};
+use crate::par::{chunk, Out, Threads};
+
 
 /// The product and the preconditioner, for the conjugate gradient: matrix-free from the
 /// pieces, or from a hinged body's blocks once summed.

@@ -2,7 +2,11 @@
 //! springs', hinges', faces' and contacts' forces and 3×3 diagonal blocks at (x_t, v⁺), with the
 //! per-hinge and per-face passes that run before it.
 
-use super::*;
+use super::super::adjacency::{FaceRows, HingeRows, SpringRows};
+use super::super::super::hinges::{bend_crushed, rate, Hinges};
+use super::{Frame, ECHUNK};
+use crate::par::{chunk, chunks, Out, Threads};
+
 
 /// The vertex pass's per-entry outputs for its rows: `ecoef`, `bcoef`, `hcoef`.
 pub(super) type RowCoefs<'a> = (&'a mut [[f64; 5]], &'a mut [[f64; 5]], &'a mut [[f64; 3]]);
