@@ -88,8 +88,10 @@ pub(crate) struct Model {
     pub plastic_dissipation: f64,
 }
 
-/// Positions (m) and velocities (m/s), flat xyz.
-#[derive(Debug, Clone)]
+/// What a step without an event changes of a body, besides its plastic state: positions (m)
+/// and velocities (m/s), flat xyz, and the implicit integrator's memory of its last step. The
+/// rollback's backup and the rewind points are copies of it (`world/rollback.rs`).
+#[derive(Debug, Default)]
 pub(crate) struct State {
     pub x: Vec<f64>,
     pub v: Vec<f64>,
@@ -102,6 +104,29 @@ pub(crate) struct State {
     /// (`implicit/keep.rs`); empty: none. State for the same reason as the warm start
     /// (snapshot version 6).
     pub kept: implicit::Kept,
+}
+
+/// By hand for `clone_from`, which keeps the buffers (the derived one allocates anew): the
+/// rollback copies every body's state into the same backup before each call.
+impl Clone for State {
+    fn clone(&self) -> Self {
+        State { x: self.x.clone(), v: self.v.clone(), warm: self.warm.clone(), warm_dt: self.warm_dt, kept: self.kept.clone() }
+    }
+
+    fn clone_from(&mut self, o: &Self) {
+        self.x.clone_from(&o.x);
+        self.v.clone_from(&o.v);
+        self.warm.clone_from(&o.warm);
+        self.warm_dt = o.warm_dt;
+        self.kept.clone_from(&o.kept);
+    }
+}
+
+impl State {
+    /// Its size in bytes, about (the f64 and u32 arrays).
+    pub fn bytes(&self) -> usize {
+        8 * (self.x.len() + self.v.len() + self.warm.len() + self.kept.xt.len()) + 4 * self.kept.held.len()
+    }
 }
 
 /// Scratch arrays, allocated once (the Runge–Kutta ones on first use), never inside a step.

@@ -13,7 +13,7 @@
 //! else.
 
 use super::{Clock, Events, GiveUp, StepError, World, WorldSettings};
-use crate::body::SoftBody;
+use crate::body::{SoftBody, State};
 use crate::error::SimError;
 
 /// What the events stage can change besides positions, velocities and the clock.
@@ -24,15 +24,12 @@ struct Full {
     load_sums: (Vec<Vec<f64>>, Vec<Vec<f64>>),
 }
 
-/// Positions and velocities of every body at the start of a call (flat xyz), its implicit warm
-/// start (Δv, dt) and kept coarse levels, reused; and what the plastic stage changes, of the
-/// plastic bodies.
+/// Every body's state at the start of a call (`body::State`: positions, velocities, the
+/// implicit warm start and kept coarse levels), copied with `clone_from` into buffers kept from
+/// call to call; and what the plastic stage changes, of the plastic bodies.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Backup {
-    x: Vec<Vec<f64>>,
-    v: Vec<Vec<f64>>,
-    warm: Vec<(Vec<f64>, f64)>,
-    kept: Vec<crate::body::implicit::Kept>,
+    state: Vec<State>,
     plastic: Vec<Option<crate::body::PlasticState>>,
 }
 
@@ -105,49 +102,31 @@ impl Backup {
     /// Copy what a step without an event changes of `bodies` (see the module documentation),
     /// into the buffers kept from the last call.
     pub(crate) fn save(&mut self, bodies: &[SoftBody]) {
-        self.x.resize_with(bodies.len(), Vec::new);
-        self.v.resize_with(bodies.len(), Vec::new);
-        self.warm.resize_with(bodies.len(), Default::default);
-        self.kept.resize_with(bodies.len(), Default::default);
-        for (b, (x, v)) in bodies.iter().zip(self.x.iter_mut().zip(self.v.iter_mut())) {
-            x.clear();
-            x.extend_from_slice(b.positions());
-            v.clear();
-            v.extend_from_slice(b.velocities());
-        }
-        for (b, (warm, kept)) in bodies.iter().zip(self.warm.iter_mut().zip(self.kept.iter_mut())) {
-            warm.0.clone_from(&b.state.warm);
-            warm.1 = b.state.warm_dt;
-            kept.clone_from(&b.state.kept);
+        self.state.resize_with(bodies.len(), State::default);
+        for (b, s) in bodies.iter().zip(self.state.iter_mut()) {
+            s.clone_from(&b.state);
         }
         self.plastic.clear();
         self.plastic.extend(bodies.iter().map(|b| b.material.is_plastic().then(|| b.plastic_state())));
     }
 
     /// Whether this backup was saved from bodies of the sizes of `bodies` (what `restore` needs:
-    /// vertices, warm start, and for plastic bodies the rest lengths).
+    /// vertices, and for plastic bodies the rest lengths).
     pub(crate) fn fits(&self, bodies: &[SoftBody]) -> bool {
-        let sized = |b: &SoftBody, k: usize| {
-            let n = b.positions().len();
-            self.x[k].len() == n && self.v[k].len() == n && (self.warm[k].0.is_empty() || self.warm[k].0.len() == n)
-        };
         let plastic = |b: &SoftBody, p: &Option<crate::body::PlasticState>| match p {
             Some(p) => b.material.is_plastic() && p.len() == b.model.springs.rest.len() + b.model.bending.rest.len() + b.model.hinges.rest.len(),
             None => !b.material.is_plastic(),
         };
-        self.x.len() == bodies.len() && self.plastic.len() == bodies.len() && bodies.iter().enumerate().all(|(k, b)| sized(b, k)) && bodies.iter().zip(&self.plastic).all(|(b, p)| plastic(b, p))
+        self.state.len() == bodies.len()
+            && self.plastic.len() == bodies.len()
+            && bodies.iter().zip(&self.state).all(|(b, s)| s.x.len() == b.state.x.len())
+            && bodies.iter().zip(&self.plastic).all(|(b, p)| plastic(b, p))
     }
 
     /// Put it back into `bodies` (saved from them: [`Backup::fits`]).
     pub(crate) fn restore(&self, bodies: &mut [SoftBody]) {
-        for (b, (x, v)) in bodies.iter_mut().zip(self.x.iter().zip(&self.v)) {
-            b.state.x.copy_from_slice(x);
-            b.state.v.copy_from_slice(v);
-        }
-        for (b, (warm, kept)) in bodies.iter_mut().zip(self.warm.iter().zip(&self.kept)) {
-            b.state.warm.clone_from(&warm.0);
-            b.state.warm_dt = warm.1;
-            b.state.kept.clone_from(kept);
+        for (b, s) in bodies.iter_mut().zip(&self.state) {
+            b.state.clone_from(s);
         }
         for (b, p) in bodies.iter_mut().zip(&self.plastic) {
             if let Some(p) = p {
@@ -158,10 +137,7 @@ impl Backup {
 
     /// Its size in bytes, about (the f64 and u32 arrays).
     pub(crate) fn bytes(&self) -> usize {
-        let f = |v: &Vec<Vec<f64>>| v.iter().map(Vec::len).sum::<usize>();
-        let warm: usize = self.warm.iter().map(|w| w.0.len()).sum();
-        let kept: usize = self.kept.iter().map(|k| 2 * k.xt.len() + k.held.len()).sum();
         let plastic: usize = self.plastic.iter().flatten().map(|p| p.len()).sum();
-        8 * (f(&self.x) + f(&self.v) + warm + plastic) + 4 * kept
+        self.state.iter().map(State::bytes).sum::<usize>() + 8 * plastic
     }
 }
