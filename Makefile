@@ -6,7 +6,7 @@ TARGET := $(or $(CARGO_TARGET_DIR),target)
 BIN := $(TARGET)/release/softsculpt
 WASM := $(TARGET)/wasm32-unknown-unknown/release/softsculpt_wasm.wasm
 
-.PHONY: run test bench setup build wasm wasm-threads web demo
+.PHONY: run test bench setup build wasm wasm-threads web demo test-fine
 
 setup:
 	@scripts/setup.sh
@@ -42,6 +42,11 @@ demo: build
 
 test:
 	@scripts/run_tests.sh
+
+# The materials at the finer resolution (tests/presets_fine.rs: each preset pressed and pulled on
+# the mushroom, sphere and octopus subdivided twice); an hour or more on two cores, not in `test`.
+test-fine:
+	$(CARGO) test --release -p softsculpt --test presets_fine -- --ignored --nocapture --test-threads=1
 
 # The standard workload side by side with the reference C++ loop in ../shared/bench, then the
 # criterion bench of one step.
