@@ -126,7 +126,7 @@ test('pinned vertices stay fixed under a grab drag', async () => {
   await page.context().close();
 });
 
-test('press pushes the cap in, the mass brush paints heavier, W blows wind from the view', async () => {
+test('press pushes the cap in, the mass brush paints heavier, W blows wind across the view', async () => {
   const { page } = await openModeler(suite.browser, suite.server.url);
   await settle(page);
   const top = await topVertex(page);

@@ -12,7 +12,7 @@ import { brushUnit, nice } from './tools/scale';
 import type { ParamValue } from './protocol';
 import { MODELS, type ModelName } from './models';
 import { sig3 } from './format';
-import { viewWindSpeed } from './tools/wind';
+import { alongView, viewWindSpeed } from './tools/wind';
 import { showSignificantDigits } from './panel-numbers';
 
 export interface PanelActions {
@@ -160,11 +160,13 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   tip(gas.add(view, 'volume').name('V (m³)').disable(), 'Live volume used by the gas law');
 
   const wind = gui.addFolder('Wind');
-  tip(wind.add(view, 'windStrength', 0, 30, 0.1).decimals(2).name('strength (m/s)').onFinishChange((s: number) => app.windFromView(s)),
-    'Wind speed; the wind blows along the current view direction (the arrow shows it)');
-  tip(wind.add({ f: () => app.windFromView(view.windStrength || viewWindSpeed(app)) }, 'f').name('blow from view (W)'),
-    'Set the wind direction to the view direction (W); from calm, at a speed whose drag is a fifth of the body\'s weight');
-  tip(wind.add({ f: () => { view.windStrength = 0; app.windFromView(0); } }, 'f').name('calm'), 'No wind');
+  tip(wind.add(view, 'windStrength', 0, 30, 0.1).decimals(2).name('strength (m/s)').onFinishChange((s: number) => app.setWindStrength(s)),
+    'Wind speed; the wind keeps its direction (from calm it blows across the view; the arrow shows it)');
+  tip(wind.add({ f: () => app.windAcrossView(view.windStrength || viewWindSpeed(app)) }, 'f').name('blow across the view (W)'),
+    'The wind blows across the view, level, from the left of the screen to the right (W): the model leans where you see it; from calm, at a speed whose drag is a fifth of the body\'s weight');
+  tip(wind.add({ f: () => app.windFromView(view.windStrength || viewWindSpeed(app, alongView(app.viewport.camera))) }, 'f').name('blow from view'),
+    'The wind blows along the view direction, away from you (the model leans away from you); from calm, at a speed whose drag is a fifth of the body\'s weight');
+  tip(wind.add({ f: () => { view.windStrength = 0; app.windAcrossView(0); } }, 'f').name('calm (Shift+W)'), 'No wind (Shift+W)');
 
   const display = gui.addFolder('View');
   tip(display.add(app, 'wireframe').name('springs (wireframe, X)').onChange(() => app.syncScene()), 'Show the springs (X)');
