@@ -74,6 +74,33 @@ test('an open cloth-like mesh loads without gas, says so, and the gas controls a
   await page.context().close();
 });
 
+test('after an import the model list names the imported file, and a built-in chosen from it loads', async () => {
+  const { page, errors } = await openModeler(suite.browser, suite.server.url);
+  const list = page.locator('.lil-controller', { hasText: 'built-in' });
+  /** What the list shows (its display over the <select>) and the option the <select> has selected. */
+  const showing = () => list.evaluate((c) => {
+    const s = c.querySelector('select');
+    return { display: c.querySelector('.lil-display').textContent, selected: s.selectedIndex < 0 ? null : s.options[s.selectedIndex].text };
+  });
+  assert.deepEqual(await showing(), { display: 'mushroom', selected: 'mushroom' });
+  await pick(page, join(FIXTURES, 'cloth.obj'));
+  await page.keyboard.press('Enter');
+  await drawn(page, 'cloth.obj');
+  await steady(page, () => [...document.querySelectorAll('#panel .lil-controller')].find((c) => c.textContent.includes('built-in'))?.querySelector('.lil-display')?.textContent);
+  // Before: blank (the list held built-ins only).
+  assert.deepEqual(await showing(), { display: '(imported: cloth.obj)', selected: '(imported: cloth.obj)' });
+  await shot(page, 'import-10-model-list-imported');
+  await list.locator('select').selectOption('sphere');
+  await page.waitForFunction(() => window.softsculpt.settings().model === 'sphere' && !window.softsculpt.busy(), null, { timeout: 60000 });
+  assert.equal(await inspect(page, () => window.softsculpt.vertexCount()), 642);
+  await steady(page, () => [...document.querySelectorAll('#panel .lil-controller')].find((c) => c.textContent.includes('built-in'))?.querySelector('.lil-display')?.textContent);
+  assert.deepEqual(await showing(), { display: 'sphere', selected: 'sphere' });
+  // The imported entry is gone with the import.
+  assert.equal(await list.locator('option', { hasText: 'imported' }).count(), 0);
+  assert.deepEqual(errors, []);
+  await page.context().close();
+});
+
 test('a file of two shells: the dialog counts them; largest only, or one body per piece that stay apart', async () => {
   const { page } = await openModeler(suite.browser, suite.server.url);
   await pick(page, join(FIXTURES, 'two-shells.obj'));

@@ -79,6 +79,8 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   // only for another value, and a <select> fires no change for the option already selected, so
   // the list's own change is heard, and its selection is cleared when the user opens it (the
   // name shown is lil-gui's, over the list) and put back when it closes without a choice.
+  /** The list's entry for a model that is not built in (`otherModel`), if it has one now. */
+  let shownOther: string | null = null;
   const select = (builtIn as OptionController).$select;
   select.addEventListener('mousedown', () => { select.selectedIndex = -1; });
   select.addEventListener('blur', () => builtIn.updateDisplay());
@@ -225,8 +227,12 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
       // changes, so a reload is not handed a stale name.
       if (material.name !== app.materialName) { app.materialName = material.name; app.sendUi(); }
     }
-    // The list shows built-in models only: an import or a scene leaves it blank.
-    view.model = (MODELS as readonly string[]).includes(app.mirror.settings.model) ? app.mirror.settings.model : '';
+    // The list names the model: a built-in, or after the built-ins an entry for an import, a
+    // scene or a project (blank before: the list looked broken after an import). Choosing a
+    // built-in loads it as always; the entry itself loads nothing.
+    const other = otherModel(app);
+    if (other !== shownOther) { shownOther = other; builtIn.options(other ? [...MODELS, other] : [...MODELS]); }
+    view.model = other ?? app.mirror.settings.model;
     view.windStrength = app.windStrength;
     // (pieces) The up axis: an import's, shown and changeable; off for built-in models and scenes.
     upAxis.up = app.mirror.settings.frame?.up ?? 'y';
@@ -249,4 +255,16 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
     for (const c of live) c.updateDisplay();
   });
   return gui;
+}
+
+/**
+ * The model list's entry for the model when it is not a built-in ("(imported: cube.obj)", a
+ * scene's, a sketch's, an opened project's), or null.
+ */
+export function otherModel(app: Pick<App, 'mirror'>): string | null {
+  const m = app.mirror, name = m.settings.model;
+  if (m.scene) return `(scene: ${name})`;
+  if (m.settings.frame) return `(imported: ${name})`;
+  if ((MODELS as readonly string[]).includes(name)) return null;
+  return name === 'sketch' ? '(sketched balloon)' : `(opened: ${name})`;
 }
