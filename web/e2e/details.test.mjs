@@ -215,13 +215,13 @@ test('the wind arrow stays inside the view, as the wind is set and as the view t
       assert.ok(p.x > r.left && p.x < r.right && p.y > r.top && p.y < r.bottom, `${when}: the arrow's ${name} (${p.x.toFixed(0)}, ${p.y.toFixed(0)}) inside the view ${JSON.stringify(r)}`);
     }
   };
-  // W blows from the view direction (before: the arrow stood 1.2 m above the target, off the top of the view).
+  // W blows across the view (before: the arrow stood 1.2 m above the target, off the top of the view).
   await page.mouse.move(100, 700);
   await page.keyboard.press('w');
   await page.waitForFunction(() => window.softsculpt.windArrow().visible, null, { timeout: 10000 });
   await animationFrames(page); // the arrow is placed as the view is drawn
   await inside('after W');
-  // A quarter turn of the view (a drag on empty space): the wind now blows across the screen.
+  // A quarter turn of the view (a drag on empty space): the wind now blows along the line of sight.
   await page.mouse.down();
   await page.mouse.move(350, 700, { steps: 10 });
   await page.mouse.up();

@@ -19,6 +19,18 @@ async function pick(page, file) {
   await page.locator('input[data-picker=import]').setInputFiles(file);
   await page.waitForSelector('.import-dialog', { timeout: 15000 });
 }
+/**
+ * The dialog for a model too coarse to shape (8 vertices: io/import.ts tooCoarse) is up: keep
+ * the file's vertices; it asks nothing else (the up axis is sure or declared).
+ */
+async function keepCoarse(page) {
+  await page.waitForSelector('.import-dialog', { timeout: 15000 });
+  const text = await page.locator('.import-dialog').innerText();
+  assert.match(text, /too coarse to shape/);
+  assert.doesNotMatch(text, /Which way is up|separate pieces/);
+  await page.locator('.import-dialog input[name=refine][value=keep]').check();
+  await page.locator('.import-dialog button[type=submit]').click();
+}
 /** The model named `name` is the one drawn (its first frame has arrived). */
 const drawn = (page, name) => page.waitForFunction((n) => window.softsculpt.settings().model === n, name, { timeout: 15000 });
 /** Every message the page showed so far (text and kind), from the HUD. */
@@ -74,11 +86,80 @@ test('an open cloth-like mesh loads without gas, says so, and the gas controls a
   await page.context().close();
 });
 
+test('after an import the model list names the imported file, and a built-in chosen from it loads', async () => {
+  const { page, errors } = await openModeler(suite.browser, suite.server.url);
+  const list = page.locator('.lil-controller', { hasText: 'built-in' });
+  /** What the list shows (its display over the <select>) and the option the <select> has selected. */
+  const showing = () => list.evaluate((c) => {
+    const s = c.querySelector('select');
+    return { display: c.querySelector('.lil-display').textContent, selected: s.selectedIndex < 0 ? null : s.options[s.selectedIndex].text };
+  });
+  assert.deepEqual(await showing(), { display: 'mushroom', selected: 'mushroom' });
+  await pick(page, join(FIXTURES, 'cloth.obj'));
+  await page.keyboard.press('Enter');
+  await drawn(page, 'cloth.obj');
+  await steady(page, () => [...document.querySelectorAll('#panel .lil-controller')].find((c) => c.textContent.includes('built-in'))?.querySelector('.lil-display')?.textContent);
+  // Before: blank (the list held built-ins only).
+  assert.deepEqual(await showing(), { display: '(imported: cloth.obj)', selected: '(imported: cloth.obj)' });
+  await shot(page, 'import-10-model-list-imported');
+  await list.locator('select').selectOption('sphere');
+  await page.waitForFunction(() => window.softsculpt.settings().model === 'sphere' && !window.softsculpt.busy(), null, { timeout: 60000 });
+  assert.equal(await inspect(page, () => window.softsculpt.vertexCount()), 642);
+  await steady(page, () => [...document.querySelectorAll('#panel .lil-controller')].find((c) => c.textContent.includes('built-in'))?.querySelector('.lil-display')?.textContent);
+  assert.deepEqual(await showing(), { display: 'sphere', selected: 'sphere' });
+  // The imported entry is gone with the import.
+  assert.equal(await list.locator('option', { hasText: 'imported' }).count(), 0);
+  assert.deepEqual(errors, []);
+  await page.context().close();
+});
+
+const BOX = `# an 8-vertex box standing on y = 0
+v -0.5 0 -0.5\nv 0.5 0 -0.5\nv 0.5 1 -0.5\nv -0.5 1 -0.5\nv -0.5 0 0.5\nv 0.5 0 0.5\nv 0.5 1 0.5\nv -0.5 1 0.5
+f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n`;
+
+test('an 8-vertex box asks in the import dialog, Remesh recommended: Enter gives it more vertices, Subdivide too', async () => {
+  const { page, errors } = await openModeler(suite.browser, suite.server.url);
+  const path = join(mkdtempSync(join(tmpdir(), 'box-')), 'box.obj');
+  writeFileSync(path, BOX);
+  // Before: imported at once, with a note that Subdivide or Remesh gives the tools more to shape.
+  await pick(page, path);
+  const text = await page.locator('.import-dialog').innerText();
+  assert.match(text, /Only 8 vertices: too coarse to shape/);
+  assert.match(text, /Remesh to even triangles \(recommended\)/);
+  assert.match(text, /Subdivide/);
+  assert.equal(await page.locator('.import-dialog input[name=refine][value=remesh]').isChecked(), true, 'Remesh is chosen');
+  await shot(page, 'import-11-coarse-box-dialog');
+  await page.keyboard.press('Enter');
+  await drawn(page, 'box.obj');
+  await page.waitForFunction(() => /remeshed/.test(window.softsculpt.lastMessage()) && !window.softsculpt.busy(), null, { timeout: 30000 });
+  const remeshed = await inspect(page, () => window.softsculpt.vertexCount());
+  assert.ok(remeshed > 8, `remeshed to ${remeshed} vertices`);
+  await simulate(page, 0.5);
+  await shot(page, 'import-12-coarse-box-remeshed');
+  // Subdivide, chosen in the dialog: Loop subdivision's 8 + 18 edges = 26 vertices.
+  await pick(page, path);
+  await page.locator('.import-dialog input[name=refine][value=subdivide]').check();
+  await page.locator('.import-dialog button[type=submit]').click();
+  await page.waitForFunction(() => /subdivided: 8 → 26 vertices/.test(window.softsculpt.lastMessage()) && !window.softsculpt.busy(), null, { timeout: 30000 });
+  assert.equal(await inspect(page, () => window.softsculpt.vertexCount()), 26);
+  // Kept as in the file: 8 vertices, and the message says what gives the tools more.
+  await pick(page, path);
+  await page.locator('.import-dialog input[name=refine][value=keep]').check();
+  await page.locator('.import-dialog button[type=submit]').click();
+  await page.waitForFunction(() => /imported box\.obj: 8 vertices.*only 8 vertices: Subdivide \(U\) or Model › Remesh/.test(window.softsculpt.lastMessage()), null, { timeout: 30000 });
+  assert.equal(await inspect(page, () => window.softsculpt.vertexCount()), 8);
+  assert.deepEqual((await shown(page)).filter((m) => /error/.test(m.kind)), [], 'no error shown');
+  assert.deepEqual(errors, []);
+  await page.context().close();
+});
+
 test('a file of two shells: the dialog counts them; largest only, or one body per piece that stay apart', async () => {
   const { page } = await openModeler(suite.browser, suite.server.url);
   await pick(page, join(FIXTURES, 'two-shells.obj'));
   assert.match(await page.locator('.import-dialog').innerText(), /2 separate pieces/);
   await page.locator('.import-dialog input[value=largest]').check();
+  // 84 vertices in all: too coarse to shape (the dialog offers Remesh); kept as in the file here.
+  await page.locator('.import-dialog input[name=refine][value=keep]').check();
   await shot(page, 'import-03-pieces-dialog');
   await page.locator('.import-dialog button[type=submit]').click();
   await drawn(page, 'two-shells.obj');
@@ -86,6 +167,7 @@ test('a file of two shells: the dialog counts them; largest only, or one body pe
   assert.equal(await inspect(page, () => window.softsculpt.vertexCount()), 42); // the 0.5 m ball (an icosphere of 42 vertices)
   // Again, one body per piece.
   await pick(page, join(FIXTURES, 'two-shells.obj'));
+  await page.locator('.import-dialog input[name=refine][value=keep]').check();
   await page.locator('.import-dialog button[type=submit]').click();
   await page.waitForFunction(() => window.softsculpt.bodies() === 2);
   assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /2 pieces as 2 bodies/);
@@ -106,7 +188,9 @@ test('a file of two shells: the dialog counts them; largest only, or one body pe
 
 test('Remesh keeps an imported 8-vertex tower its shape: made at a shorter edge, its sharp edges kept, and says so', async () => {
   const { page, ctx, errors } = await openModeler(suite.browser, suite.server.url);
+  // Too coarse to shape: the dialog asks; kept as in the file here, then remeshed from the panel.
   await page.locator('input[data-picker=import]').setInputFiles(join(FIXTURES, 'zup-tower.stl'));
+  await keepCoarse(page);
   await drawn(page, 'zup-tower.stl');
   await simulate(page, 1);
   const before = await inspect(page, () => window.softsculpt.positions());
@@ -161,8 +245,10 @@ test('a file of long thin triangles: the dialog measures them and offers Remesh,
 
 test('a Z-up STL stands upright at its own size, fills the view, and its export comes back the same', async () => {
   const { page, ctx } = await openModeler(suite.browser, suite.server.url);
-  // It rests on z = 0: Z-up for sure, turned upright without a question (pieces.test.mjs).
+  // It rests on z = 0: Z-up for sure, turned upright without asking which way is up
+  // (pieces.test.mjs); too coarse to shape, the dialog asks that, and it is kept as in the file.
   await page.locator('input[data-picker=import]').setInputFiles(join(FIXTURES, 'zup-tower.stl'));
+  await keepCoarse(page);
   await drawn(page, 'zup-tower.stl');
   assert.equal(await page.locator('.import-dialog').count(), 0);
   assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /turned from Z-up to Y-up/);
@@ -184,17 +270,19 @@ test('a Z-up STL stands upright at its own size, fills the view, and its export 
   assert.ok(Math.abs(zlo) < 0.005 && Math.abs(zhi - 0.1) < 0.01, `exported z from ${zlo} to ${zhi}`);
   // Re-imported: the same size (×1.00, not ×0.71).
   await page.locator('input[data-picker=import]').setInputFiles(path);
+  await keepCoarse(page);
   await drawn(page, 'tower-export.stl');
   const y = await inspect(page, () => window.softsculpt.positions());
   const [ylo, yhi] = extent(y, 1);
   assert.ok(Math.abs((yhi - ylo) / (hi - lo) - 1) < 0.02, `re-imported height ${yhi - ylo} m vs ${hi - lo} m`);
-  // GLB: Y-up by specification, so it comes back without a question, upright, the same size.
+  // GLB: Y-up by specification, so it comes back without a question about up, upright, the same size.
   const [glb] = await Promise.all([page.waitForEvent('download'), page.locator('.lil-gui button', { hasText: 'Export GLB' }).click()]);
   const glbPath = join(tmpdir(), 'tower-export.glb');
   await glb.saveAs(glbPath);
   await page.locator('input[data-picker=import]').setInputFiles(glbPath);
+  await keepCoarse(page);
   await drawn(page, 'tower-export.glb');
-  assert.equal(await page.locator('.import-dialog').count(), 0, 'no dialog: glTF says Y is up');
+  assert.equal(await page.locator('.import-dialog').count(), 0, 'no dialog left');
   const g = await inspect(page, () => window.softsculpt.positions());
   const [glo, ghi] = extent(g, 1);
   assert.ok(Math.abs((ghi - glo) / (hi - lo) - 1) < 0.02, `GLB re-imported height ${ghi - glo} m vs ${hi - lo} m`);

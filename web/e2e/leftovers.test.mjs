@@ -142,7 +142,7 @@ test('W at its default leans the mushroom visibly and keeps a light sketched bal
   await page.keyboard.press('g');
   await page.mouse.move(100, 700);
   await page.keyboard.press('w');
-  // Turn the view a quarter round (a drag on empty space): the wind now blows across the screen.
+  // Turn the view a quarter round (a drag on empty space): the wind now blows along the line of sight.
   await page.mouse.down();
   await page.mouse.move(350, 700, { steps: 10 });
   await page.mouse.up();

@@ -219,14 +219,28 @@ test('a file of the same name imported again is framed anew', async () => {
   await page.context().close();
 });
 
-test('the up axis: a Z-up STL comes upright without a question; a flat sheet lies flat against its header; an unsure OBJ asks once per file; Model › up axis fixes it', async () => {
+/**
+ * The import dialog for a box of 8 vertices (too coarse to shape, io/import.ts tooCoarse): the
+ * file's vertices kept. `asksUp`: it asks which way is up too (else the up axis is only said).
+ */
+async function keepCoarse(page, asksUp = false) {
+  await page.waitForSelector('.import-dialog', { timeout: 15000 });
+  const text = await page.locator('.import-dialog').innerText();
+  assert.match(text, /too coarse to shape/);
+  if (!asksUp) assert.doesNotMatch(text, /Which way is up/, 'no question about the up axis');
+  await page.locator('.import-dialog input[name=refine][value=keep]').check();
+  await page.locator('.import-dialog button[type=submit]').click();
+}
+
+test('the up axis: a Z-up STL comes upright without asking which way is up; a flat sheet lies flat against its header; an unsure OBJ asks once per file; Model › up axis fixes it', async () => {
   const { page, errors } = await openModeler(suite.browser, suite.server.url);
   // A 1 m tall post standing on z = 0 (centred in x and y): Z-up, sure from its shape.
   const post = file('post.stl', stl(boxTriangles([-0.15, -0.1, 0], [0.15, 0.1, 1])));
   let before = await openedNow(page);
   await page.locator('input[data-picker=import]').setInputFiles(post);
+  await keepCoarse(page);
   await loaded(page, before);
-  assert.equal(await page.locator('.import-dialog').count(), 0, 'no question');
+  assert.equal(await page.locator('.import-dialog').count(), 0, 'no question left');
   assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /turned from Z-up to Y-up \(it rests on the plane z = 0; Model › up axis changes it\)/);
   let [lo, hi] = extent(await inspect(page, () => window.softsculpt.positions()), 1);
   assert.ok(Math.abs(hi - lo - 1) < 0.05, `the post is ${hi - lo} m tall`);
@@ -249,6 +263,7 @@ test('the up axis: a Z-up STL comes upright without a question; a flat sheet lie
   await page.waitForSelector('.import-dialog', { timeout: 15000 });
   assert.match(await page.locator('.import-dialog').innerText(), /Which way is up/);
   await page.locator('.import-dialog input[value=z]').check();
+  await page.locator('.import-dialog input[name=refine][value=keep]').check();
   before = await openedNow(page);
   await page.locator('.import-dialog button[type=submit]').click();
   await loaded(page, before);
@@ -258,8 +273,9 @@ test('the up axis: a Z-up STL comes upright without a question; a flat sheet lie
   // The same file again takes the answer without asking.
   before = await openedNow(page);
   await page.locator('input[data-picker=import]').setInputFiles(box);
+  await keepCoarse(page);
   await loaded(page, before);
-  assert.equal(await page.locator('.import-dialog').count(), 0, 'no question the second time');
+  assert.equal(await page.locator('.import-dialog').count(), 0, 'no question left the second time');
   assert.ok((await inspect(page, () => window.softsculpt.messages())).some((m) => /imported box\.obj.*turned from Z-up to Y-up \(as you chose for box\.obj before/.test(m.text)));
   // Another unsure OBJ is asked: the answer was about box.obj, not about every OBJ.
   await page.locator('input[data-picker=import]').setInputFiles(file('box2.obj', boxObj([-0.15, -0.5, -0.1], [0.15, 0.5, 0.1])));
@@ -269,6 +285,7 @@ test('the up axis: a Z-up STL comes upright without a question; a flat sheet lie
   // Back to box.obj to fix its axis.
   before = await openedNow(page);
   await page.locator('input[data-picker=import]').setInputFiles(box);
+  await keepCoarse(page);
   await loaded(page, before);
   // A wrong guess is fixed in the Model panel: Y up stands the box 1 m tall.
   before = await openedNow(page);

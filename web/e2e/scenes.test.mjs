@@ -58,12 +58,12 @@ nrt = 40.0
   await page.waitForFunction(() => window.softsculpt.scene()?.bodies === 2);
   assert.match(await inspect(page, () => window.softsculpt.lastMessage()), /opened scene drop\.toml: 2 bodies/);
   // A scene opens paused at t = 0 (its first events are seen when one plays it), and the model
-  // list does not show the scene as a model. Its first frames drawn: play state and time steady.
+  // list names the scene after the built-ins. Its first frames drawn: play state and time steady.
   await steady(page, () => [window.softsculpt.playing(), window.softsculpt.scene()?.time]);
   assert.equal(await inspect(page, () => window.softsculpt.playing()), false);
   assert.equal(await sceneTime(page), 0);
   assert.equal(await inspect(page, () => window.softsculpt.banner()), 'Paused — Space to play');
-  assert.equal((await page.locator('.lil-controller', { hasText: 'built-in' }).locator('.lil-display').textContent()).trim(), '');
+  assert.equal((await page.locator('.lil-controller', { hasText: 'built-in' }).locator('.lil-display').textContent()).trim(), '(scene: drop.toml)');
   await page.keyboard.press('Space');
   // The gas law P V = nRT: 10 J at the start, 40 J once the event at 0.5 s has fired (the
   // volume itself swings as the ball lands, so it is the product that is checked).

@@ -179,7 +179,7 @@ export class App extends Commands implements ToolContext {
       case 'download': return download(new Blob([r.bytes ? (r.bytes as Uint8Array<ArrayBuffer>) : r.text], { type: r.mime }), r.filename);
       case 'importQuestion': void askImport(r.question).then((answer) => {
         // The user's up axis for this file settles its guess when it comes again (io/upaxis.ts).
-        if (answer && r.question.declaredUp === null) rememberUp(r.question.name, r.question.format, answer.up);
+        if (answer && r.question.declaredUp === null && !r.question.upSure) rememberUp(r.question.name, r.question.format, answer.up);
         this.send({ type: 'importAnswer', answer });
       }); return;
       case 'ui': return this.applyUi(r.ui);

@@ -3,7 +3,6 @@
 // so); settings change in the mirror at once. The page (app.ts `App`) is the one subclass: it
 // brings the link to the worker, the mirror, the view, the tools and the messages.
 
-import { Vector3 } from 'three';
 import type { Command, MessageKind, ParamValue, Settings, UiState } from './protocol';
 import type { Mirror } from './mirror';
 import type { Viewport } from './view/viewport';
@@ -12,6 +11,7 @@ import { download, exportShape, type ExportFormat } from './io/export';
 import { rememberedUp, rememberUp } from './io/upaxis';
 import { baseName } from './project';
 import { sig3 } from './format';
+import { acrossView, alongView } from './tools/wind';
 import type { ParamId } from './engine/params';
 
 export abstract class Commands {
@@ -90,8 +90,20 @@ export abstract class Commands {
 
   /** Wind blowing along the current view direction at `strength` m/s (0: calm); undoable. */
   windFromView(strength: number): void {
-    const d = this.viewport.camera.getWorldDirection(new Vector3());
-    this.send({ type: 'wind', direction: [d.x, d.y, d.z], strength });
+    this.send({ type: 'wind', direction: alongView(this.viewport.camera), strength });
+  }
+  /**
+   * Wind blowing across the view, level, from the screen's left to its right (tools/wind.ts
+   * `acrossView`) at `strength` m/s (0: calm); undoable. What W does: the lean shows.
+   */
+  windAcrossView(strength: number): void {
+    this.send({ type: 'wind', direction: acrossView(this.viewport.camera), strength });
+  }
+  /** The wind at `strength` m/s, blowing where it blows now (from calm: across the view). */
+  setWindStrength(strength: number): void {
+    const w = this.wind, s = Math.hypot(...w);
+    if (s > 0) this.send({ type: 'wind', direction: [w[0] / s, w[1] / s, w[2] / s], strength });
+    else this.windAcrossView(strength);
   }
   get windStrength(): number {
     return Math.hypot(...this.wind);

@@ -22,7 +22,7 @@ const HELP = `<h2>SoftSculpt</h2>
 <tr><td>Tool › mirror X Y Z</td><td>Symmetry: every tool also acts on the mirror image (X on for symmetric models)</td></tr>
 <tr><td>F / R</td><td>Freeze the shape as the rest shape / reset to the last frozen shape</td></tr>
 <tr><td>U</td><td>Subdivide (Loop)</td></tr>
-<tr><td>W / Shift+W</td><td>Wind from the view direction / calm</td></tr>
+<tr><td>W / Shift+W</td><td>Wind across the view, from the left of the screen to the right / calm (Wind › blow from view: along the view)</td></tr>
 <tr><td>Space / .</td><td>Play-pause / single step</td></tr>
 <tr><td>X / V</td><td>Springs wireframe / frame the model (level horizon)</td></tr>
 <tr><td>Ctrl+Z / Ctrl+Shift+Z</td><td>Undo / redo</td></tr>
@@ -127,9 +127,9 @@ function main(): void {
       case 'x': case 'X': app.wireframe = !app.wireframe; app.syncScene(); break;
       case 'v': case 'V': app.viewport.resetView(); break;
       case 'e': case 'E': void app.export('obj'); break;
-      // page leftovers (#10): from calm, W blows at a speed made for the body (tools/wind.ts).
-      // W: wind from the view (from calm at the body's own default speed); Shift+W: calm.
-      case 'w': case 'W': if (ev.shiftKey) app.windFromView(0); else app.windFromView(app.windStrength > 0 ? app.windStrength : viewWindSpeed(app)); break;
+      // W: wind across the view, left to right (from calm at a speed made for the body,
+      // tools/wind.ts); Shift+W: calm.
+      case 'w': case 'W': if (ev.shiftKey) app.windAcrossView(0); else app.windAcrossView(app.windStrength > 0 ? app.windStrength : viewWindSpeed(app)); break;
       case '[': app.scaleRadius(1 / 1.2); break;
       case ']': app.scaleRadius(1.2); break;
       case '{': app.scaleStrength(1 / 1.2); break;

@@ -12,7 +12,7 @@ import { brushUnit, nice } from './tools/scale';
 import type { ParamValue } from './protocol';
 import { MODELS, type ModelName } from './models';
 import { sig3 } from './format';
-import { viewWindSpeed } from './tools/wind';
+import { alongView, viewWindSpeed } from './tools/wind';
 import { showSignificantDigits } from './panel-numbers';
 
 export interface PanelActions {
@@ -79,6 +79,8 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   // only for another value, and a <select> fires no change for the option already selected, so
   // the list's own change is heard, and its selection is cleared when the user opens it (the
   // name shown is lil-gui's, over the list) and put back when it closes without a choice.
+  /** The list's entry for a model that is not built in (`otherModel`), if it has one now. */
+  let shownOther: string | null = null;
   const select = (builtIn as OptionController).$select;
   select.addEventListener('mousedown', () => { select.selectedIndex = -1; });
   select.addEventListener('blur', () => builtIn.updateDisplay());
@@ -160,11 +162,13 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
   tip(gas.add(view, 'volume').name('V (m³)').disable(), 'Live volume used by the gas law');
 
   const wind = gui.addFolder('Wind');
-  tip(wind.add(view, 'windStrength', 0, 30, 0.1).decimals(2).name('strength (m/s)').onFinishChange((s: number) => app.windFromView(s)),
-    'Wind speed; the wind blows along the current view direction (the arrow shows it)');
-  tip(wind.add({ f: () => app.windFromView(view.windStrength || viewWindSpeed(app)) }, 'f').name('blow from view (W)'),
-    'Set the wind direction to the view direction (W); from calm, at a speed whose drag is a fifth of the body\'s weight');
-  tip(wind.add({ f: () => { view.windStrength = 0; app.windFromView(0); } }, 'f').name('calm'), 'No wind');
+  tip(wind.add(view, 'windStrength', 0, 30, 0.1).decimals(2).name('strength (m/s)').onFinishChange((s: number) => app.setWindStrength(s)),
+    'Wind speed; the wind keeps its direction (from calm it blows across the view; the arrow shows it)');
+  tip(wind.add({ f: () => app.windAcrossView(view.windStrength || viewWindSpeed(app)) }, 'f').name('blow across the view (W)'),
+    'The wind blows across the view, level, from the left of the screen to the right (W): the model leans where you see it; from calm, at a speed whose drag is a fifth of the body\'s weight');
+  tip(wind.add({ f: () => app.windFromView(view.windStrength || viewWindSpeed(app, alongView(app.viewport.camera))) }, 'f').name('blow from view'),
+    'The wind blows along the view direction, away from you (the model leans away from you); from calm, at a speed whose drag is a fifth of the body\'s weight');
+  tip(wind.add({ f: () => { view.windStrength = 0; app.windAcrossView(0); } }, 'f').name('calm (Shift+W)'), 'No wind (Shift+W)');
 
   const display = gui.addFolder('View');
   tip(display.add(app, 'wireframe').name('springs (wireframe, X)').onChange(() => app.syncScene()), 'Show the springs (X)');
@@ -223,8 +227,12 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
       // changes, so a reload is not handed a stale name.
       if (material.name !== app.materialName) { app.materialName = material.name; app.sendUi(); }
     }
-    // The list shows built-in models only: an import or a scene leaves it blank.
-    view.model = (MODELS as readonly string[]).includes(app.mirror.settings.model) ? app.mirror.settings.model : '';
+    // The list names the model: a built-in, or after the built-ins an entry for an import, a
+    // scene or a project (blank before: the list looked broken after an import). Choosing a
+    // built-in loads it as always; the entry itself loads nothing.
+    const other = otherModel(app);
+    if (other !== shownOther) { shownOther = other; builtIn.options(other ? [...MODELS, other] : [...MODELS]); }
+    view.model = other ?? app.mirror.settings.model;
     view.windStrength = app.windStrength;
     // (pieces) The up axis: an import's, shown and changeable; off for built-in models and scenes.
     upAxis.up = app.mirror.settings.frame?.up ?? 'y';
@@ -247,4 +255,16 @@ export function buildPanel(app: App, actions: PanelActions): GUI {
     for (const c of live) c.updateDisplay();
   });
   return gui;
+}
+
+/**
+ * The model list's entry for the model when it is not a built-in ("(imported: cube.obj)", a
+ * scene's, a sketch's, an opened project's), or null.
+ */
+export function otherModel(app: Pick<App, 'mirror'>): string | null {
+  const m = app.mirror, name = m.settings.model;
+  if (m.scene) return `(scene: ${name})`;
+  if (m.settings.frame) return `(imported: ${name})`;
+  if ((MODELS as readonly string[]).includes(name)) return null;
+  return name === 'sketch' ? '(sketched balloon)' : `(opened: ${name})`;
 }

@@ -117,7 +117,7 @@ export type Command =
   | { type: 'setMass'; total: number }
   /** A material preset of the core (balloon, jelly, clay…) on the active body, at its size (undoable). */
   | { type: 'preset'; name: string }
-  /** Wind along `direction` (unit, the view direction) at `strength` m/s (undoable). */
+  /** Wind along `direction` (unit: across or along the view) at `strength` m/s (undoable). */
   | { type: 'wind'; direction: Vec3; strength: number }
   | { type: 'settings'; patch: Partial<Settings> }
   /** The page's tool state, kept for project files and the autosave. */

@@ -3,7 +3,8 @@ import * as THREE from 'three';
 import { STLExporter } from 'three/examples/jsm/exporters/STLExporter.js';
 import { OBJExporter } from 'three/examples/jsm/exporters/OBJExporter.js';
 import { loadEngine } from './setup';
-import { guessUp, headerText, isClosed, needsAnswer, place, question, REFERENCE_DIAGONAL, sizeFactor, toFile, type ImportFrame, type Up } from '../src/io/import';
+import { guessUp, headerText, isClosed, needsAnswer, place, question, REFERENCE_DIAGONAL, sizeFactor, toFile, tooCoarse, type ImportFrame, type Up } from '../src/io/import';
+import { dialogHtml } from '../src/io/dialog';
 import { exportHeader, exportShape, shapeMesh } from '../src/io/export';
 import { animationGlb, World } from '../src/engine/world';
 import { addModel } from '../src/engine/models';
@@ -314,9 +315,27 @@ describe('the import trial (worker/trial.ts)', () => {
     expect(verdict({ ...even, poor: true, smallShare: 0.3 }, 6, 1)).toMatchObject({ remesh: false, why: 'uneven triangles (30 % of angles below 25°)' });
   });
   it('asks about a file whose only open question is Remesh', () => {
-    const q = { name: 'a.obj', format: 'OBJ', declaredUp: null, guessedUp: 'y' as Up, guessReason: '', upSure: true, pieces: [{ vertices: 8, faces: 12, closed: true }], size: [1, 1, 1] as [number, number, number] };
+    const q = { name: 'a.obj', format: 'OBJ', declaredUp: null, guessedUp: 'y' as Up, guessReason: '', upSure: true, pieces: [{ vertices: 642, faces: 1280, closed: true }], size: [1, 1, 1] as [number, number, number] };
     expect(needsAnswer(q)).toBe(false);
     expect(needsAnswer({ ...q, cost: verdict(slivers, 0, 500) })).toBe(true);
     expect(needsAnswer({ ...q, cost: verdict(even, 0, 500) })).toBe(false);
+  });
+  it('asks about a closed model too coarse to shape, recommending Remesh where it adds vertices, else Subdivide; not about a coarse open sheet', () => {
+    const box = { name: 'box.obj', format: 'OBJ', declaredUp: null, guessedUp: 'y' as Up, guessReason: 'it rests on the plane y = 0', upSure: true, pieces: [{ vertices: 8, faces: 12, closed: true }], size: [1, 1, 1] as [number, number, number], cost: verdict(even, 6, 1) };
+    expect(tooCoarse(box)).toBe(true);
+    expect(needsAnswer(box)).toBe(true);
+    const html = dialogHtml(box);
+    expect(html).toMatch(/Only 8 vertices: too coarse to shape/);
+    expect(html).toMatch(/<input type="radio" name="refine" value="remesh" checked> Remesh to even triangles \(recommended\)/);
+    expect(html).toMatch(/name="refine" value="subdivide"/);
+    // The sure up axis is said, not asked.
+    expect(html).not.toMatch(/Which way is up/);
+    expect(html).toMatch(/<input type="hidden" name="up" value="y">/);
+    // Two 42-vertex icospheres that Remesh leaves at 84 vertices: Subdivide is recommended.
+    const icospheres = dialogHtml({ ...box, pieces: [{ vertices: 42, faces: 80, closed: true }, { vertices: 42, faces: 80, closed: true }], remeshed: 84 });
+    expect(icospheres).toMatch(/<input type="radio" name="refine" value="subdivide" checked> Subdivide \(recommended\)/);
+    expect(icospheres).not.toMatch(/value="remesh" checked/);
+    expect(needsAnswer({ ...box, pieces: [{ vertices: 100, faces: 196, closed: true }] })).toBe(false);
+    expect(needsAnswer({ ...box, pieces: [{ vertices: 9, faces: 8, closed: false }] })).toBe(false);
   });
 });

@@ -2,7 +2,8 @@
 // length unit, the material list's names through undo, and the gas energy plotted from 0.
 
 import { describe, expect, it } from 'vitest';
-import { defaultWindSpeed, windwardArea, WIND_WEIGHT_FRACTION } from '../src/tools/wind';
+import { PerspectiveCamera, Vector3 } from 'three';
+import { acrossView, defaultWindSpeed, windwardArea, WIND_WEIGHT_FRACTION } from '../src/tools/wind';
 import { BrushUnit, lengthUnit, rescaleBrush } from '../src/tools/scale';
 import { CUSTOM, materialKey, MaterialTracker, MODELER } from '../src/panel-material';
 import { Plots } from '../src/view/plots';
@@ -44,6 +45,33 @@ describe('the default wind', () => {
     // Gravity off: standard gravity sets the scale; no drag: the old 5 m/s (the wind does nothing).
     expect(defaultWindSpeed(positions, triangles, 2, d, 1, 0)).toBeCloseTo(s, 12);
     expect(defaultWindSpeed(positions, triangles, 2, d, 0, 9.81)).toBe(5);
+  });
+});
+
+describe('W\'s wind across the view', () => {
+  const looking = (from: [number, number, number], up: [number, number, number] = [0, 1, 0]) => {
+    const c = new PerspectiveCamera();
+    c.up.set(...up);
+    c.position.set(...from);
+    c.lookAt(0, 0, 0);
+    return c;
+  };
+  it('blows level from the screen\'s left to its right, whatever the tilt', () => {
+    // The default front view (camera on +z): the screen's right is +x.
+    const f = acrossView(looking([0, 0.5, 3]));
+    expect(f[0]).toBeCloseTo(1, 12); expect(f[1]).toBe(0); expect(f[2]).toBeCloseTo(0, 12);
+    // Looking down steeply from the side (+x): right is −z, still level.
+    const d = acrossView(looking([3, 5, 0]));
+    expect(d[0]).toBeCloseTo(0, 12); expect(d[1]).toBe(0); expect(d[2]).toBeCloseTo(-1, 12);
+  });
+  it('stays level and across the view when the camera is rolled', () => {
+    // A trackball rolled a quarter round: the camera's right points up; the wind stays level, across the line of sight.
+    const c = looking([0, 0, 3], [-1, 0, 0]);
+    const d = acrossView(c);
+    const look = c.getWorldDirection(new Vector3());
+    expect(d[1]).toBe(0);
+    expect(Math.hypot(...d)).toBeCloseTo(1, 12);
+    expect(d[0] * look.x + d[2] * look.z).toBeCloseTo(0, 12);
   });
 });
 

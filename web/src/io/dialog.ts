@@ -2,10 +2,12 @@
 // open surfaces) and the questions the file leaves open — which way is up (offered first: what
 // the format declares, else a guess with its reason) and, for a file of several pieces, one body
 // per piece or the largest only — and what its triangles will cost to simulate (a trial run,
-// worker/trial.ts), with Remesh checked where they would make it slow. Enter imports, Escape
-// cancels.
+// worker/trial.ts), with Remesh checked where they would make it slow — and, for a closed model
+// too coarse to shape (an 8-vertex box), Remesh (recommended where it adds vertices, else
+// Subdivide), Subdivide or keep it as it is.
+// Enter imports, Escape cancels.
 
-import type { ImportAnswer, ImportQuestion } from './import';
+import { coarseRemedy, tooCoarse, type ImportAnswer, type ImportQuestion } from './import';
 
 const CSS = `
 /* Above the lil-gui panel (its z-index is 1001): the question is modal, the panel waits (a new-user trial remeshed the model behind the dialog). */
@@ -25,15 +27,17 @@ const CSS = `
 const esc = (s: string) => s.replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]!);
 const num = (x: number) => x.toPrecision(3);
 
-/** The dialog's HTML for `q` (a form with radio groups `up` and `pieces`, and `inflate` and `remesh` checkboxes). */
+/** The dialog's HTML for `q` (a form with radio groups `up`, `pieces` and, for a model too coarse to shape, `refine`; `inflate` and `remesh` checkboxes). */
 export function dialogHtml(q: ImportQuestion): string {
   const p = q.pieces, n = p.length;
   const vertices = p.reduce((s, x) => s + x.vertices, 0), faces = p.reduce((s, x) => s + x.faces, 0);
   const open = p.filter((x) => !x.closed).length;
   const radio = (group: string, value: string, checked: boolean, label: string, why = '') =>
     `<label><input type="radio" name="${group}" value="${value}"${checked ? ' checked' : ''}> ${label}${why ? ` <span class="why">— ${esc(why)}</span>` : ''}</label>`;
-  const up = q.declaredUp
-    ? `<p class="note">Up axis: ${q.declaredUp.toUpperCase()} — ${esc(q.guessReason)}.</p><input type="hidden" name="up" value="${q.declaredUp}">`
+  // Declared by the format, or a guess sure enough not to ask (asked here for another reason): said, not asked.
+  const sureUp = q.declaredUp ?? (q.upSure ? q.guessedUp : null);
+  const up = sureUp
+    ? `<p class="note">Up axis: ${sureUp.toUpperCase()} — ${esc(q.guessReason)}${q.declaredUp ? '' : ' (Model › up axis changes it)'}.</p><input type="hidden" name="up" value="${sureUp}">`
     : `<fieldset><legend>Which way is up? (${esc(q.format)} does not say)</legend>
         ${radio('up', 'y', q.guessedUp === 'y', 'Y is up', q.guessedUp === 'y' ? q.guessReason : '')}
         ${radio('up', 'z', q.guessedUp === 'z', 'Z is up (Blender, CAD): turned upright', q.guessedUp === 'z' ? q.guessReason : '')}
@@ -54,18 +58,28 @@ export function dialogHtml(q: ImportQuestion): string {
         <label><input type="checkbox" name="inflate"> Inflate it <span class="why">— the gas swells ${closed === 1 ? 'it' : 'the closed pieces'} like a balloon; unchecked, ${closed === 1 ? 'it rests' : 'they rest'} at the shape in the file</span></label>
       </fieldset>`
     : '';
+  // Too coarse to shape: what gives the tools more vertices, Remesh recommended (it keeps the shape).
+  const coarse = tooCoarse(q), remedy = coarseRemedy(q);
+  const refine = coarse
+    ? `<fieldset><legend>Only ${vertices} vertices: too coarse to shape</legend>
+        <p class="note">A grab takes a whole corner, and a brush between corners finds no vertex.</p>
+        ${radio('refine', 'remesh', remedy === 'remesh', `Remesh to even triangles${remedy === 'remesh' ? ' (recommended)' : ''}`, remedy === 'remesh' ? `${q.remeshed ? `${q.remeshed} vertices, ` : 'more vertices, '}the shape and its sharp edges kept` : 'its triangles are even already: about as many vertices as now')}
+        ${radio('refine', 'subdivide', remedy === 'subdivide', `Subdivide${remedy === 'subdivide' ? ' (recommended)' : ''}`, 'about four times the vertices, smoothed: a box comes out rounded')}
+        ${radio('refine', 'keep', false, `Keep the file's ${vertices} vertices`, 'Model › Remesh or Subdivide (U) later')}
+      </fieldset>`
+    : '';
   const c = q.cost;
   const trial = c ? (c.frames > 0 ? `a trial frame took ${c.msPerFrame.toFixed(0)} ms` : `a trial frame did not finish in ${(c.msPerFrame / 1000).toFixed(1)} s`) : '';
   const mesh = c
     ? `<fieldset><legend>Triangles</legend>
         <p class="note">Smallest angle ${c.minAngle.toFixed(1)}°, shortest edge ${(100 * c.shortest).toFixed(0)} % of the mean, ${(100 * c.smallShare).toFixed(0)} % of angles below 25°; ${trial} (real time: 16.7 ms a frame).</p>
-        <label><input type="checkbox" name="remesh"${c.remesh ? ' checked' : ''}> Remesh to even triangles${c.remesh ? ' (recommended)' : ''} <span class="why">— ${esc(c.remesh ? c.reason : c.why || 'not needed: the triangles are even enough')}; Undo brings the file's triangles back</span></label>
+        ${coarse ? '' : `<label><input type="checkbox" name="remesh"${c.remesh ? ' checked' : ''}> Remesh to even triangles${c.remesh ? ' (recommended)' : ''} <span class="why">— ${esc(c.remesh ? c.reason : c.why || 'not needed: the triangles are even enough')}; Undo brings the file's triangles back</span></label>`}
       </fieldset>`
     : '';
   return `<form method="dialog">
     <h2>Import ${esc(q.name)}</h2>
     <div class="note">${esc(q.format)}: ${vertices} vertices, ${faces} faces, ${q.size.map(num).join(' × ')} in the file's units, kept as metres (the view is fitted to it).</div>
-    ${up}${pieces}${cloth}${gas}${mesh}
+    ${up}${pieces}${cloth}${refine}${gas}${mesh}
     <div class="buttons"><button type="button" value="cancel">Cancel</button><button type="submit" value="import">Import</button></div>
   </form>`;
 }
@@ -101,7 +115,7 @@ export function askImport(q: ImportQuestion): Promise<ImportAnswer | null> {
     form.addEventListener('submit', (ev) => {
       ev.preventDefault();
       const d = new FormData(form);
-      close({ up: d.get('up') === 'z' ? 'z' : 'y', pieces: d.get('pieces') === 'largest' ? 'largest' : 'each', remesh: d.get('remesh') === 'on', inflate: d.get('inflate') === 'on' });
+      close({ up: d.get('up') === 'z' ? 'z' : 'y', pieces: d.get('pieces') === 'largest' ? 'largest' : 'each', remesh: d.get('remesh') === 'on' || d.get('refine') === 'remesh', subdivide: d.get('refine') === 'subdivide', inflate: d.get('inflate') === 'on' });
     });
     root.querySelector('button[value=cancel]')!.addEventListener('click', () => close(null));
     (form.querySelector('button[type=submit]') as HTMLButtonElement).focus();

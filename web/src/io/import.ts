@@ -39,6 +39,12 @@ export interface ImportQuestion {
   size: Vec3;
   /** Its triangles and a trial run (worker/trial.ts): whether Remesh is recommended, and why. */
   cost?: MeshCost;
+  /**
+   * A model too coarse to shape (`tooCoarse`): the vertices Remesh would give it (tried on a
+   * scratch copy; 0 if refused). Where that is no more than it has (an even coarse mesh, a
+   * 42-vertex icosphere) Subdivide is recommended instead of Remesh.
+   */
+  remeshed?: number;
 }
 
 /** What a file's triangles will cost to simulate (worker/trial.ts: its triangles and a trial run). */
@@ -52,16 +58,35 @@ export interface MeshCost {
 }
 
 /**
- * `remesh`: remeshed at once after the import (its own undo step). `inflate`: a closed piece's
+ * `remesh`: remeshed at once after the import (its own undo step); `subdivide`: subdivided so
+ * (a model too coarse to shape, `tooCoarse`). `inflate`: a closed piece's
  * gas swells it as the modeler's preset gives it; else (the default) it rests at the file's own
  * shape (`Importer.addPieces`: the freeze under load), so re-importing an export gives back the
  * shape that was exported.
  */
-export interface ImportAnswer { up: Up; pieces: 'each' | 'largest'; remesh?: boolean; inflate?: boolean }
+export interface ImportAnswer { up: Up; pieces: 'each' | 'largest'; remesh?: boolean; subdivide?: boolean; inflate?: boolean }
 
-/** Whether anything is left to ask: the up axis is unsure, there are several pieces, or Remesh is recommended. */
+/**
+ * A closed model with fewer vertices than this is too coarse for the tools to shape (an
+ * 8-vertex box: a grab takes a corner, and a brush between corners finds no vertex): the import
+ * dialog offers Remesh and Subdivide.
+ */
+export const COARSE_VERTICES = 100;
+
+/** The file is a closed model too coarse to shape (fewer than COARSE_VERTICES vertices in all). */
+export function tooCoarse(q: Pick<ImportQuestion, 'pieces'>): boolean {
+  return q.pieces.some((p) => p.closed) && q.pieces.reduce((n, p) => n + p.vertices, 0) < COARSE_VERTICES;
+}
+
+/** What the dialog recommends for a model too coarse to shape: Remesh where it adds vertices (it keeps the shape), else Subdivide. */
+export function coarseRemedy(q: Pick<ImportQuestion, 'pieces' | 'remeshed'>): 'remesh' | 'subdivide' {
+  const v = q.pieces.reduce((n, p) => n + p.vertices, 0);
+  return q.remeshed === undefined || q.remeshed > v ? 'remesh' : 'subdivide';
+}
+
+/** Whether anything is left to ask: the up axis is unsure, there are several pieces, Remesh is recommended, or the model is too coarse to shape. */
 export function needsAnswer(q: ImportQuestion): boolean {
-  return !(q.declaredUp !== null || q.upSure === true) || q.pieces.length > 1 || q.cost?.remesh === true;
+  return !(q.declaredUp !== null || q.upSure === true) || q.pieces.length > 1 || q.cost?.remesh === true || tooCoarse(q);
 }
 
 /** (x, y, z) → (x, z, −y): a Z-up file turned Y-up (−90° about x; windings and lengths kept). */

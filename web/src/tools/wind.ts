@@ -50,10 +50,37 @@ export function defaultWindSpeed(positions: ArrayLike<number>, triangles: ArrayL
   return Math.min(WIND_MAX, (WIND_WEIGHT_FRACTION * weight) / (cw * area));
 }
 
-/** The default speed for the wind W blows now: along the view, for the active body as it is. */
-export function viewWindSpeed(app: { mirror: Mirror; viewport: { camera: Camera } }): number {
+/**
+ * The direction W blows: across the view, from the screen's left to its right, level (the
+ * camera's right on the ground plane, unit). A wind along the line of sight leans the model
+ * towards or away from the viewer, where a lean of 10 cm shows as a few pixels. A camera whose
+ * right is vertical (a trackball rolled a quarter round) blows across the view direction's
+ * level part instead.
+ */
+export function acrossView(camera: Camera): Vec3 {
+  camera.updateMatrixWorld();
+  const e = camera.matrixWorld.elements;
+  let x = e[0], z = e[2];
+  if (Math.hypot(x, z) < 1e-6) {
+    // Right is vertical: the view direction (−local z) turned a quarter round about up.
+    x = e[10]; z = -e[8];
+  }
+  const n = Math.hypot(x, z);
+  return n > 1e-9 ? [x / n, 0, z / n] : [1, 0, 0];
+}
+
+/** The direction along the view (unit): where the camera looks. */
+export function alongView(camera: Camera): Vec3 {
+  const d = camera.getWorldDirection(new Vector3());
+  return [d.x, d.y, d.z];
+}
+
+/**
+ * The default speed for a wind along unit `d` (W's: across the view, `acrossView`), for the
+ * active body as it is.
+ */
+export function viewWindSpeed(app: { mirror: Mirror; viewport: { camera: Camera } }, d: Vec3 = acrossView(app.viewport.camera)): number {
   const m = app.mirror, p = m.params;
-  const d = app.viewport.camera.getWorldDirection(new Vector3());
   const num = (v: unknown, fallback: number) => (typeof v === 'number' ? v : fallback);
-  return defaultWindSpeed(m.positions, m.triangles, m.totalMass, [d.x, d.y, d.z], num(p.wind_drag, 1), num(p.gravity, STANDARD_GRAVITY));
+  return defaultWindSpeed(m.positions, m.triangles, m.totalMass, d, num(p.wind_drag, 1), num(p.gravity, STANDARD_GRAVITY));
 }

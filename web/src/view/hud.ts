@@ -33,6 +33,7 @@ export class Hud {
     this.hint = el(root, 'div', 'hint');
     this.hint.textContent = 'Press ? for the tools and shortcuts';
     this.hint.hidden = seenHelp();
+    window.addEventListener('resize', () => this.keepClear());
   }
 
   /** The paused / slow-motion banner (null: none). */
@@ -78,27 +79,26 @@ export class Hud {
     const text = lines.join('\n');
     if (this.readout.textContent !== text) {
       this.readout.textContent = text;
-      this.keepHintClear();
+      this.keepClear();
     }
     for (const f of this.shown) f();
   }
 
   /**
-   * The "Press ?" hint sits at the top right of the view, the readout at the top left; a long
-   * readout line ("17 % of real time (slow motion) … new shape 1.2/s") reached under the hint
-   * and was cut off (the 12th and 13th sessions' trials): then the hint moves below the readout.
+   * The readout's lines end before what stands to their right at the top of the window: the
+   * "Press ?" hint while it shows, else the panel (#panel, lil-gui). A longer line (slow motion,
+   * time-limited steps, threads, recording) wraps onto the next line instead of running under
+   * them, and the hint and the panel never move for it: before, the first line ran under the
+   * panel in slow motion, and the hint jumped below the readout (70 px) when it grew.
    */
-  private keepHintClear(): void {
-    if (this.hint.hidden) return;
-    const r = this.readout.getBoundingClientRect();
-    if (!this.hintLowered) {
-      const h = this.hint.getBoundingClientRect();
-      // Once lowered it stays so (a readout a character shorter must not make it jump back).
-      this.hintLowered = r.right + 8 > h.left && r.top < h.bottom;
-    }
-    if (this.hintLowered) this.hint.style.top = `${Math.ceil(r.bottom + 6)}px`;
+  private keepClear(): void {
+    const panel = document.getElementById('panel')?.getBoundingClientRect();
+    const hint = this.hint.hidden ? null : this.hint.getBoundingClientRect();
+    const limit = Math.min(hint && hint.width > 0 ? hint.left : Infinity, panel && panel.width > 0 ? panel.left : Infinity, window.innerWidth);
+    const left = this.readout.getBoundingClientRect().left;
+    const width = `${Math.max(READOUT_MIN_WIDTH, Math.floor(limit - READOUT_GAP - left))}px`;
+    if (this.readout.style.maxWidth !== width) this.readout.style.maxWidth = width;
   }
-  private hintLowered = false;
 
   /** A long operation under way ("subdividing", with the fraction done if known), or none (null). */
   progress(label: string | null, fraction?: number): void {
@@ -128,12 +128,18 @@ export class Hud {
     this.help.hidden = show === undefined ? !this.help.hidden : !show;
     if (!this.help.hidden) {
       this.hint.hidden = true;
+      this.keepClear();
       try { localStorage.setItem(HELP_SEEN, '1'); } catch { /* not kept */ }
     }
   }
   get hintVisible(): boolean { return !this.hint.hidden; }
   get helpVisible(): boolean { return !this.help.hidden; }
 }
+
+/** The space kept between the readout and the hint or the panel (px). */
+const READOUT_GAP = 10;
+/** The readout is never narrower than this (px; a window narrower than the panel leaves no room). */
+const READOUT_MIN_WIDTH = 240;
 
 /** How long a message stays on screen at least: a note, a warning, an error (ms). */
 export const MESSAGE_MS: Record<MessageKind, number> = { info: 4000, warn: 8000, error: 10000 };

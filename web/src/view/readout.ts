@@ -39,9 +39,9 @@ export function readoutLines(m: Mirror, r: ReadoutInput): string[] {
 }
 
 /**
- * The wind as seen from the camera (its 3D arrow is end-on when it blows along the view, as W
- * makes it): speed, an arrow for its direction across the screen, and whether it blows away from
- * or towards the viewer.
+ * The wind as seen from the camera (its 3D arrow is end-on when it blows along the view, as
+ * Wind › blow from view makes it): speed, an arrow for its direction across the screen, and
+ * whether it blows away from or towards the viewer.
  */
 export function windLine(w: [number, number, number], camera: Camera): string {
   const v = new Vector3(...w);

@@ -5,7 +5,7 @@
 
 import { World, type DeltaScope } from '../engine/world';
 import { FRAME_DT } from '../engine/models';
-import { headerText, needsAnswer, place, question, sizeFactor, type ImportAnswer, type ImportFrame, type ImportQuestion, type Up } from '../io/import';
+import { COARSE_VERTICES, headerText, needsAnswer, tooCoarse, place, question, sizeFactor, type ImportAnswer, type ImportFrame, type ImportQuestion, type Up } from '../io/import';
 import { trial, verdict, worst } from './trial';
 import type { MessageKind, Settings, Stats, UiState } from '../protocol';
 import type { Imported } from './explain';
@@ -33,6 +33,7 @@ export interface ImportTarget {
   /** A model built in the world (an import): its name, the settings from the world's dt, its file's frame. */
   adopt(model: string, frame: ImportFrame): void;
   remesh(): void;
+  subdivide(): void;
   stats(): Pick<Stats, 'time'>;
   /** Tell the page new tool state (the brush radius fitted to an imported model). */
   hooksUi(ui: Partial<UiState>): void;
@@ -81,6 +82,7 @@ export class Importer {
       // what a moving one costs (the gas swelling it and its landing).
       const run = trial(this.doc.emptyWorld, (w) => { this.addPieces(w, p, { up: q.guessedUp, pieces: 'each', inflate: true }); });
       if (run) q.cost = verdict(quality, run.frames, run.msPerFrame);
+      if (tooCoarse(q)) q.remeshed = this.remeshTrial(p);
       this.pending = p;
       if (needsAnswer(p.question)) this.hooks.ask(p.question);
       else this.answer({ up: p.question.guessedUp, pieces: 'each' });
@@ -92,13 +94,37 @@ export class Importer {
     }
   }
 
+  /**
+   * The vertices Remesh would give a model too coarse to shape, tried on a scratch copy built
+   * as the default answer builds it (0 if the core refuses): an even coarse mesh stays as coarse
+   * at its mean edge, a box is remeshed finer to keep its shape (meshops.ts `remesh`).
+   */
+  private remeshTrial(p: Pending): number {
+    const w = World.create();
+    try {
+      w.restore(this.doc.emptyWorld);
+      const { chosen } = this.addPieces(w, p, { up: p.question.guessedUp, pieces: 'each' });
+      const underLoad = w.params(0).gravity !== 0;
+      return chosen.reduce((n, _, b) => {
+        w.remeshReporting(b, w.quality(b).edge_mean, underLoad);
+        return n + w.body(b).vertexCount;
+      }, 0);
+    } catch {
+      return 0;
+    } finally {
+      w.free();
+    }
+  }
+
   /** The page's answer (null: cancelled). */
   answer(a: ImportAnswer | null): void {
     const p = this.pending;
     this.pending = null;
     if (!p) { this.hooks.message('no import is waiting for an answer', 'warn'); return; }
     if (!a) { this.hooks.message(`import of ${p.name} cancelled — the current model is unchanged`); return; }
-    if (this.build(p, a) && a.remesh) this.doc.remesh();
+    if (!this.build(p, a)) return;
+    if (a.remesh) this.doc.remesh();
+    else if (a.subdivide) this.doc.subdivide();
   }
 
   /**
@@ -179,8 +205,9 @@ export class Importer {
     const q = p.question, n = chosen.length;
     const v = chosen.reduce((s, k) => s + q.pieces[k].vertices, 0), f = chosen.reduce((s, k) => s + q.pieces[k].faces, 0);
     const dims = q.size.map((x) => x.toPrecision(3)).join(' × ');
-    // The up axis, and why, when the page did not ask (a wrong guess is fixed in Model › up axis).
-    const upWhy = !needsAnswer(q) && !q.declaredUp && a.up === q.guessedUp ? ` (${q.guessReason}; Model › up axis changes it)` : '';
+    // The up axis, and why, when the page did not ask it (a guess sure enough: the dialog, if
+    // shown for something else, only says it; a wrong guess is fixed in Model › up axis).
+    const upWhy = !q.declaredUp && q.upSure === true && a.up === q.guessedUp ? ` (${q.guessReason}; Model › up axis changes it)` : '';
     const parts = [
       why ? `${p.name} ${why}: re-built from the file (Undo brings the model back as it was)` : `imported ${p.name}: ${v} vertices, ${f} faces, ${dims} m as in the file`,
       a.up === 'z' ? `turned from Z-up to Y-up${upWhy}` : upWhy ? `Y-up${upWhy}` : '',
@@ -190,7 +217,7 @@ export class Importer {
       (w.params(0).dt as number) < FRAME_DT / 1.5 ? `steps of ${(w.params(0).dt as number).toPrecision(2)} s (finer for its small size)` : '',
     ];
     // Too few vertices for the brushes to shape: say what gives them more.
-    if (v < 100) parts.push(`only ${v} vertices: Subdivide (U) or Model › Remesh gives the tools more to shape`);
+    if (v < COARSE_VERTICES && !a.remesh && !a.subdivide) parts.push(`only ${v} vertices: Subdivide (U) or Model › Remesh gives the tools more to shape`);
     // Long thin triangles make poor springs: say so, and what evens them.
     // (Not when the answer remeshes it: that says what it did.)
     const cost = p.question.cost;
