@@ -4,6 +4,7 @@ import { beforeAll, describe, expect, it } from 'vitest';
 import { readFileSync } from 'node:fs';
 import { loadEngine } from './setup';
 import { Service } from '../src/worker/service';
+import { tooCoarse } from '../src/io/import';
 import type { Command, Frame, Reply } from '../src/protocol';
 import type { AutosaveRecord } from '../src/storage';
 
@@ -41,6 +42,16 @@ function harness(autosave: unknown = null) {
   const giveBack = (f: Frame) => send({ type: 'returnBuffer', buffer: f.positions.buffer as ArrayBuffer });
   const flushTimers = () => { for (const [id, f] of [...timers]) { timers.delete(id); f(); } };
   return { service, replies, saved, send, frames, messages, tick, giveBack, flushTimers };
+}
+
+/**
+ * Answer the import dialog of a closed model too coarse to shape (io/import.ts tooCoarse), the
+ * only question it asks: keep the file's vertices, at the sure up axis.
+ */
+async function keepCoarse(h: Awaited<ReturnType<typeof started>>): Promise<void> {
+  const q = ([...h.replies].reverse().find((r) => r.type === 'importQuestion') as Reply & { type: 'importQuestion' } | undefined)?.question;
+  expect(q && tooCoarse(q) && q.upSure).toBe(true);
+  await h.send({ type: 'importAnswer', answer: { up: q!.guessedUp, pieces: 'each' } });
 }
 
 async function started() {
@@ -222,9 +233,9 @@ describe('worker service', () => {
 
   it('imports a mesh, saves and reopens the project, and autosaves after operations', async () => {
     const h = await started();
-    // Resting on y = 0: Y-up for sure, imported without a question.
+    // Resting on y = 0: Y-up for sure, asked only what to do with its 8 vertices (kept).
     await h.send({ type: 'import', name: 'cube.obj', data: bytes(CUBE) });
-    expect(h.replies.some((r) => r.type === 'importQuestion')).toBe(false);
+    await keepCoarse(h);
     expect(h.messages().at(-1)).toBe('imported cube.obj: 8 vertices, 12 faces, 1.00 × 1.00 × 1.00 m as in the file; Y-up (it rests on the plane y = 0; Model › up axis changes it); at rest at the shape in the file (more Gas › amount n swells it); only 8 vertices: Subdivide (U) or Model › Remesh gives the tools more to shape');
     expect(h.tick()!.topology!.vertexCount).toBe(8);
     h.flushTimers();
@@ -249,6 +260,7 @@ describe('worker service', () => {
   it('subdividing a coarse mesh says that smoothing rounded it, and by how much', async () => {
     const h = await started();
     await h.send({ type: 'import', name: 'cube.obj', data: bytes(CUBE) });
+    await keepCoarse(h);
     const v0 = h.service.doc.stats().volume;
     await h.send({ type: 'subdivide' });
     const v1 = h.service.doc.stats().volume;
@@ -326,6 +338,7 @@ describe('worker service', () => {
     const h = await started();
     const stl = readFileSync(new URL('../e2e/fixtures/zup-tower.stl', import.meta.url));
     await h.send({ type: 'import', name: 'zup-tower.stl', data: stl.buffer.slice(stl.byteOffset, stl.byteOffset + stl.byteLength) as ArrayBuffer });
+    await keepCoarse(h);
     const w = h.service.doc.world;
     expect(w.body(0).vertexCount).toBe(8);
     const extent = () => {
@@ -361,6 +374,7 @@ describe('worker service', () => {
     obj += 'f 1 2 3 4 5 6 7 8\nf 16 15 14 13 12 11 10 9\n';
     const h = await started();
     await h.send({ type: 'import', name: 'rod.obj', data: bytes(obj) });
+    await keepCoarse(h);
     const w = h.service.doc.world;
     expect(w.body(0).vertexCount).toBe(16);
     const history = h.tick()!.history;
@@ -591,9 +605,10 @@ describe('importing', () => {
     // A 10 cm tall box standing on z = 0 (Z-up): after import it stands 0.1 m tall in y.
     const box = 'v 0 0.01 0\nv 0.02 0.01 0\nv 0.02 0.04 0\nv 0 0.04 0\nv 0 0.01 0.1\nv 0.02 0.01 0.1\nv 0.02 0.04 0.1\nv 0 0.04 0.1\n' +
       'f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n';
-    // It rests on z = 0 and not on y = 0: Z-up for sure, turned upright without a question.
+    // It rests on z = 0 and not on y = 0: Z-up for sure, turned upright without asking which
+    // way is up (asked only what to do with its 8 vertices: kept).
     await h.send({ type: 'import', name: 'box.obj', data: bytes(box) });
-    expect(h.replies.some((r) => r.type === 'importQuestion')).toBe(false);
+    await keepCoarse(h);
     expect(h.messages().at(-1)).toMatch(/turned from Z-up to Y-up \(it rests on the plane z = 0; Model › up axis changes it\)/);
     const x = h.service.doc.world.body(0).positions;
     const ys = Array.from({ length: 8 }, (_, i) => x[3 * i + 1]);
@@ -614,6 +629,7 @@ describe('importing', () => {
     for (const s of [1, 40]) {
       const h = await started();
       await h.send({ type: 'import', name: 'cube.obj', data: bytes(cubeObj(s, 0, 0)) });
+      await keepCoarse(h);
       for (let i = 0; i < 600; i++) { const f = h.tick(); if (f) h.giveBack(f); }
       const x = h.service.doc.world.body(0).positions;
       expect(x.every(Number.isFinite)).toBe(true);
