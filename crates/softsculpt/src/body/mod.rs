@@ -23,6 +23,7 @@ mod faces;
 mod forces;
 mod freeze;
 mod gas;
+mod growth;
 pub(crate) mod hinges;
 pub mod implicit;
 mod integrate;

@@ -72,15 +72,20 @@ impl SoftBody {
     }
 
     /// Inflate or deflate locally: `factors` holds one scale per vertex (dimensionless, > 0);
-    /// each spring's rest length is multiplied by the mean of its two ends' factors.
+    /// each spring's rest length is multiplied by the mean of its two ends' factors, after a
+    /// field sharper than the mesh can show is spread to about 2.6 edges' radius, keeping the
+    /// growth's area-weighted sum (`growth.rs`).
     pub fn scale_rest_lengths_by_vertex(&mut self, factors: &[f64]) -> Result<(), SimError> {
         length_check("factors", self.vertex_count(), factors.len())?;
         if let Some(bad) = factors.iter().find(|f| !(f.is_finite() && **f > 0.0)) {
             return Err(SimError::BadParameter { name: "factors", message: format!("must be finite and > 0, got {bad}") });
         }
+        let mut f = factors.to_vec();
+        let s = &self.model.springs;
+        super::growth::spread(&mut f, self.model.faces.triangles(), (&s.i, &s.j), &self.state.x);
         for s in [&mut self.model.springs, &mut self.model.bending] {
             for e in 0..s.rest.len() {
-                s.rest[e] *= 0.5 * (factors[s.i[e] as usize] + factors[s.j[e] as usize]);
+                s.rest[e] *= 0.5 * (f[s.i[e] as usize] + f[s.j[e] as usize]);
             }
         }
         Ok(())
