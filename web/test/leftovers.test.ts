@@ -102,7 +102,7 @@ describe('the brush\'s length unit', () => {
 describe('the material list', () => {
   const store = () => { const m = new Map<string, string>(); return { getItem: (k: string) => m.get(k) ?? null, setItem: (k: string, v: string) => void m.set(k, v) }; };
   const modeler = { stiffness: 100, spring_damping: 0.1, bending: 100, rigidity: 0, damping: 1.5, yield: 0, flow: 0, 'gas.amount': 0.012, 'gas.temperature': 300 };
-  const clay = { ...modeler, stiffness: 300, spring_damping: 0.5, bending: 0, damping: 4, yield: 0.01, flow: 5, 'gas.amount': 0.008 };
+  const clay = { ...modeler, stiffness: 300, spring_damping: 0.5, bending: 0, damping: 4, yield: 0.005, flow: 5, 'gas.amount': 0.008 };
 
   it('names the modeler\'s, a chosen preset once its step lands, custom after an edit, and follows undo', () => {
     const t = new MaterialTracker(store());

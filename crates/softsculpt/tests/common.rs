@@ -323,7 +323,7 @@ pub fn inflated(preset: &str, model: &str, seconds: f64, subdivisions: u32) -> B
 /// - balloon, jelly, stiff rubber: back within 5 mm 5 s after release (the bound;
 ///   measured ≤ 0.5 mm except jelly's swaying mushroom cap, 3.7 mm after the grab);
 /// - clay: keeps ≥ 70 % of what the tool did 5 s after release (the bound; measured
-///   82–118 % of the press, 87 % and 99 % of the pull on the mushroom and the octopus), and no
+///   91–112 % of the press, 96 % and 102 % of the pull on the mushroom and the octopus), and no
 ///   creep after that: from 5 s to 10 s less than 2 % of what the tool did or 1 mm (measured
 ///   < 0.1 mm; its damping, c = 4 1/s, leaves e^(−20) of any motion by then). Where the grab
 ///   barely changes the depth (the sphere slides along the ground, 8 mm), only the creep is

@@ -76,7 +76,7 @@ fn scene_bodies_take_presets_and_plasticity() {
     let w = &run.world;
     assert_eq!(w.param(0, "stiffness").unwrap(), Value::Number(123.0));
     assert_eq!(w.param(0, "damping").unwrap(), Value::Number(4.0));
-    assert_eq!(w.param(0, "yield").unwrap(), Value::Number(0.01));
+    assert_eq!(w.param(0, "yield").unwrap(), Value::Number(0.005));
     assert!((w.bodies[0].material.nrt() - 20.0).abs() < 1e-12);
     assert!((w.bodies[1].material.nrt() - 7.0).abs() < 1e-12);
     assert_eq!(w.param(1, "gas.volume").unwrap(), Value::Choice("ellipsoid"));
@@ -137,8 +137,9 @@ fn each_material_takes_a_press_and_a_grab_as_named_on_the_octopus() {
 
 /// The same at a finer resolution: clay on the rooted mushroom subdivided twice (5,762
 /// vertices) keeps the press and the pull as it does at 362 (the hinges' yield is a curvature,
-/// the same at any resolution: `body/plastic.rs`). Measured 85 % and 88 % (82 % and 87 % at
-/// 362 vertices); bounds as above.
+/// the same at any resolution: `body/plastic.rs`). Measured 85 % and 88 % at a yield strain of
+/// 1 % (82 % and 87 % at 362 vertices; 91 % and 96 % there at the preset's 0.5 %); bounds as
+/// above.
 #[test]
 fn clay_keeps_a_press_and_a_grab_on_the_subdivided_mushroom() {
     for pull in [false, true] {
@@ -147,6 +148,59 @@ fn clay_keeps_a_press_and_a_grab_on_the_subdivided_mushroom() {
         assert!(r.held.abs() > 0.02 && r.at5 / r.held >= 0.7, "kept {} m of {} m", r.at5, r.held);
         assert!((r.at10 - r.at5).abs() < (0.02 * r.held.abs()).max(1e-3), "crept from {} m to {} m", r.at5, r.at10);
     }
+}
+
+/// The modeler's rooted mushroom with clay (`common::with_material`), its cap's rim — the
+/// front-most vertex and those within 35 cm, weight (1 − (d/r)²)² — grabbed by the modeler's
+/// target springs (m w ω², ω = 600 1/s, critically damped) and pulled 0.4 m straight down over
+/// 0.5 s, held to 1 s, let go, stepped as the page steps. Returns the rim's fall (m, < 0 down)
+/// at release, 5 s and 10 s after.
+fn rim_pulled_down() -> (f64, f64, f64) {
+    use softsculpt::body::Target;
+    let (mut w, budget) = (common::with_material("clay", "mushroom", 0, &[]), common::page_budget());
+    let x0 = w.bodies[0].positions().to_vec();
+    let m = w.bodies[0].masses().to_vec();
+    let n = m.len();
+    let c = (0..n).max_by(|&p, &q| x0[3 * p + 2].total_cmp(&x0[3 * q + 2])).unwrap();
+    let r = 0.35;
+    let brush: Vec<(usize, f64)> = (0..n)
+        .filter_map(|i| {
+            let d = (0..3).map(|k| (x0[3 * i + k] - x0[3 * c + k]).powi(2)).sum::<f64>().sqrt();
+            (d < r).then(|| (i, (1.0 - d * d / (r * r)).powi(2)))
+        })
+        .collect();
+    let (omega, frame): (f64, f64) = (600.0, 1.0 / 60.0);
+    for f in 0..60 {
+        let down = 0.4 * ((f + 1) as f64 * frame / 0.5).min(1.0);
+        let targets: Vec<Target> = brush
+            .iter()
+            .map(|&(i, wt)| Target { vertex: i, anchor: [x0[3 * i], x0[3 * i + 1] - down, x0[3 * i + 2]], stiffness: m[i] * wt * omega * omega, damping: 2.0 * m[i] * wt * omega })
+            .collect();
+        w.bodies[0].set_targets(&targets).unwrap();
+        w.advance(frame, &budget).unwrap();
+    }
+    let fall = |w: &softsculpt::World| w.bodies[0].positions()[3 * c + 1] - x0[3 * c + 1];
+    let held = fall(&w);
+    w.bodies[0].clear_targets();
+    w.advance(5.0, &budget).unwrap();
+    let at5 = fall(&w);
+    w.advance(5.0, &budget).unwrap();
+    (held, at5, fall(&w))
+}
+
+/// Issue #37: clay keeps a rim pulled down (`rim_pulled_down`: the mushroom's cap pulled 0.4 m
+/// down at its rim for 1 s). Bounds: ≥ 70 % of the pull kept 5 s after release (the issue's
+/// bound, as for the press and the grab above; measured 77 %, 62 % with the yield strain at
+/// 1 %, whose hinges sprang back by up to their yield angle each: `params/presets.rs`, `clay`),
+/// and no creep after: from 5 s to 10 s less than 2 % of the pull or 1 mm (c = 4 1/s leaves
+/// e^(−20) of any motion by then; measured < 0.1 mm).
+#[test]
+fn clay_keeps_a_rim_pulled_down_on_the_mushroom() {
+    let (held, at5, at10) = rim_pulled_down();
+    println!("clay mushroom rim pulled down: held {held:+.4} m, after 5 s {at5:+.4} m ({:.0} %), after 10 s {at10:+.4} m", 100.0 * at5 / held);
+    assert!(held < -0.3, "the pull moved the rim only {held} m");
+    assert!(at5 / held >= 0.7, "clay kept {at5} m of the rim's {held} m pull");
+    assert!((at10 - at5).abs() < (0.02 * held.abs()).max(1e-3), "crept from {at5} m to {at10} m");
 }
 
 /// A square sheet of `n` × `n` cells, `side` m wide, level at height `y`, centred on the y axis.

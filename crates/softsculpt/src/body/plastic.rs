@@ -62,8 +62,8 @@
 //! whose surface strain at curvature κ is κ t / 2. It yields at
 //!   κ_y = 2 ε_y / t     (1/m),     θ_y = κ_y Ā / |e| at each hinge (`Hinges::flow`),
 //! the angle a surface of curvature κ_y makes there, so the yield is the same at any
-//! resolution. (The clay preset: k 300 N/m, D 0.05 J, ε_y 1 %: t = 3.9 cm, κ_y = 0.51 1/m, a
-//! bend to a radius of 2 m past the rest shape's.) Hinge forces have no virial (θ does not
+//! resolution. (The clay preset: k 300 N/m, D 0.05 J, ε_y 0.5 %: t = 3.9 cm, κ_y = 0.26 1/m, a
+//! bend to a radius of 3.9 m past the rest shape's.) Hinge forces have no virial (θ does not
 //! change when the body is scaled: Σ xᵢ · ∇ᵢθ = 0), so the flow of rest angles leaves the gas
 //! reference alone. A body without springs (k = 0) has no plate to yield: its hinges stay
 //! elastic. A hinge with a crushed face does not flow (`Hinges::flow`).
