@@ -5,9 +5,42 @@ use crate::abi::exports;
 use crate::fails::sim_fail;
 use crate::handle::with_body;
 use crate::views::BodyViews;
+use crate::report::{json, reports};
 use crate::{set_result, status, Fail};
 use softsculpt::body::FreezeOptions;
 use softsculpt::Target;
+
+reports! {
+    /// What a freeze leaves unbalanced (`softsculpt::body::FreezeReport`): forces in N.
+    pub struct FreezeReport {
+        /// Largest net force on a free vertex at rest right after the freeze.
+        pub residual: f64,
+        /// Largest load the springs were asked to balance on a vertex: the residual's scale.
+        pub load: f64,
+        /// Conjugate-gradient iterations of the tension solve.
+        pub iterations: usize,
+        /// Springs whose solved rest length came out negative and was set to 0.
+        pub clamped: usize,
+    }
+
+    /// What `ss_remesh` reports (lengths in m; `volume_change` relative, before the remesher's
+    /// correction).
+    pub struct RemeshReport {
+        /// The body's pending scene events that no longer fit and were dropped.
+        pub dropped_events: usize,
+        /// The edge length used.
+        pub edge: f64,
+        /// The edge length asked for.
+        pub requested: f64,
+        /// The crease angle kept (degrees), or null.
+        pub crease_deg: Option<f64>,
+        /// 1: remeshed as asked; more: the shape needed a shorter edge or its sharp edges kept.
+        pub tries: usize,
+        /// The largest distance between the old and the new surface.
+        pub distance: f64,
+        pub volume_change: f64,
+    }
+}
 
 exports! {
     /// Rest shape := current shape; `under_load` = 1 keeps carrying the weight, `keep_tension` = 1
@@ -18,7 +51,7 @@ exports! {
             with_body(w, b, |h, i| {
                 let how = FreezeOptions { under_load: under_load != 0, keep_tension: keep_tension != 0 };
                 let r = h.world.freeze(i, how).map_err(sim_fail)?;
-                set_result(serde_json::json!({ "residual": r.residual, "load": r.load, "iterations": r.iterations, "clamped": r.clamped }).to_string().into_bytes());
+                set_result(json(&FreezeReport { residual: r.residual, load: r.load, iterations: r.iterations, clamped: r.clamped }));
                 Ok(())
             })
         })
@@ -45,11 +78,15 @@ exports! {
             with_body(w, b, |h, i| {
                 let (dropped, _, r) = h.world.remesh_reporting(i, edge, under_load != 0).map_err(sim_fail)?;
                 h.views[i] = BodyViews::new(&h.world, i);
-                let json = serde_json::json!({
-                    "dropped_events": dropped, "edge": r.edge, "requested": r.requested, "crease_deg": r.crease_deg,
-                    "tries": r.tries, "distance": r.departure.distance(), "volume_change": r.departure.volume_change,
-                });
-                set_result(json.to_string().into_bytes());
+                set_result(json(&RemeshReport {
+                    dropped_events: dropped,
+                    edge: r.edge,
+                    requested: r.requested,
+                    crease_deg: r.crease_deg,
+                    tries: r.tries,
+                    distance: r.departure.distance(),
+                    volume_change: r.departure.volume_change,
+                }));
                 Ok(())
             })
         })

@@ -8,7 +8,35 @@ use crate::fails::{mesh_fail, param_fail};
 use crate::world::add;
 use crate::{bytes, index, set_result, status, text, Fail};
 use softsculpt::mesh::{self, animation, pieces, MeshFormat};
+use crate::report::{self, reports};
 use serde_json::json;
+
+reports! {
+    /// What a mesh file held (`ss_add_file`): its format, the up axis it declares, its pieces.
+    pub struct FileReport {
+        /// The format read (`OBJ`, `PLY`, `STL`, `glTF`, `GLB`), or null.
+        pub format: Option<&'static str>,
+        /// 'y' (glTF says so) or 'unknown' (OBJ, PLY, STL).
+        #[ts = "'y' | 'z' | 'unknown'"]
+        pub up_axis: &'static str,
+        /// Its pieces (one body each when split), largest area first.
+        pub pieces: Vec<PieceReport>,
+        pub boundary_edges: usize,
+        pub non_manifold_edges: usize,
+        /// What the reader mended or doubts, a line each.
+        pub warnings: Vec<String>,
+    }
+
+    /// One piece of a mesh file (`FileReport.pieces`): its size (area in m²) and whether it is
+    /// closed.
+    pub struct PieceReport {
+        pub vertices: usize,
+        pub faces: usize,
+        pub area: f64,
+        pub closed: bool,
+        pub boundary_edges: usize,
+    }
+}
 
 exports! {
     /// A mesh file (`name`'s extension says its format, else its first bytes) read like the CLI
@@ -26,24 +54,29 @@ exports! {
             let loaded = mesh::load(bytes(ptr, len), MeshFormat::from_path(name)).map_err(mesh_fail)?;
             let parts = if split == 1 { pieces::split(&loaded.mesh) } else { vec![loaded.mesh.clone()] };
             let r = &loaded.report;
-            let report = json!({
-                "format": r.format.map(|f| f.name()),
-                "up_axis": r.up_axis.name(),
-                "pieces": parts.iter().map(|p| {
-                    let e = p.edge_counts();
-                    json!({ "vertices": p.vertex_count(), "faces": p.triangles.len(), "area": pieces::area(&p.positions, &p.triangles),
-                            "closed": p.is_closed(), "boundary_edges": e.boundary })
-                }).collect::<Vec<_>>(),
-                "boundary_edges": r.edges.boundary,
-                "non_manifold_edges": r.edges.non_manifold,
-                "warnings": r.warnings,
-            });
+            let report = FileReport {
+                format: r.format.map(|f| f.name()),
+                up_axis: r.up_axis.name(),
+                pieces: parts
+                    .iter()
+                    .map(|p| PieceReport {
+                        vertices: p.vertex_count(),
+                        faces: p.triangles.len(),
+                        area: pieces::area(&p.positions, &p.triangles),
+                        closed: p.is_closed(),
+                        boundary_edges: p.edge_counts().boundary,
+                    })
+                    .collect(),
+                boundary_edges: r.edges.boundary,
+                non_manifold_edges: r.edges.non_manifold,
+                warnings: r.warnings.clone(),
+            };
             let mut first = None;
             for p in &parts {
                 let b = add(w, p, mass, &[])?;
                 first.get_or_insert(b);
             }
-            set_result(report.to_string().into_bytes());
+            set_result(report::json(&report));
             first.ok_or_else(|| Fail::usage("the file has no pieces"))
         })
     }

@@ -28,7 +28,10 @@
 //! - **One table** (`abi.rs`): every call below is written once, in an `exports!` block of its
 //!   module, which records its name, doc comment and signature; the page's types for the calls
 //!   (`web/src/engine/abi.ts`), with the layout table's slots, the stats order and the delta
-//!   scope codes, are written from it by `tests/abi.rs` (`UPDATE_ABI=1`), never by hand.
+//!   scope codes, are written from it by `tests/abi.rs` (`UPDATE_ABI=1`), never by hand. So are
+//!   the interfaces of the JSON reports (`FreezeReport`, `RemeshReport`, `FileReport`,
+//!   `Advance`): each is a struct written once, in a `reports!` block beside its call
+//!   (`report.rs`), serialized from that struct.
 //!
 //! # Calls
 //! | call | does |
@@ -91,6 +94,7 @@ mod handle;
 mod history;
 mod import;
 mod params;
+pub mod report;
 mod scene;
 mod views;
 mod world;
@@ -246,4 +250,9 @@ pub fn exports() -> impl Iterator<Item = &'static abi::Export> {
     [EXPORTS, handle::EXPORTS, world::EXPORTS, params::EXPORTS, bodyops::EXPORTS, import::EXPORTS, scene::EXPORTS, history::EXPORTS]
         .into_iter()
         .flatten()
+}
+
+/// Every JSON report of the binding (`report.rs`), for `tests/abi.rs`.
+pub fn reports() -> impl Iterator<Item = &'static report::Report> {
+    [bodyops::REPORTS, import::REPORTS, world::REPORTS].into_iter().flatten()
 }

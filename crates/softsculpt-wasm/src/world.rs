@@ -7,6 +7,7 @@
 use crate::abi::exports;
 use crate::fails::{body_fail, mesh_fail, snapshot_fail, step_fail};
 use crate::handle::with_world;
+use crate::report::{self, reports};
 use crate::{bytes, fail, index, set_result, status, text, Fail, Res};
 use softsculpt::mesh::{self, builtin, LoadedMesh, ObjData, TriMesh};
 use softsculpt::{
@@ -54,6 +55,24 @@ fn interrupted() -> bool {
     false
 }
 
+
+reports! {
+    /// What a frame did (`World.advance`, the core's `Advance`).
+    pub struct Advance {
+        /// Steps taken (a split step counts its pieces).
+        pub steps: u64,
+        /// Steps that had to be split.
+        pub splits: u32,
+        /// Simulated seconds advanced.
+        pub simulated: f64,
+        /// The largest relative residual a step was accepted at.
+        pub residual: f64,
+        /// Implicit steps stopped at their deadline, short of the tolerance.
+        pub early: u32,
+        /// Wall-clock seconds the frame took (real-time budgets).
+        pub wall: f64,
+    }
+}
 
 exports! {
     /// A built-in model by name, of total mass `mass` (kg), with the default material.
@@ -192,11 +211,8 @@ exports! {
                 let a = h.world.advance(frame_dt, &budget);
                 h.world.settings.interrupt = saved;
                 let a = a.map_err(step_fail)?;
-                let out = serde_json::json!({
-                    "steps": a.steps, "splits": a.splits, "simulated": a.simulated,
-                    "residual": a.residual, "early": a.early, "wall": a.wall,
-                });
-                set_result(out.to_string().into_bytes());
+                let out = Advance { steps: a.steps, splits: a.splits, simulated: a.simulated, residual: a.residual, early: a.early, wall: a.wall };
+                set_result(report::json(&out));
                 Ok(())
             })
         })

@@ -1,11 +1,12 @@
 //! The page's side of the binding, written from the binding's one table (issue #39 item 3):
 //! `web/src/engine/abi.ts` holds the raw exports' TypeScript types (from the `exports!` blocks,
 //! `src/abi.rs`), the layout table's slots and the stats block's order (`src/views.rs`) and the
-//! delta scope codes (`src/history.rs`). The test fails when the committed file is not what the
+//! delta scope codes (`src/history.rs`) and the JSON reports' interfaces (the `reports!` blocks,
+//! `src/report.rs`). The test fails when the committed file is not what the
 //! table writes; `UPDATE_ABI=1 cargo test -p softsculpt-wasm --test abi` rewrites it.
 
 use softsculpt_wasm::abi::Export;
-use softsculpt_wasm::{exports, LAYOUT_LEN, SCOPES, SLOTS, STATS, STATS_LEN};
+use softsculpt_wasm::{exports, reports, LAYOUT_LEN, SCOPES, SLOTS, STATS, STATS_LEN};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
@@ -75,7 +76,8 @@ fn abi_ts() -> String {
         "// The page's side of the WebAssembly binding, written from its one table: do not edit. The\n\
          // raw exports' types (the `exports!` blocks of crates/softsculpt-wasm/src, abi.rs), the\n\
          // layout table's slots and the stats block's order (views.rs), the delta scope codes\n\
-         // (history.rs). After changing one of those, `UPDATE_ABI=1 cargo test -p softsculpt-wasm\n\
+         // (history.rs), the JSON reports' interfaces (the `reports!` blocks, report.rs). After\n\
+         // changing one of those, `UPDATE_ABI=1 cargo test -p softsculpt-wasm\n\
          // --test abi` rewrites this file (crates/softsculpt-wasm/tests/abi.rs). The calls'\n\
          // conventions (status and index, error and result slots, memory): the crate documentation\n\
          // of crates/softsculpt-wasm/src/lib.rs.\n\n",
@@ -130,6 +132,18 @@ fn abi_ts() -> String {
         writeln!(o, "  {}: {k},", s.name).unwrap();
     }
     o.push_str("} as const;\nexport type DeltaScope = keyof typeof SCOPE;\n");
+
+    // The JSON reports calls leave in the result slot.
+    for r in reports() {
+        o.push('\n');
+        jsdoc(&mut o, "", r.doc, &[]);
+        writeln!(o, "export interface {} {{", r.name).unwrap();
+        for f in r.fields {
+            jsdoc(&mut o, "  ", f.doc, &[]);
+            writeln!(o, "  {}: {};", f.name, (f.ts)()).unwrap();
+        }
+        o.push_str("}\n");
+    }
     o
 }
 

@@ -78,6 +78,19 @@ fn an_action_with_missing_or_stray_keys_is_refused() {
     assert!(e.to_string().contains("no body is named 'ghost'"), "{e}");
 }
 
+/// Serde reads the actions (`scene::actions`): an unknown one is named at its own line and key,
+/// with the valid ones; a stray key inside a region is the region's, not the action's.
+#[test]
+fn an_unknown_action_names_its_line_key_and_the_valid_ones() {
+    let e = error(&format!("{BODY}[[event]]\ntime = 0\naction = \"explode\"\n"));
+    eprintln!("{e}");
+    assert_eq!((e.line, e.key.as_deref()), (Some(5), Some("event[0].action")));
+    assert!(e.message.contains("one of: freeze, reset, set_gas, set_wind, force, pressure, pin, unpin, inflate, set_mass"), "{e}");
+    let e = error(&format!("{BODY}[[event]]\ntime = 0\naction = \"force\"\nregion = {{ al = true }}\nforce = [1, 0, 0]\n"));
+    eprintln!("{e}");
+    assert!(e.message.contains("unknown field `al`") && e.message.contains("`center`"), "{e}");
+}
+
 #[test]
 fn bad_values_regions_and_obstacles_are_refused() {
     for (text, want) in [

@@ -1,7 +1,8 @@
 // The page's side of the WebAssembly binding, written from its one table: do not edit. The
 // raw exports' types (the `exports!` blocks of crates/softsculpt-wasm/src, abi.rs), the
 // layout table's slots and the stats block's order (views.rs), the delta scope codes
-// (history.rs). After changing one of those, `UPDATE_ABI=1 cargo test -p softsculpt-wasm
+// (history.rs), the JSON reports' interfaces (the `reports!` blocks, report.rs). After
+// changing one of those, `UPDATE_ABI=1 cargo test -p softsculpt-wasm
 // --test abi` rewrites this file (crates/softsculpt-wasm/tests/abi.rs). The calls'
 // conventions (status and index, error and result slots, memory): the crate documentation
 // of crates/softsculpt-wasm/src/lib.rs.
@@ -630,3 +631,77 @@ export const SCOPE = {
   whole: 3,
 } as const;
 export type DeltaScope = keyof typeof SCOPE;
+
+/** What a freeze leaves unbalanced (`softsculpt::body::FreezeReport`): forces in N. */
+export interface FreezeReport {
+  /** Largest net force on a free vertex at rest right after the freeze. */
+  residual: number;
+  /** Largest load the springs were asked to balance on a vertex: the residual's scale. */
+  load: number;
+  /** Conjugate-gradient iterations of the tension solve. */
+  iterations: number;
+  /** Springs whose solved rest length came out negative and was set to 0. */
+  clamped: number;
+}
+
+/**
+ * What `ss_remesh` reports (lengths in m; `volume_change` relative, before the remesher's
+ * correction).
+ */
+export interface RemeshReport {
+  /** The body's pending scene events that no longer fit and were dropped. */
+  dropped_events: number;
+  /** The edge length used. */
+  edge: number;
+  /** The edge length asked for. */
+  requested: number;
+  /** The crease angle kept (degrees), or null. */
+  crease_deg: number | null;
+  /** 1: remeshed as asked; more: the shape needed a shorter edge or its sharp edges kept. */
+  tries: number;
+  /** The largest distance between the old and the new surface. */
+  distance: number;
+  volume_change: number;
+}
+
+/** What a mesh file held (`ss_add_file`): its format, the up axis it declares, its pieces. */
+export interface FileReport {
+  /** The format read (`OBJ`, `PLY`, `STL`, `glTF`, `GLB`), or null. */
+  format: string | null;
+  /** 'y' (glTF says so) or 'unknown' (OBJ, PLY, STL). */
+  up_axis: 'y' | 'z' | 'unknown';
+  /** Its pieces (one body each when split), largest area first. */
+  pieces: PieceReport[];
+  boundary_edges: number;
+  non_manifold_edges: number;
+  /** What the reader mended or doubts, a line each. */
+  warnings: string[];
+}
+
+/**
+ * One piece of a mesh file (`FileReport.pieces`): its size (area in m²) and whether it is
+ * closed.
+ */
+export interface PieceReport {
+  vertices: number;
+  faces: number;
+  area: number;
+  closed: boolean;
+  boundary_edges: number;
+}
+
+/** What a frame did (`World.advance`, the core's `Advance`). */
+export interface Advance {
+  /** Steps taken (a split step counts its pieces). */
+  steps: number;
+  /** Steps that had to be split. */
+  splits: number;
+  /** Simulated seconds advanced. */
+  simulated: number;
+  /** The largest relative residual a step was accepted at. */
+  residual: number;
+  /** Implicit steps stopped at their deadline, short of the tolerance. */
+  early: number;
+  /** Wall-clock seconds the frame took (real-time budgets). */
+  wall: number;
+}

@@ -7,26 +7,11 @@
 // openScene, applyDelta, openProjectV1). Get it again after a call — the getters re-make
 // the arrays when needed and are cheap otherwise — and never keep one across calls.
 
-import { LAYOUT_LEN, SCOPE, SLOT, STATS_LEN, readStats, type DeltaScope, type Stats } from './abi';
+import { LAYOUT_LEN, SCOPE, SLOT, STATS_LEN, readStats, type Advance, type DeltaScope, type FileReport, type FreezeReport, type RemeshReport, type Stats } from './abi';
 import { errorJson, raw, resultBytes, resultText, view, withArrays, withBytes } from './wasm';
 
-export type { DeltaScope, Stats };
-
-/** What `ss_remesh` reports (lengths in m; `volume_change` relative, before the remesher's correction). */
-export interface RemeshReport {
-  dropped_events: number;
-  /** The edge length used. */
-  edge: number;
-  /** The edge length asked for. */
-  requested: number;
-  /** The crease angle kept (degrees), or null. */
-  crease_deg: number | null;
-  /** 1: remeshed as asked; more: the shape needed a shorter edge or its sharp edges kept. */
-  tries: number;
-  /** The largest distance between the old and the new surface. */
-  distance: number;
-  volume_change: number;
-}
+// The JSON reports' types are written from the binding's `reports!` blocks (abi.ts).
+export type { Advance, DeltaScope, FileReport, FreezeReport, RemeshReport, Stats };
 
 /** What the engine refused, and why: `kind` is one of the binding's error kinds. */
 export class EngineError extends Error {
@@ -74,16 +59,6 @@ export type ParamValue = number | boolean | string | [number, number, number];
 /** A body's triangle quality (`World.quality`, the core's `mesh::quality::Quality`). */
 export interface Quality { min_angle_deg: number; small_angle_share: number; edge_min: number; edge_mean: number; edge_spread: number; poor: boolean }
 
-/** What a frame did (`World.advance`, the core's `Advance`). */
-export interface Advance {
-  /** Steps taken (a split step counts its pieces), steps split, simulated seconds advanced. */
-  steps: number; splits: number; simulated: number;
-  /** The largest relative residual a step was accepted at; steps stopped at their deadline. */
-  residual: number; early: number;
-  /** Wall-clock seconds the frame took (real-time budgets). */
-  wall: number;
-}
-
 /** One row of the engine's parameter table (softsculpt::params). */
 export interface ParamInfo {
   id: import('./params').ParamId;
@@ -104,17 +79,6 @@ export type Obstacle =
   | { kind: 'capsule'; friction: number; a: number[]; b: number[]; radius: number }
   | { kind: 'mesh'; friction: number; positions: Float64Array; indices: Uint32Array };
 
-/** What a mesh file held (`World.addFile`): its format, the up axis it declares, its pieces. */
-export interface FileReport {
-  format: string | null;
-  /** 'y' (glTF says so) or 'unknown' (OBJ, PLY, STL). */
-  up_axis: 'y' | 'z' | 'unknown';
-  pieces: { vertices: number; faces: number; area: number; closed: boolean; boundary_edges: number }[];
-  boundary_edges: number;
-  non_manifold_edges: number;
-  warnings: string[];
-}
-
 /**
  * A recording as a GLB of morph targets (the core's animation writer, the format of `softsculpt
  * run --frames`): `times` (s); per track its triangles and its frames (xyz, f32, one per time).
@@ -131,9 +95,6 @@ export function animationGlb(times: Float64Array, tracks: { triangles: Uint32Arr
   check(withArrays([times, counts, tris, frames], (tp, cp, ip, fp) => raw().ss_animation_glb(tp, times.length, cp, tracks.length, ip, fp)));
   return resultBytes();
 }
-
-/** What a freeze leaves unbalanced (`softsculpt::body::FreezeReport`): forces in N. */
-export interface FreezeReport { residual: number; load: number; iterations: number; clamped: number }
 
 /** Body `index` of a world: counts and typed-array views (see the file comment). */
 export class BodyView {

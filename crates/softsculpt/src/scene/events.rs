@@ -1,83 +1,21 @@
-//! Timed events in a scene file: what each action takes, and each event checked and resolved
-//! for the bodies it acts on ([`resolve`]). The resolved events ([`Action`],
-//! [`Event`]) and how they act are the world's (`crate::world::events`).
+//! Timed events in a scene file: each event checked and resolved for the bodies it acts on
+//! ([`resolve`]). What each action takes is its [`ActionSpec`] variant (`super::actions`, read
+//! and checked by serde); the resolved events ([`Action`], [`Event`]) and how they act are the
+//! world's (`crate::world::events`).
 //!
 //! Regions select vertices (and, for pressures, the faces whose three vertices are all selected)
 //! by where they are when the scene starts, after placement: an event always acts on the same
 //! material points, however the body has moved since.
 
+use super::actions::ActionSpec;
 use super::build::{select_in, BuiltBody, Ctx};
-use super::spec::{EventSpec, SceneSpec};
+use super::spec::{RegionSpec, SceneSpec};
 use super::SceneError;
 pub use crate::world::{Action, Event};
 use crate::params as table;
 use crate::vec3::scale;
 
-/// Every action, with the keys it requires and the keys it may take (besides `time`, `action`
-/// and `body`, which every event may have).
-pub const ACTIONS: &[(&str, &[&str], &[&str])] = &[
-    ("freeze", &[], &["under_load", "keep_tension"]),
-    ("reset", &[], &[]),
-    ("set_gas", &[], &["amount", "temperature", "nrt"]),
-    ("set_wind", &["wind"], &[]),
-    ("force", &["region", "force"], &["duration"]),
-    ("pressure", &["region", "pressure"], &["duration"]),
-    ("pin", &["region"], &[]),
-    ("unpin", &["region"], &[]),
-    ("inflate", &["factor"], &["region"]),
-    ("set_mass", &["region", "mass"], &[]),
-];
-
-/// Keys of `e` that are set, besides `time`, `action` and `body`.
-pub fn present_keys(e: &EventSpec) -> Vec<&'static str> {
-    let mut keys = Vec::new();
-    let mut add = |set: bool, k: &'static str| {
-        if set {
-            keys.push(k)
-        }
-    };
-    add(e.duration.is_some(), "duration");
-    add(e.region.is_some(), "region");
-    add(e.force.is_some(), "force");
-    add(e.pressure.is_some(), "pressure");
-    add(e.amount.is_some(), "amount");
-    add(e.temperature.is_some(), "temperature");
-    add(e.nrt.is_some(), "nrt");
-    add(e.wind.is_some(), "wind");
-    add(e.factor.is_some(), "factor");
-    add(e.mass.is_some(), "mass");
-    add(e.under_load.is_some(), "under_load");
-    add(e.keep_tension.is_some(), "keep_tension");
-    keys
-}
-
-/// Check an event's keys against its action: unknown action, missing or stray keys.
-pub fn check_keys(e: &EventSpec) -> Result<(), String> {
-    let Some((_, required, optional)) = ACTIONS.iter().find(|(name, _, _)| *name == e.action) else {
-        let names: Vec<&str> = ACTIONS.iter().map(|a| a.0).collect();
-        return Err(format!("unknown action '{}' (one of: {})", e.action, names.join(", ")));
-    };
-    let present = present_keys(e);
-    for r in *required {
-        if !present.contains(r) {
-            return Err(format!("action '{}' needs `{r}`", e.action));
-        }
-    }
-    for p in &present {
-        if !required.contains(p) && !optional.contains(p) {
-            return Err(format!("action '{}' does not take `{p}`", e.action));
-        }
-    }
-    if e.action == "set_gas" && present.is_empty() {
-        return Err("action 'set_gas' needs `amount`, `nrt` or `temperature`".into());
-    }
-    if e.amount.is_some() && e.nrt.is_some() {
-        return Err("give the gas as `amount` (mol) or as `nrt` (J), not both".into());
-    }
-    Ok(())
-}
-
-/// Every `[[event]]` checked (time order, keys) and resolved, one per body it targets (the
+/// Every `[[event]]` checked (time order, values) and resolved, one per body it targets (the
 /// named one, else every body).
 pub(super) fn resolve(spec: &SceneSpec, text: &str, bodies: &[BuiltBody]) -> Result<Vec<Event>, SceneError> {
     let mut events = Vec::new();
@@ -92,7 +30,14 @@ pub(super) fn resolve(spec: &SceneSpec, text: &str, bodies: &[BuiltBody]) -> Res
             return Err(cx.err("time", format!("events must be in time order: {} s comes after an event at {last} s", e.time)));
         }
         last = e.time;
-        check_keys(e).map_err(|m| cx.err("action", m))?;
+        if let ActionSpec::SetGas { amount, temperature, nrt } = &e.action {
+            if amount.is_none() && temperature.is_none() && nrt.is_none() {
+                return Err(cx.err("action", "action 'set_gas' needs `amount`, `nrt` or `temperature`"));
+            }
+            if amount.is_some() && nrt.is_some() {
+                return Err(cx.err("action", "give the gas as `amount` (mol) or as `nrt` (J), not both"));
+            }
+        }
         let targets: Vec<usize> = match &e.body {
             Some(name) => vec![bodies
                 .iter()
@@ -100,40 +45,37 @@ pub(super) fn resolve(spec: &SceneSpec, text: &str, bodies: &[BuiltBody]) -> Res
                 .ok_or_else(|| cx.err("body", format!("no body is named '{name}'")))?],
             None => (0..bodies.len()).collect(),
         };
-        let until = match e.duration {
+        let until = match e.action.duration() {
             Some(d) => e.time + cx.positive("duration", d)?,
             None => f64::INFINITY,
         };
         for bi in targets {
-            let action = event_action(&cx, e, &bodies[bi], spec.world.gravity, until)?;
+            let action = event_action(&cx, &e.action, &bodies[bi], spec.world.gravity, until)?;
             events.push(Event { time: e.time, body: bi, action, line: cx.line });
         }
     }
     Ok(events)
 }
 
-/// Event `e`'s action on body `b`, its values checked (`until`: when a force or pressure
-/// ends, s; `gravity`: the world's, which decides a freeze's default `under_load`).
-fn event_action(cx: &Ctx, e: &EventSpec, b: &BuiltBody, gravity: f64, until: f64) -> Result<Action, SceneError> {
-    let region = |cx: &Ctx| -> Result<Vec<usize>, SceneError> {
-        match &e.region {
-            Some(r) => select_in(cx, "region", r, &b.body, &b.mesh),
-            None => Ok((0..b.body.vertex_count()).collect()),
+/// Action `a` on body `b`, its values checked (`until`: when a force or pressure ends, s;
+/// `gravity`: the world's, which decides a freeze's default `under_load`).
+fn event_action(cx: &Ctx, a: &ActionSpec, b: &BuiltBody, gravity: f64, until: f64) -> Result<Action, SceneError> {
+    let region = |r: &RegionSpec| select_in(cx, "region", r, &b.body, &b.mesh);
+    Ok(match a {
+        ActionSpec::Freeze { under_load, keep_tension } => {
+            Action::Freeze { under_load: under_load.unwrap_or(gravity != 0.0), keep_tension: keep_tension.unwrap_or(false) }
         }
-    };
-    Ok(match e.action.as_str() {
-        "freeze" => Action::Freeze { under_load: e.under_load.unwrap_or(gravity != 0.0), keep_tension: e.keep_tension.unwrap_or(false) },
-        "reset" => Action::Reset,
-        "set_gas" => set_gas(cx, e, b)?,
-        "set_wind" => Action::SetWind(cx.vec("wind", e.wind.unwrap_or_default())?),
-        "force" => {
-            let vertices = region(cx)?;
-            let f = cx.vec("force", e.force.unwrap_or_default())?;
+        ActionSpec::Reset {} => Action::Reset,
+        &ActionSpec::SetGas { amount, temperature, nrt } => set_gas(cx, b, amount, temperature, nrt)?,
+        ActionSpec::SetWind { wind } => Action::SetWind(cx.vec("wind", *wind)?),
+        ActionSpec::Force { region: r, force, .. } => {
+            let vertices = region(r)?;
+            let f = cx.vec("force", *force)?;
             Action::Force { per_vertex: scale(f, 1.0 / vertices.len() as f64), vertices, until }
         }
-        "pressure" => {
-            let p = cx.finite("pressure", e.pressure.unwrap_or(0.0))?;
-            let sel = vertex_mask(b.body.vertex_count(), &region(cx)?);
+        ActionSpec::Pressure { region: r, pressure, .. } => {
+            let p = cx.finite("pressure", *pressure)?;
+            let sel = vertex_mask(b.body.vertex_count(), &region(r)?);
             let faces: Vec<usize> = (0..b.body.face_count())
                 .filter(|&f| b.body.triangles()[f].iter().all(|&v| sel[v as usize]))
                 .collect();
@@ -142,36 +84,42 @@ fn event_action(cx: &Ctx, e: &EventSpec, b: &BuiltBody, gravity: f64, until: f64
             }
             Action::Pressure { faces, pressure: p, until }
         }
-        "pin" => Action::Pin(region(cx)?),
-        "unpin" => Action::Unpin(region(cx)?),
-        "inflate" => {
-            let f = cx.positive("factor", e.factor.unwrap_or(1.0))?;
+        ActionSpec::Pin { region: r } => Action::Pin(region(r)?),
+        ActionSpec::Unpin { region: r } => Action::Unpin(region(r)?),
+        ActionSpec::Inflate { region: r, factor } => {
+            let f = cx.positive("factor", *factor)?;
             let mut factors = vec![1.0; b.body.vertex_count()];
-            for v in region(cx)? {
+            let vertices = match r {
+                Some(r) => region(r)?,
+                None => (0..b.body.vertex_count()).collect(),
+            };
+            for v in vertices {
                 factors[v] = f;
             }
             Action::Inflate(factors)
         }
-        "set_mass" => Action::SetMass { vertices: region(cx)?, mass: cx.positive("mass", e.mass.unwrap_or(0.0))? },
-        other => unreachable!("check_keys accepted unknown action {other}"),
+        ActionSpec::SetMass { region: r, mass } => {
+            let vertices = region(r)?;
+            Action::SetMass { vertices, mass: cx.positive("mass", *mass)? }
+        }
     })
 }
 
 /// A `set_gas` event's values checked: gas only in a closed body.
-fn set_gas(cx: &Ctx, e: &EventSpec, b: &BuiltBody) -> Result<Action, SceneError> {
-    if let Some(a) = e.amount {
+fn set_gas(cx: &Ctx, b: &BuiltBody, amount: Option<f64>, temperature: Option<f64>, nrt: Option<f64>) -> Result<Action, SceneError> {
+    if let Some(a) = amount {
         cx.param("amount", &table::GAS_AMOUNT, a)?;
     }
-    if let Some(t) = e.temperature {
+    if let Some(t) = temperature {
         cx.param("temperature", &table::TEMPERATURE, t)?;
     }
-    if let Some(n) = e.nrt {
+    if let Some(n) = nrt {
         cx.param("nrt", &table::GAS_NRT, n)?;
     }
-    if (e.amount.unwrap_or(0.0) > 0.0 || e.nrt.unwrap_or(0.0) > 0.0) && !b.body.is_closed() {
+    if (amount.unwrap_or(0.0) > 0.0 || nrt.unwrap_or(0.0) > 0.0) && !b.body.is_closed() {
         return Err(cx.err("amount", format!("body '{}' is open: gas needs a closed surface", b.name)));
     }
-    Ok(Action::SetGas { amount: e.amount, temperature: e.temperature, nrt: e.nrt })
+    Ok(Action::SetGas { amount, temperature, nrt })
 }
 
 fn vertex_mask(n: usize, vertices: &[usize]) -> Vec<bool> {

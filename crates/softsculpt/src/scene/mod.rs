@@ -1,16 +1,18 @@
 //! Scenes: a TOML file that describes a world (gravity, ground, wind, integrator, dt), its soft
 //! bodies, rigid obstacles and timed events, and the runner that plays it.
 //!
-//! - [`spec`]: the file format (serde structs; unknown keys are errors);
+//! - [`spec`]: the file format (serde structs; unknown keys are errors), with [`actions`]: the
+//!   timed actions and the keys each takes;
 //! - [`build`]: turns a parsed file into bodies, obstacles and events, checking everything serde
 //!   cannot (exactly one mesh source, regions, events in time order, …) with the line at fault;
-//! - [`events`]: the timed actions and how each acts on a body;
+//! - [`events`]: each event's values checked and resolved into what it does to a body;
 //! - [`run`]: [`SceneRun`], which steps the world and fires the events on time.
 //!
 //! The core reads no files: mesh paths in a scene go through a resolver the caller provides
 //! (the CLI reads them relative to the scene file; the modeler asks the user).
 //! `docs/scenes.md` documents the format for users.
 
+pub mod actions;
 pub mod build;
 pub mod events;
 pub mod run;
@@ -68,8 +70,21 @@ pub fn parse(text: &str) -> Result<SceneSpec, SceneError> {
             .collect::<Vec<_>>()
             .join(".");
         let key = if path.is_empty() || path == "?" { None } else { Some(path) };
-        SceneError::at(text, e.inner().span(), key, clean(e.inner().message()))
+        let message = clean(e.inner().message());
+        // An event's action refused by serde (`actions::read`): said at its `action` key, as the
+        // checks after parsing say theirs.
+        if let (Some(k), Some(span)) = (&key, e.inner().span()) {
+            if is_event(k) && !message.starts_with("missing field") {
+                return build::Ctx::new(text, span.start, k.clone()).err("action", message);
+            }
+        }
+        SceneError::at(text, e.inner().span(), key, message)
     })
+}
+
+/// Whether `path` is an event's table itself (`event[2]`), not one of its keys.
+fn is_event(path: &str) -> bool {
+    path.strip_prefix("event[").and_then(|r| r.strip_suffix(']')).is_some_and(|n| n.parse::<usize>().is_ok())
 }
 
 /// toml's messages end with a newline and name Rust types: say it in the file's terms.

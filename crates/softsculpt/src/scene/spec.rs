@@ -1,10 +1,11 @@
 //! The scene file format: what a TOML scene may say, field by field, with units and defaults.
 //! `docs/scenes.md` is the user's version of this file; keep the two in step.
 //!
-//! Unknown keys are errors (`deny_unknown_fields`), so a typo never silently falls back to a
-//! default. Bodies, obstacles and events keep their source span, so checks done after parsing
-//! can name the line.
+//! Unknown keys are errors (`deny_unknown_fields`; an event's keys are its action's,
+//! `super::actions`), so a typo never silently falls back to a default. Bodies, obstacles and
+//! events keep their source span, so checks done after parsing can name the line.
 
+pub use super::actions::ActionSpec;
 use crate::params as table;
 use serde::{Deserialize, Serialize};
 use toml::Spanned;
@@ -273,47 +274,13 @@ pub struct ObstacleSpec {
     pub friction: Option<f64>,
 }
 
-/// `[[event]]`: at `time` (s), do `action` to `body` (default: every body). Which other keys an
-/// action takes is listed in [`super::events::ACTIONS`].
-#[derive(Debug, Clone, Default, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
+/// `[[event]]`: at `time` (s), do `action` to `body` (default: every body). The action and the
+/// keys it takes are [`ActionSpec`] (`super::actions`).
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 pub struct EventSpec {
     pub time: f64,
-    pub action: String,
+    #[serde(flatten, deserialize_with = "super::actions::read")]
+    pub action: ActionSpec,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub body: Option<String>,
-    /// How long a force or pressure lasts (s); absent: to the end.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub duration: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub region: Option<RegionSpec>,
-    /// Total force over the region (N), shared equally by its vertices.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub force: Option<[f64; 3]>,
-    /// Pressure on the region's faces (Pa), positive pushing inward.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub pressure: Option<f64>,
-    /// Gas amount (mol), temperature (K) or product nRT (J).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub amount: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub temperature: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub nrt: Option<f64>,
-    /// Wind velocity (m/s).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub wind: Option<[f64; 3]>,
-    /// Rest-length factor for `inflate` (dimensionless; > 1 grows).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub factor: Option<f64>,
-    /// Vertex mass for `set_mass` (kg).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub mass: Option<f64>,
-    /// `freeze` only: keep the current loads balanced (default: when gravity is on).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub under_load: Option<bool>,
-    /// `freeze` only: keep the gas pressing and solve rest lengths so the shape is an
-    /// equilibrium (default: false, a plain or under-load freeze).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub keep_tension: Option<bool>,
 }
