@@ -393,9 +393,17 @@ describe('undo deltas and version-1 projects through the world binding', () => {
     const rest0 = b().rest.slice();
     w.mark();
     const x = b().positions;
-    // Inflate the vertices near the top (y > 0.8 of the top height).
-    const top = Math.max(...Array.from({ length: b().vertexCount }, (_, i) => x[3 * i + 1]));
-    const factors = Float64Array.from({ length: b().vertexCount }, (_, i) => (x[3 * i + 1] > 0.8 * top ? 1.2 : 1));
+    // Inflate a brush on the top: 20 % at the top vertex, weight (1 − (d/r)²)² out to r = 0.6 m,
+    // about four edges, so the mesh carries the field as it is (a sharper one is spread over
+    // more of the body first: the core's body/growth.rs) and the stroke touches the top only.
+    const n = b().vertexCount;
+    const t = Array.from({ length: n }, (_, i) => i).reduce((m, i) => (x[3 * i + 1] > x[3 * m + 1] ? i : m), 0);
+    const top = x[3 * t + 1];
+    const r = 0.6;
+    const factors = Float64Array.from({ length: n }, (_, i) => {
+      const d = Math.hypot(x[3 * i] - x[3 * t], x[3 * i + 1] - x[3 * t + 1], x[3 * i + 2] - x[3 * t + 2]);
+      return d < r ? 1 + 0.2 * (1 - (d / r) ** 2) ** 2 : 1;
+    });
     w.scaleRest(0, factors);
     w.step(20);
     const painted = b().rest.slice();
