@@ -102,11 +102,16 @@ test('after an import the model list names the imported file, and a built-in cho
   // Before: blank (the list held built-ins only).
   assert.deepEqual(await showing(), { display: '(imported: cloth.obj)', selected: '(imported: cloth.obj)' });
   await shot(page, 'import-10-model-list-imported');
+  // The import fitted the brush to the file's size; the built-in chosen next opens with the
+  // built-ins' 0.35 m (before, the fitted radius stayed).
+  const fitted = await inspect(page, () => window.softsculpt.brush().radius);
+  assert.notEqual(fitted, 0.35, 'the import fitted its own radius');
   await list.locator('select').selectOption('sphere');
   await page.waitForFunction(() => window.softsculpt.settings().model === 'sphere' && !window.softsculpt.busy(), null, { timeout: 60000 });
   assert.equal(await inspect(page, () => window.softsculpt.vertexCount()), 642);
   await steady(page, () => [...document.querySelectorAll('#panel .lil-controller')].find((c) => c.textContent.includes('built-in'))?.querySelector('.lil-display')?.textContent);
   assert.deepEqual(await showing(), { display: 'sphere', selected: 'sphere' });
+  await page.waitForFunction(() => window.softsculpt.brush().radius === 0.35, null, { timeout: 10000 });
   // The imported entry is gone with the import.
   assert.equal(await list.locator('option', { hasText: 'imported' }).count(), 0);
   assert.deepEqual(errors, []);

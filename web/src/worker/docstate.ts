@@ -52,6 +52,12 @@ export class DocState {
   readonly history = new History<Entry>({ limit: HISTORY_STEPS, maxBytes: HISTORY_BYTES, size: (e) => e.delta.byteLength });
   readonly settings: Settings = { dt: 1e-3, substeps: 16, realTime: true, playing: true, keepTension: false, model: 'mushroom', frame: null };
   ui: UiState = { brush: { radius: 0.35 }, tool: 'grab', strengths: {} };
+  /**
+   * The brush radius (m) the last import fitted to its file's size (`importer.ts`), or null: a
+   * built-in loaded while the radius is still that one opens with the built-ins' brush
+   * (`opening.ts`), not with one fitted to another model.
+   */
+  fittedRadius: number | null = null;
 
   // ----- the stroke under way -------------------------------------------------------------------
 

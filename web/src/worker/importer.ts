@@ -11,7 +11,8 @@ import type { MessageKind, Settings, Stats, UiState } from '../protocol';
 import type { Imported } from './explain';
 
 /** Brush radius (m) for the reference-size model (the mushroom); scaled with the model. */
-const BRUSH_RADIUS = 0.35;
+/** The brush radius (m) of the built-in models, whose size is about 1 m: an import's is this × its size. */
+export const BRUSH_RADIUS = 0.35;
 
 /**
  * What the importer needs of the document it builds the model in (worker/document.ts's
@@ -24,6 +25,8 @@ export interface ImportTarget {
   readonly world: World;
   readonly settings: Pick<Settings, 'opened' | 'frame'>;
   ui: UiState;
+  /** The brush radius this import fitted (m), remembered for the next built-in (`docstate.ts`). */
+  fittedRadius: number | null;
   /** The model is an import: what a stop soon after it names (explain.ts). */
   imported: Imported | undefined;
   /** Run `op` as one operation (one undo step when `undoable`); false if it failed. */
@@ -201,6 +204,7 @@ export class Importer {
     // Three significant digits: the panel shows the number as it is (0.485, not 0.4849744…).
     const radius = Number((BRUSH_RADIUS * size).toPrecision(3));
     this.doc.ui = { ...this.doc.ui, brush: { radius } };
+    this.doc.fittedRadius = radius;
     this.doc.hooksUi({ brush: { radius } });
     const q = p.question, n = chosen.length;
     const v = chosen.reduce((s, k) => s + q.pieces[k].vertices, 0), f = chosen.reduce((s, k) => s + q.pieces[k].faces, 0);

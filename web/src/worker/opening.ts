@@ -7,6 +7,7 @@ import type { ImportFrame } from '../io/import';
 import { MODELS, type ModelName } from '../models';
 import type { DocState } from './docstate';
 import { edit } from './editing';
+import { BRUSH_RADIUS } from './importer';
 import { sketchBalloon, sketchOpen, sketchWhy, type SketchCommand } from './sketch';
 import { SPLITS } from './stepping';
 
@@ -55,6 +56,13 @@ export function loadBuiltin(d: DocState, name: string, undoable = true): void {
       d.hooks.progress(label, t / 6);
     }
   });
+  // The brush an import fitted to its file, still unchanged by the user, is not this model's:
+  // the built-ins' radius comes back.
+  if (d.fittedRadius !== null && d.ui.brush?.radius === d.fittedRadius) {
+    d.ui = { ...d.ui, brush: { radius: BRUSH_RADIUS } };
+    d.hooks.ui({ brush: { radius: BRUSH_RADIUS } });
+  }
+  d.fittedRadius = null;
 }
 
 /** The sketch tool's outline becomes a balloon replacing the model (undoable; a bad outline is one message). */
