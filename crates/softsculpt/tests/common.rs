@@ -237,10 +237,9 @@ pub struct Bulge {
     pub bound: f64,
 }
 
-/// Largest angle (rad) between the normals of two faces sharing an edge, over faces whose
-/// centroid lies within `radius` of `centre`, and the largest distance between such neighbours'
-/// centroids (m).
-pub fn normal_jumps(x: &[f64], tris: &[[u32; 3]], centre: [f64; 3], radius: f64) -> (f64, f64) {
+/// Each interior edge (i < j) whose two faces' centroids both lie within `radius` of `centre`:
+/// the angle (rad) between the two faces' normals and the distance between their centroids (m).
+pub fn neighbour_faces(x: &[f64], tris: &[[u32; 3]], centre: [f64; 3], radius: f64) -> Vec<((u32, u32), f64, f64)> {
     use std::collections::HashMap;
     let p = |i: u32| [x[3 * i as usize], x[3 * i as usize + 1], x[3 * i as usize + 2]];
     let face = |t: &[u32; 3]| {
@@ -258,16 +257,22 @@ pub fn normal_jumps(x: &[f64], tris: &[[u32; 3]], centre: [f64; 3], radius: f64)
         }
     }
     let dist = |a: [f64; 3], b: [f64; 3]| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
-    let (mut angle, mut spacing) = (0.0f64, 0.0f64);
-    for faces in by_edge.values().filter(|f| f.len() == 2) {
+    let mut out = Vec::new();
+    for (&edge, faces) in by_edge.iter().filter(|(_, f)| f.len() == 2) {
         let ((n1, c1), (n2, c2)) = (face(&tris[faces[0]]), face(&tris[faces[1]]));
         if dist(c1, centre) < radius && dist(c2, centre) < radius {
             let cos = (n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2]).clamp(-1.0, 1.0);
-            angle = angle.max(cos.acos());
-            spacing = spacing.max(dist(c1, c2));
+            out.push((edge, cos.acos(), dist(c1, c2)));
         }
     }
-    (angle, spacing)
+    out
+}
+
+/// Largest angle (rad) between the normals of two faces sharing an edge, over faces whose
+/// centroid lies within `radius` of `centre`, and the largest distance between such neighbours'
+/// centroids (m).
+pub fn normal_jumps(x: &[f64], tris: &[[u32; 3]], centre: [f64; 3], radius: f64) -> (f64, f64) {
+    neighbour_faces(x, tris, centre, radius).into_iter().fold((0.0f64, 0.0f64), |(a, s), (_, angle, spacing)| (a.max(angle), s.max(spacing)))
 }
 
 /// The largest angle between neighbouring faces' normals a smooth bulge allows: a bump of height

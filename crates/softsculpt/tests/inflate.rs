@@ -10,29 +10,7 @@ use std::collections::HashMap;
 fn dihedrals(x: &[f64], tris: &[[u32; 3]], centre: [f64; 3], radius: f64) -> HashMap<(u32, u32), (f64, f64)> {
     let p = |i: u32| [x[3 * i as usize], x[3 * i as usize + 1], x[3 * i as usize + 2]];
     let dist = |a: [f64; 3], b: [f64; 3]| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
-    let face = |t: &[u32; 3]| {
-        let (a, b, c) = (p(t[0]), p(t[1]), p(t[2]));
-        let (u, v) = ([b[0] - a[0], b[1] - a[1], b[2] - a[2]], [c[0] - a[0], c[1] - a[1], c[2] - a[2]]);
-        let n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
-        let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-        ([n[0] / l, n[1] / l, n[2] / l], [(a[0] + b[0] + c[0]) / 3.0, (a[1] + b[1] + c[1]) / 3.0, (a[2] + b[2] + c[2]) / 3.0])
-    };
-    let mut by_edge: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
-    for (f, t) in tris.iter().enumerate() {
-        for k in 0..3 {
-            let (i, j) = (t[k], t[(k + 1) % 3]);
-            by_edge.entry((i.min(j), i.max(j))).or_default().push(f);
-        }
-    }
-    let mut out = HashMap::new();
-    for (&(i, j), faces) in by_edge.iter().filter(|(_, f)| f.len() == 2) {
-        let ((n1, c1), (n2, c2)) = (face(&tris[faces[0]]), face(&tris[faces[1]]));
-        if dist(c1, centre) < radius && dist(c2, centre) < radius {
-            let cos = (n1[0] * n2[0] + n1[1] * n2[1] + n1[2] * n2[2]).clamp(-1.0, 1.0);
-            out.insert((i, j), (cos.acos(), dist(p(i), p(j))));
-        }
-    }
-    out
+    common::neighbour_faces(x, tris, centre, radius).into_iter().map(|((i, j), angle, _)| ((i, j), (angle, dist(p(i), p(j))))).collect()
 }
 
 /// What a held inflate did around its centre: the centre's outward move H (m), the largest
