@@ -168,6 +168,17 @@ pub fn with_material(preset: &str, model: &str, subdivisions: u32, overrides: &[
     w
 }
 
+/// The modeler's brush of radius `r` (m) centred on vertex `c` of positions `x` (flat xyz): each
+/// vertex within `r` with its weight (1 − (d/r)²)² (`web/src/tools/brush.ts`).
+pub fn brush_at(x: &[f64], c: usize, r: f64) -> Vec<(usize, f64)> {
+    (0..x.len() / 3)
+        .filter_map(|i| {
+            let d = (0..3).map(|k| (x[3 * i + k] - x[3 * c + k]).powi(2)).sum::<f64>().sqrt();
+            (d < r).then(|| (i, (1.0 - d * d / (r * r)).powi(2)))
+        })
+        .collect()
+}
+
 /// How a material takes the modeler's press or grab (issue #37, `examples/clay.rs`,
 /// `tests/presets.rs`): the change of the body's depth at the brush's centre — the distance from
 /// the front-most vertex (largest z) to the back-most — under the tool, 5 s and 10 s after
@@ -194,13 +205,7 @@ pub fn press_or_pull(preset: &str, model: &str, pull: bool, subdivisions: u32, o
     let n = m.len();
     let c = (0..n).max_by(|&p, &q| x0[3 * p + 2].total_cmp(&x0[3 * q + 2])).unwrap();
     let b = (0..n).min_by(|&p, &q| x0[3 * p + 2].total_cmp(&x0[3 * q + 2])).unwrap();
-    let r = 0.35;
-    let brush: Vec<(usize, f64)> = (0..n)
-        .filter_map(|i| {
-            let d = (0..3).map(|k| (x0[3 * i + k] - x0[3 * c + k]).powi(2)).sum::<f64>().sqrt();
-            (d < r).then(|| (i, (1.0 - d * d / (r * r)).powi(2)))
-        })
-        .collect();
+    let brush = brush_at(&x0, c, 0.35);
     let omega: f64 = 600.0;
     let frame = 1.0 / 60.0;
     let span = |x: &[f64]| (0..3).map(|k| (x[3 * c + k] - x[3 * b + k]).powi(2)).sum::<f64>().sqrt();

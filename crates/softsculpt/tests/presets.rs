@@ -162,13 +162,7 @@ fn rim_pulled_down() -> (f64, f64, f64) {
     let m = w.bodies[0].masses().to_vec();
     let n = m.len();
     let c = (0..n).max_by(|&p, &q| x0[3 * p + 2].total_cmp(&x0[3 * q + 2])).unwrap();
-    let r = 0.35;
-    let brush: Vec<(usize, f64)> = (0..n)
-        .filter_map(|i| {
-            let d = (0..3).map(|k| (x0[3 * i + k] - x0[3 * c + k]).powi(2)).sum::<f64>().sqrt();
-            (d < r).then(|| (i, (1.0 - d * d / (r * r)).powi(2)))
-        })
-        .collect();
+    let brush = common::brush_at(&x0, c, 0.35);
     let (omega, frame): (f64, f64) = (600.0, 1.0 / 60.0);
     for f in 0..60 {
         let down = 0.4 * ((f + 1) as f64 * frame / 0.5).min(1.0);
